@@ -1,0 +1,444 @@
+/*
+ * sscape: statistical 3D human body models (S-SCAPE) behind a stable C ABI.
+ *
+ * This header is the reference documentation of the library. It compiles as C99 and as C++.
+ *
+ * Conventions (the whole API, no exceptions):
+ *   - Lengths in metres. Right-handed coordinates, +Y up, the body faces +Z, its left is +X
+ *     (the glTF convention).
+ *   - 4x4 matrices are column-major: 16 floats, m[col * 4 + row]; translation in m[12..14].
+ *   - Quaternions are 4 floats x y z w. Axis-angle rotations are 3 floats: unit axis times the
+ *     angle in radians.
+ *   - A joint's pose rotation is applied in the joint's local frame after its rest orientation:
+ *     local = translate(rest offset from parent) * rest_orientation * pose_rotation.
+ *     The zero pose (identity rotations, zero translation) gives the rest (unposed) body.
+ *   - Shape coefficients are in units of each component's standard deviation.
+ *   - Every fallible function returns ssc_status: SSC_OK (0) or a negative error. On error nothing
+ *     is written to output arguments, and ssc_last_error() describes what was wrong.
+ *   - Output arrays belong to the caller: the caller queries the count, allocates, and passes a
+ *     pointer, a capacity in elements and, where given, a stride in bytes (0 = tightly packed).
+ *     A capacity smaller than needed gives SSC_ERROR_BUFFER_TOO_SMALL and writes nothing.
+ *   - Strings are UTF-8, owned by the object they come from, valid while it lives.
+ *   - Booleans are uint32_t (0 = false, anything else = true).
+ *
+ * Objects:
+ *   ssc_context  allocator, log callback, worker threads. Thread-safe.
+ *   ssc_model    an immutable, reference-counted body model. Thread-safe: share it freely.
+ *   ssc_body     one body's shape, pose and outputs. Use from one thread at a time; many bodies may
+ *                share one model on many threads. A body keeps its model alive, and a model keeps
+ *                its context alive, so handles may be released in any order.
+ */
+#ifndef SSCAPE_SSCAPE_H
+#define SSCAPE_SSCAPE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Export and version                                                                              */
+
+#if defined(_WIN32)
+#  if defined(SSC_BUILD_SHARED)
+#    define SSC_API __declspec(dllexport)
+#  elif defined(SSC_USE_SHARED)
+#    define SSC_API __declspec(dllimport)
+#  else
+#    define SSC_API
+#  endif
+#else
+#  define SSC_API __attribute__((visibility("default")))
+#endif
+
+#define SSC_VERSION_MAJOR 0
+#define SSC_VERSION_MINOR 1
+#define SSC_VERSION_PATCH 0
+/** The version as one number: major * 10000 + minor * 100 + patch. */
+#define SSC_VERSION_NUMBER (SSC_VERSION_MAJOR * 10000 + SSC_VERSION_MINOR * 100 + SSC_VERSION_PATCH)
+
+/**
+ * The version of the library actually loaded, as SSC_VERSION_NUMBER. Bindings compare it with the
+ * header they were built against.
+ * Ownership: none. Threads: any.
+ */
+SSC_API uint32_t ssc_version(void);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Status and errors                                                                               */
+
+/** Result of every fallible call. Values are fixed forever and never reused. */
+typedef enum ssc_status {
+    SSC_OK = 0,
+    SSC_ERROR_INVALID_ARGUMENT = -1,     /**< NULL where not allowed, NaN/Inf, out of range, bad count. */
+    SSC_ERROR_OUT_OF_MEMORY = -2,        /**< An allocation failed. */
+    SSC_ERROR_BUFFER_TOO_SMALL = -3,     /**< An output capacity is smaller than needed; nothing written. */
+    SSC_ERROR_IO = -4,                   /**< A file could not be opened, read or written. */
+    SSC_ERROR_MODEL_CORRUPT = -5,        /**< A model file failed verification (message says where). */
+    SSC_ERROR_UNSUPPORTED_VERSION = -6,  /**< A model file of a container version this library cannot read. */
+    SSC_ERROR_NOT_FOUND = -7,            /**< An unknown name (joint, landmark, vertex set). */
+    SSC_ERROR_CANCELLED = -8,            /**< A progress callback asked to stop. */
+    SSC_ERROR_INTERNAL = -9,             /**< A bug in sscape; please report it with ssc_last_error(). */
+    SSC_STATUS_FORCE32 = 0x7FFFFFFF
+} ssc_status;
+
+/**
+ * A static, human-readable name for a status ("SSC_ERROR_MODEL_CORRUPT"); "SSC_UNKNOWN_STATUS" for
+ * values this version does not know.
+ * Ownership: static storage, never freed. Threads: any.
+ */
+SSC_API const char* ssc_status_name(ssc_status status);
+
+/**
+ * Detail about the last error raised on the calling thread: what was wrong, which argument, which
+ * file offset. "" if no call on this thread has failed yet. Successful calls do not clear it.
+ * Ownership: thread-local storage of the library, valid until the next failing call on this thread.
+ * Threads: each thread has its own message.
+ */
+SSC_API const char* ssc_last_error(void);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Context                                                                                         */
+
+typedef struct ssc_context ssc_context;
+
+/** Log severities, in increasing order. */
+typedef enum ssc_log_level {
+    SSC_LOG_DEBUG = 0,
+    SSC_LOG_INFO = 1,
+    SSC_LOG_WARNING = 2,
+    SSC_LOG_ERROR = 3,
+    SSC_LOG_LEVEL_FORCE32 = 0x7FFFFFFF
+} ssc_log_level;
+
+/**
+ * Allocates size bytes aligned to align (a power of two, at most 64). Returns NULL on failure.
+ * Called from any thread that uses objects of the context: it must be thread-safe.
+ */
+typedef void* (*ssc_alloc_fn)(void* user, size_t size, size_t align);
+/** Frees memory from the matching ssc_alloc_fn. ptr is never NULL. Must be thread-safe. */
+typedef void (*ssc_free_fn)(void* user, void* ptr);
+/** Receives a log message (UTF-8, valid only during the call). Must be thread-safe. */
+typedef void (*ssc_log_fn)(void* user, ssc_log_level level, const char* message);
+
+/** Options of ssc_context_create. Fill with ssc_context_def_init, then change what you need. */
+typedef struct ssc_context_def {
+    uint32_t struct_size;       /**< sizeof(ssc_context_def), set by ssc_context_def_init. */
+    uint32_t worker_count;      /**< Threads for batch work, caller included. 0 (default) = one per
+                                     hardware thread; 1 = run everything on the calling thread. */
+    ssc_alloc_fn alloc;         /**< Allocator for model and body storage; NULL (default) = the C heap. */
+    ssc_free_fn free;           /**< Required when alloc is set. */
+    void* alloc_user;           /**< Passed to alloc and free. */
+    ssc_log_fn log;             /**< Log sink; NULL (default) = no logging. */
+    void* log_user;             /**< Passed to log. */
+    ssc_log_level log_level;    /**< Lowest level passed to log. Default SSC_LOG_WARNING. */
+    uint64_t max_model_bytes;   /**< Largest decompressed model accepted, in bytes. 0 (default) = 256 MiB. */
+} ssc_context_def;
+
+/**
+ * Fills def with defaults. size must be sizeof(*def) as the caller compiled it; the library writes
+ * only that many bytes, so callers built against an older header keep working.
+ * Ownership: none. Threads: any.
+ */
+SSC_API void ssc_context_def_init(ssc_context_def* def, size_t size);
+
+/**
+ * Creates a context.
+ * @param def  options; NULL = all defaults. Only def->struct_size bytes are read.
+ * @param out  receives the new context; set only on success.
+ * @return SSC_OK, SSC_ERROR_INVALID_ARGUMENT (out NULL, alloc without free, bad struct_size),
+ *         SSC_ERROR_OUT_OF_MEMORY.
+ * Ownership: the caller owns *out and ends it with ssc_context_destroy. Threads: any.
+ */
+SSC_API ssc_status ssc_context_create(const ssc_context_def* def, ssc_context** out);
+
+/**
+ * Releases the caller's reference to a context. Models loaded with it keep it alive until they are
+ * released; its worker threads stop when the last reference goes. NULL is ignored.
+ * Ownership: ctx must not be used by the caller afterwards. Threads: any, once per context.
+ */
+SSC_API void ssc_context_destroy(ssc_context* ctx);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Model                                                                                           */
+
+typedef struct ssc_model ssc_model;
+
+/**
+ * Loads a .sscape model file. The file is untrusted: it is verified completely (container,
+ * checksum, schema, semantic checks) before the model exists.
+ * @param ctx   context for allocation, logging and batch threads; NULL = a private default context.
+ * @param path  UTF-8 file path.
+ * @param out   receives the model with one reference; set only on success.
+ * @return SSC_OK, SSC_ERROR_INVALID_ARGUMENT, SSC_ERROR_IO, SSC_ERROR_MODEL_CORRUPT,
+ *         SSC_ERROR_UNSUPPORTED_VERSION, SSC_ERROR_OUT_OF_MEMORY.
+ * Ownership: the caller owns one reference to *out, ended by ssc_model_release. Threads: any.
+ */
+SSC_API ssc_status ssc_model_load_file(ssc_context* ctx, const char* path, ssc_model** out);
+
+/**
+ * Loads a model from a .sscape file image in memory; as ssc_model_load_file otherwise.
+ * @param data  the bytes; not retained after the call.
+ * @param size  their count.
+ */
+SSC_API ssc_status ssc_model_load_memory(ssc_context* ctx, const void* data, size_t size, ssc_model** out);
+
+/** Adds a reference. NULL is ignored. Threads: any. */
+SSC_API void ssc_model_retain(ssc_model* model);
+
+/** Drops a reference; the model is freed with the last one (bodies hold references). NULL is ignored.
+ *  Threads: any. */
+SSC_API void ssc_model_release(ssc_model* model);
+
+/* Counts. A NULL model gives 0. Ownership: none. Threads: any. */
+SSC_API uint32_t ssc_model_vertex_count(const ssc_model* model);    /**< Body surface vertices. */
+SSC_API uint32_t ssc_model_triangle_count(const ssc_model* model);  /**< Triangles of the render mesh. */
+SSC_API uint32_t ssc_model_quad_count(const ssc_model* model);      /**< Quads of the authoring mesh, 0 if none. */
+SSC_API uint32_t ssc_model_uv_count(const ssc_model* model);        /**< Texture coordinates, 0 if none. */
+SSC_API uint32_t ssc_model_joint_count(const ssc_model* model);     /**< Skeleton joints. */
+SSC_API uint32_t ssc_model_shape_count(const ssc_model* model);     /**< Shape components. */
+SSC_API uint32_t ssc_model_landmark_count(const ssc_model* model);  /**< Named landmarks. */
+SSC_API uint32_t ssc_model_vertex_set_count(const ssc_model* model);/**< Named vertex sets. */
+
+/**
+ * Copies the triangles: 3 vertex indices each, counter-clockwise seen from outside.
+ * @param out       3 * capacity uint32 values.
+ * @param capacity  triangles out can hold; at least ssc_model_triangle_count.
+ * Ownership: out is the caller's. Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_triangles(const ssc_model* model, uint32_t* out, uint32_t capacity);
+
+/** Copies the quads: 4 vertex indices each; capacity in quads. As ssc_model_get_triangles. */
+SSC_API ssc_status ssc_model_get_quads(const ssc_model* model, uint32_t* out, uint32_t capacity);
+
+/**
+ * Copies the texture coordinates, 2 floats (u, v) each; capacity in coordinates. UVs are
+ * face-varying: see ssc_model_get_triangle_uvs. SSC_ERROR_NOT_FOUND if the model has none.
+ * Ownership: out is the caller's. Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_uvs(const ssc_model* model, float* out, uint32_t capacity);
+
+/** Copies 3 indices into the UVs per triangle (same order as the triangles); capacity in triangles.
+ *  SSC_ERROR_NOT_FOUND if the model has no UVs. Ownership: out is the caller's. Threads: any. */
+SSC_API ssc_status ssc_model_get_triangle_uvs(const ssc_model* model, uint32_t* out, uint32_t capacity);
+
+/**
+ * Copies the parent of every joint (-1 for the root). Parents precede their children.
+ * @param capacity  joints out can hold.
+ * Ownership: out is the caller's. Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_joint_parents(const ssc_model* model, int32_t* out, uint32_t capacity);
+
+/**
+ * Gives the name of joint index.
+ * @param out  receives a string owned by the model.
+ * @return SSC_ERROR_INVALID_ARGUMENT for an index out of range.
+ * Ownership: *out lives as long as the model. Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_joint_name(const ssc_model* model, uint32_t index, const char** out);
+
+/** Finds a joint by exact name. SSC_ERROR_NOT_FOUND if there is none. Threads: any. */
+SSC_API ssc_status ssc_model_find_joint(const ssc_model* model, const char* name, uint32_t* out_index);
+
+/** Gives the name of landmark index; as ssc_model_get_joint_name. */
+SSC_API ssc_status ssc_model_get_landmark_name(const ssc_model* model, uint32_t index, const char** out);
+
+/** Finds a landmark by exact name. SSC_ERROR_NOT_FOUND if there is none. Threads: any. */
+SSC_API ssc_status ssc_model_find_landmark(const ssc_model* model, const char* name, uint32_t* out_index);
+
+/**
+ * Copies the landmark positions on the mean shape in the rest pose (metres), 3 floats each.
+ * @param capacity  landmarks out can hold. @param stride bytes between landmarks; 0 = 12.
+ * Ownership: out is the caller's. Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_landmark_positions(const ssc_model* model, float* out, uint32_t capacity,
+                                                    size_t stride);
+
+/**
+ * Gives the name and size of vertex set index (a body part such as "head").
+ * @param out_name  receives a string owned by the model; may be NULL.
+ * @param out_size  receives the number of vertices; may be NULL.
+ * Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_vertex_set(const ssc_model* model, uint32_t index, const char** out_name,
+                                            uint32_t* out_size);
+
+/** Copies the sorted vertex indices of vertex set index; capacity in indices. Threads: any. */
+SSC_API ssc_status ssc_model_get_vertex_set_indices(const ssc_model* model, uint32_t index, uint32_t* out,
+                                                    uint32_t capacity);
+
+/** Copies each shape component's standard deviation (metres, for a unit-length basis vector);
+ *  capacity in components. Threads: any. */
+SSC_API ssc_status ssc_model_get_shape_stddevs(const ssc_model* model, float* out, uint32_t capacity);
+
+/** Metadata keys. */
+typedef enum ssc_metadata_key {
+    SSC_METADATA_NAME = 0,
+    SSC_METADATA_VERSION = 1,      /**< The model's own version string. */
+    SSC_METADATA_UNITS = 2,        /**< Always "m". */
+    SSC_METADATA_AXES = 3,         /**< Always "right-handed, +Y up, +Z forward". */
+    SSC_METADATA_LICENSE = 4,
+    SSC_METADATA_PROVENANCE = 5,   /**< Where the model came from: data, tools, settings. */
+    SSC_METADATA_DESCRIPTION = 6,
+    SSC_METADATA_KEY_FORCE32 = 0x7FFFFFFF
+} ssc_metadata_key;
+
+/**
+ * Gives a metadata string ("" when the file has none).
+ * @return SSC_ERROR_INVALID_ARGUMENT for an unknown key.
+ * Ownership: *out lives as long as the model. Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_metadata(const ssc_model* model, ssc_metadata_key key, const char** out);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Body                                                                                            */
+
+typedef struct ssc_body ssc_body;
+
+/** Options of ssc_body_create. Fill with ssc_body_def_init. No options yet: reserved for growth. */
+typedef struct ssc_body_def {
+    uint32_t struct_size;  /**< sizeof(ssc_body_def), set by ssc_body_def_init. */
+    uint32_t reserved;     /**< Must be 0. */
+} ssc_body_def;
+
+/** Fills def with defaults; size = sizeof(*def). Threads: any. */
+SSC_API void ssc_body_def_init(ssc_body_def* def, size_t size);
+
+/**
+ * Creates a body on a model, with the mean shape in the rest pose.
+ * @param model  the model; the body takes a reference to it.
+ * @param def    options; NULL = defaults.
+ * @param out    receives the body; set only on success.
+ * Ownership: the caller owns *out, ended by ssc_body_destroy. Threads: any; the body itself is
+ * used from one thread at a time.
+ */
+SSC_API ssc_status ssc_body_create(ssc_model* model, const ssc_body_def* def, ssc_body** out);
+
+/** Destroys a body and drops its model reference. NULL is ignored. Threads: the body's thread. */
+SSC_API void ssc_body_destroy(ssc_body* body);
+
+/**
+ * Sets the shape.
+ * @param coefficients  count values in standard deviations (finite); may be NULL when count is 0.
+ * @param count         at most ssc_model_shape_count; the remaining components are set to 0.
+ * @return SSC_ERROR_INVALID_ARGUMENT for NULL, a count too large or a non-finite value; the body
+ *         is unchanged then.
+ * Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_set_shape(ssc_body* body, const float* coefficients, uint32_t count);
+
+/** Copies the current shape coefficients (standard deviations); capacity in components, at least
+ *  ssc_model_shape_count. Threads: the body's thread. */
+SSC_API ssc_status ssc_body_get_shape(const ssc_body* body, float* out, uint32_t capacity);
+
+/**
+ * Sets the pose from quaternions.
+ * @param rotations    4 floats (x y z w) per joint, joint_count joints, in joint order; each is
+ *                     normalised; non-finite values or a zero quaternion are an error.
+ *                     NULL = identity for every joint.
+ * @param joint_count  must equal ssc_model_joint_count (0 allowed when rotations is NULL).
+ * @param translation  3 floats added to the whole body (metres); NULL = zero.
+ * @return SSC_ERROR_INVALID_ARGUMENT; the body is unchanged on error.
+ * Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_set_pose(ssc_body* body, const float* rotations, uint32_t joint_count,
+                                     const float* translation);
+
+/** Sets the pose from axis-angle vectors, 3 floats per joint; otherwise as ssc_body_set_pose. */
+SSC_API ssc_status ssc_body_set_pose_axis_angle(ssc_body* body, const float* rotations, uint32_t joint_count,
+                                                const float* translation);
+
+/**
+ * Copies the posed vertices (metres), 3 floats each, computing what the last shape and pose
+ * changes require.
+ * @param capacity  vertices out can hold, at least ssc_model_vertex_count.
+ * @param stride    bytes from one vertex to the next; 0 = 12; otherwise >= 12 and a multiple of 4.
+ * Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_get_vertices(ssc_body* body, float* out, uint32_t capacity, size_t stride);
+
+/** Copies unit vertex normals of the posed mesh (area-weighted over the triangles); as
+ *  ssc_body_get_vertices. */
+SSC_API ssc_status ssc_body_get_normals(ssc_body* body, float* out, uint32_t capacity, size_t stride);
+
+/** Copies the shaped, unposed vertices; as ssc_body_get_vertices. */
+SSC_API ssc_status ssc_body_get_rest_vertices(ssc_body* body, float* out, uint32_t capacity, size_t stride);
+
+/** Copies the posed landmark positions, 3 floats each; capacity in landmarks; as
+ *  ssc_body_get_vertices. */
+SSC_API ssc_status ssc_body_get_landmarks(ssc_body* body, float* out, uint32_t capacity, size_t stride);
+
+/**
+ * Copies each joint's world transform (column-major 4x4, 16 floats per joint): the joint's frame
+ * in the posed body. capacity in joints.
+ * Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_get_joint_transforms(ssc_body* body, float* out, uint32_t capacity);
+
+/**
+ * Copies each joint's inverse bind matrix: the inverse of its world transform in the rest pose of
+ * the current shape (column-major 4x4). capacity in joints. Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_get_inverse_bind_matrices(ssc_body* body, float* out, uint32_t capacity);
+
+/**
+ * Copies the skinning matrices (world transform x inverse bind, column-major 4x4) for engines that
+ * skin on the GPU: posed vertex = sum_i weight_i * M[joint_i] * rest vertex. capacity in joints.
+ * Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_get_skinning_matrices(ssc_body* body, float* out, uint32_t capacity);
+
+/**
+ * Copies the skin: 4 joint indices and 4 weights (summing to 1) per vertex.
+ * @param joints   4 * capacity values; may be NULL. @param weights 4 * capacity values; may be NULL.
+ * @param capacity vertices the arrays can hold.
+ * Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_skin(const ssc_model* model, uint16_t* joints, float* weights, uint32_t capacity);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Batch synthesis                                                                                 */
+
+/** Rotation formats of pose arrays. */
+typedef enum ssc_rotation_format {
+    SSC_ROTATION_QUATERNION = 0,  /**< 4 floats x y z w per joint. */
+    SSC_ROTATION_AXIS_ANGLE = 1,  /**< 3 floats per joint. */
+    SSC_ROTATION_FORMAT_FORCE32 = 0x7FFFFFFF
+} ssc_rotation_format;
+
+/**
+ * Describes a batch: body_count bodies, body i built from its shape, pose and translation.
+ * Fill with ssc_batch_desc_init. All arrays are the caller's and are only used during the call.
+ */
+typedef struct ssc_batch_desc {
+    uint32_t struct_size;            /**< sizeof(ssc_batch_desc), set by ssc_batch_desc_init. */
+    uint32_t body_count;             /**< Number of bodies. */
+    const float* shapes;             /**< body_count * shape_count coefficients; NULL = mean shapes. */
+    uint32_t shape_count;            /**< Coefficients per body, <= ssc_model_shape_count. */
+    ssc_rotation_format pose_format; /**< Format of poses. Default SSC_ROTATION_QUATERNION. */
+    const float* poses;              /**< body_count * joint_count rotations; NULL = rest pose. */
+    const float* translations;       /**< body_count * 3 floats; NULL = zero. */
+    float* vertices;                 /**< Out: body_count * vertex_count * 3 floats, body after body. */
+    size_t vertices_capacity;        /**< Vertices the buffer holds: >= body_count * vertex_count. */
+    float* normals;                  /**< Optional out (NULL = skip), laid out like vertices. */
+    size_t normals_capacity;         /**< Vertices normals holds. */
+} ssc_batch_desc;
+
+/** Fills desc with defaults (no bodies); size = sizeof(*desc). Threads: any. */
+SSC_API void ssc_batch_desc_init(ssc_batch_desc* desc, size_t size);
+
+/**
+ * Synthesizes many bodies on the worker threads of the model's context. The results equal what
+ * ssc_body_get_vertices / ssc_body_get_normals give for the same parameters.
+ * All inputs are checked before anything is written: on error the outputs are untouched.
+ * Threads: any; concurrent batches on one context share its workers.
+ */
+SSC_API ssc_status ssc_model_synthesize_batch(const ssc_model* model, const ssc_batch_desc* desc);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SSCAPE_SSCAPE_H */

@@ -1,0 +1,88 @@
+// The decoded contents of a .sscape file: plain data, exactly what the file says, checked by
+// validate_model(). Writers fill it (quantizing the basis with quantize_basis), the reader
+// produces it, and the runtime builds its derived, synthesis-ready model from it.
+#pragma once
+
+#include "common/alloc.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ssc::format {
+
+struct Metadata {
+    std::string name, model_version, units = "m", axes = "right-handed, +Y up, +Z forward", license,
+        provenance, description;
+};
+
+struct Mesh {
+    uint32_t vertex_count = 0;
+    Vec<uint32_t> triangles;     // 3 per triangle
+    Vec<uint32_t> quads;         // 4 per quad, optional
+    Vec<float> uvs;              // 2 per coordinate, optional
+    Vec<uint32_t> triangle_uvs;  // 3 per triangle when uvs exist
+    Vec<uint32_t> quad_uvs;      // 4 per quad when uvs and quads exist
+};
+
+// Basis B_k (metres per standard deviation) = step[k] * q, planar layout:
+// q[k * 3V + axis * V + v] for component k, axis 0..2 (x, y, z), vertex v.
+struct QuantizedBasis {
+    uint32_t components = 0;
+    Vec<float> step;   // per component, > 0
+    Vec<int16_t> q;
+};
+
+struct ShapeSpace {
+    Vec<float> mean;      // 3 per vertex, interleaved xyz
+    Vec<float> stddev;    // per component
+    QuantizedBasis basis;
+};
+
+struct Skeleton {
+    std::vector<std::string> joint_names;
+    Vec<int32_t> parents;
+    Vec<float> rest_orientations;  // xyzw per joint
+    Vec<uint32_t> regressor_offsets;
+    Vec<uint32_t> regressor_vertices;
+    Vec<float> regressor_weights;
+};
+
+struct Skin {
+    Vec<uint16_t> joints;  // 4 per vertex
+    Vec<float> weights;    // 4 per vertex
+};
+
+inline constexpr uint32_t kNone = 0xFFFFFFFFu;
+
+struct Landmark {
+    std::string name;
+    uint32_t vertex = kNone;    // either a vertex ...
+    uint32_t triangle = kNone;  // ... or a triangle with barycentric weights
+    float barycentric[3] = {0, 0, 0};
+};
+
+struct VertexSet {
+    std::string name;
+    Vec<uint32_t> vertices;
+};
+
+struct ModelData {
+    Metadata metadata;
+    Mesh mesh;
+    ShapeSpace shape;
+    Skeleton skeleton;
+    Skin skin;
+    std::vector<Landmark> landmarks;
+    std::vector<VertexSet> vertex_sets;
+
+    uint32_t vertex_count() const { return mesh.vertex_count; }
+    uint32_t joint_count() const { return static_cast<uint32_t>(skeleton.parents.size()); }
+    uint32_t component_count() const { return shape.basis.components; }
+};
+
+// Checks every semantic rule of the format (sizes, index ranges, finite numbers, normalised weights,
+// parent order, unique names). Throws ssc::Error(SSC_ERROR_MODEL_CORRUPT) naming the first problem.
+void validate_model(const ModelData& m);
+
+}  // namespace ssc::format

@@ -1,0 +1,151 @@
+#include "common/error.hpp"
+#include "sscape_format/basis_codec.hpp"
+#include "sscape_format/container.hpp"
+#include "sscape_format/model_io.hpp"
+#include "sscape_model_generated.h"
+
+#include <cstring>
+#include <fstream>
+
+static_assert(FLATBUFFERS_LITTLEENDIAN, "the reader copies FlatBuffers vectors directly: little-endian hosts only");
+
+namespace ssc::format {
+namespace {
+
+namespace fb = sscape::fb;
+
+template <class T>
+void copy(const flatbuffers::Vector<T>* v, Vec<T>& out) {
+    if (!v) return;
+    out.resize(v->size());
+    if (v->size()) std::memcpy(out.data(), v->data(), v->size() * sizeof(T));
+}
+
+template <class T>
+const flatbuffers::Vector<T>* need(const flatbuffers::Vector<T>* v, const char* what) {
+    require_model(v != nullptr, std::string(what) + " is missing");
+    return v;
+}
+
+std::string text(const flatbuffers::String* s) { return s ? s->str() : std::string(); }
+
+}  // namespace
+
+ModelData read_model(const void* data, std::size_t size, const ReadOptions& options) {
+    require_arg(data != nullptr || size == 0, "data is NULL");
+    const Allocator* a = options.allocator;
+    Vec<unsigned char> buffer{CAlloc<unsigned char>(a)};
+    unpack_container(data, size, options.max_model_bytes ? options.max_model_bytes : kDefaultMaxModelBytes, buffer);
+
+    flatbuffers::Verifier verifier(buffer.data(), buffer.size());
+    require_model(fb::ModelBufferHasIdentifier(buffer.data()), "FlatBuffers identifier is not \"SSCM\"");
+    require_model(fb::VerifyModelBuffer(verifier), "FlatBuffers verification failed: the model buffer is malformed");
+    const fb::Model* root = fb::GetModel(buffer.data());
+
+    ModelData m;
+    // Point every array at the context's allocator before anything is filled.
+    auto bind = [&](auto& v) { v = std::decay_t<decltype(v)>(typename std::decay_t<decltype(v)>::allocator_type(a)); };
+    bind(m.mesh.triangles); bind(m.mesh.quads); bind(m.mesh.uvs); bind(m.mesh.triangle_uvs); bind(m.mesh.quad_uvs);
+    bind(m.shape.mean); bind(m.shape.stddev); bind(m.shape.basis.step); bind(m.shape.basis.q);
+    bind(m.skeleton.parents); bind(m.skeleton.rest_orientations); bind(m.skeleton.regressor_offsets);
+    bind(m.skeleton.regressor_vertices); bind(m.skeleton.regressor_weights);
+    bind(m.skin.joints); bind(m.skin.weights);
+
+    if (const auto* md = root->metadata()) {
+        m.metadata.name = text(md->name());
+        m.metadata.model_version = text(md->model_version());
+        m.metadata.units = text(md->units());
+        m.metadata.axes = text(md->axes());
+        m.metadata.license = text(md->license());
+        m.metadata.provenance = text(md->provenance());
+        m.metadata.description = text(md->description());
+    }
+
+    const auto* mesh = root->mesh();
+    require_model(mesh != nullptr, "mesh is missing");
+    m.mesh.vertex_count = mesh->vertex_count();
+    copy(need(mesh->triangles(), "mesh.triangles"), m.mesh.triangles);
+    copy(mesh->quads(), m.mesh.quads);
+    copy(mesh->uvs(), m.mesh.uvs);
+    copy(mesh->triangle_uvs(), m.mesh.triangle_uvs);
+    copy(mesh->quad_uvs(), m.mesh.quad_uvs);
+
+    const auto* shape = root->shape();
+    require_model(shape != nullptr, "shape is missing");
+    copy(need(shape->mean(), "shape.mean"), m.shape.mean);
+    copy(need(shape->stddev(), "shape.stddev"), m.shape.stddev);
+    copy(need(shape->step(), "shape.step"), m.shape.basis.step);
+    m.shape.basis.components = static_cast<uint32_t>(m.shape.stddev.size());
+    const uint32_t V = m.mesh.vertex_count;
+    require_model(m.shape.mean.size() == 3ull * V, "shape.mean does not hold 3 floats per vertex");
+    const auto* order = need(shape->vertex_order(), "shape.vertex_order");
+    const auto* pred = need(shape->predictor(), "shape.predictor");
+    const auto* planes = need(shape->residual_planes(), "shape.residual_planes");
+    require_model(order->size() == V && pred->size() == V, "shape.vertex_order/predictor must hold one entry per vertex");
+    // Bounded: the plane size is checked against components * 3V before q is allocated.
+    decode_residuals(planes->data(), planes->size(), V, m.shape.basis.components, order->data(), pred->data(),
+                     m.shape.basis.q);
+
+    const auto* sk = root->skeleton();
+    require_model(sk != nullptr, "skeleton is missing");
+    const auto* names = need(sk->joint_names(), "skeleton.joint_names");
+    for (const auto* s : *names) m.skeleton.joint_names.push_back(text(s));
+    copy(need(sk->parents(), "skeleton.parents"), m.skeleton.parents);
+    copy(need(sk->rest_orientations(), "skeleton.rest_orientations"), m.skeleton.rest_orientations);
+    copy(need(sk->regressor_offsets(), "skeleton.regressor_offsets"), m.skeleton.regressor_offsets);
+    copy(need(sk->regressor_vertices(), "skeleton.regressor_vertices"), m.skeleton.regressor_vertices);
+    copy(need(sk->regressor_weights(), "skeleton.regressor_weights"), m.skeleton.regressor_weights);
+
+    const auto* skin = root->skin();
+    require_model(skin != nullptr, "skin is missing");
+    copy(need(skin->joints(), "skin.joints"), m.skin.joints);
+    copy(need(skin->weights(), "skin.weights"), m.skin.weights);
+
+    if (const auto* lms = root->landmarks()) {
+        for (const auto* l : *lms) {
+            Landmark out;
+            out.name = text(l->name());
+            out.vertex = l->vertex();
+            out.triangle = l->triangle();
+            if (const auto* b = l->barycentric()) {
+                out.barycentric[0] = b->u();
+                out.barycentric[1] = b->v();
+                out.barycentric[2] = b->w();
+            }
+            m.landmarks.push_back(std::move(out));
+        }
+    }
+    if (const auto* sets = root->vertex_sets()) {
+        for (const auto* s : *sets) {
+            VertexSet out;
+            out.name = text(s->name());
+            out.vertices = Vec<uint32_t>(CAlloc<uint32_t>(a));
+            copy(s->vertices(), out.vertices);
+            m.vertex_sets.push_back(std::move(out));
+        }
+    }
+
+    validate_model(m);
+    return m;
+}
+
+ModelData read_model_file(const std::string& path, const ReadOptions& options) {
+    std::ifstream f(path, std::ios::binary | std::ios::ate);
+    if (!f) fail(SSC_ERROR_IO, "cannot open '" + path + "'");
+    const std::streamoff size = f.tellg();
+    if (size < 0) fail(SSC_ERROR_IO, "cannot read the size of '" + path + "'");
+    // A container is at most header + a zstd bound of the content cap: refuse larger files unread.
+    const uint64_t cap = options.max_model_bytes ? options.max_model_bytes : kDefaultMaxModelBytes;
+    if (static_cast<uint64_t>(size) > kHeaderSize + cap + cap / 128 + (1 << 17))
+        fail(SSC_ERROR_MODEL_CORRUPT, "'" + path + "' is " + std::to_string(size) + " bytes: larger than any model accepted");
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
+    f.seekg(0);
+    if (size > 0 && !f.read(reinterpret_cast<char*>(bytes.data()), size)) fail(SSC_ERROR_IO, "cannot read '" + path + "'");
+    try {
+        return read_model(bytes.data(), bytes.size(), options);
+    } catch (const Error& e) {
+        throw Error(e.status(), "'" + path + "': " + e.what());
+    }
+}
+
+}  // namespace ssc::format

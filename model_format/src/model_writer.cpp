@@ -1,0 +1,91 @@
+#include "common/error.hpp"
+#include "sscape_format/basis_codec.hpp"
+#include "sscape_format/container.hpp"
+#include "sscape_format/model_io.hpp"
+#include "sscape_model_generated.h"
+
+#include <cstdio>
+#include <fstream>
+
+namespace ssc::format {
+namespace {
+
+template <class T>
+flatbuffers::Offset<flatbuffers::Vector<T>> vec(flatbuffers::FlatBufferBuilder& fbb, const Vec<T>& v) {
+    return fbb.CreateVector(v.data(), v.size());
+}
+
+// Optional arrays are left out of the buffer when empty.
+template <class T>
+flatbuffers::Offset<flatbuffers::Vector<T>> opt_vec(flatbuffers::FlatBufferBuilder& fbb, const Vec<T>& v) {
+    return v.empty() ? 0 : vec(fbb, v);
+}
+
+}  // namespace
+
+std::vector<unsigned char> write_model(const ModelData& m, const WriteOptions& options) {
+    if (options.validate) {
+        try {
+            validate_model(m);
+        } catch (const Error& e) {
+            fail(SSC_ERROR_INVALID_ARGUMENT, std::string("model to write is invalid: ") + e.what());
+        }
+    }
+    namespace fb = sscape::fb;
+    flatbuffers::FlatBufferBuilder fbb(1 << 20);
+    auto str = [&](const std::string& s) { return fbb.CreateString(s); };
+
+    const auto& md = m.metadata;
+    auto meta = fb::CreateMetadata(fbb, str(md.name), str(md.model_version), str(md.units), str(md.axes),
+                                   str(md.license), str(md.provenance), str(md.description));
+    const auto& me = m.mesh;
+    auto mesh = fb::CreateMesh(fbb, me.vertex_count, vec(fbb, me.triangles), opt_vec(fbb, me.quads),
+                               opt_vec(fbb, me.uvs), opt_vec(fbb, me.triangle_uvs), opt_vec(fbb, me.quad_uvs));
+
+    // Sized by the vertex data actually present (equal to vertex_count in any valid model).
+    const auto data_vertices = static_cast<uint32_t>(m.shape.mean.size() / 3);
+    const PredictionTree tree = build_prediction_tree(data_vertices, me.triangles, me.quads);
+    const std::vector<uint8_t> planes = encode_residuals(m.shape.basis, data_vertices, tree);
+    auto shape = fb::CreateShapeSpace(fbb, vec(fbb, m.shape.mean), vec(fbb, m.shape.stddev), vec(fbb, m.shape.basis.step),
+                                      fbb.CreateVector(tree.order), fbb.CreateVector(tree.predictor),
+                                      fbb.CreateVector(planes));
+
+    const auto& sk = m.skeleton;
+    auto skeleton = fb::CreateSkeleton(fbb, fbb.CreateVectorOfStrings(sk.joint_names), vec(fbb, sk.parents),
+                                       vec(fbb, sk.rest_orientations), vec(fbb, sk.regressor_offsets),
+                                       vec(fbb, sk.regressor_vertices), vec(fbb, sk.regressor_weights));
+    auto skin = fb::CreateSkin(fbb, vec(fbb, m.skin.joints), vec(fbb, m.skin.weights));
+
+    std::vector<flatbuffers::Offset<fb::Landmark>> landmarks;
+    for (const auto& l : m.landmarks) {
+        const fb::Barycentric bary(l.barycentric[0], l.barycentric[1], l.barycentric[2]);
+        landmarks.push_back(fb::CreateLandmark(fbb, str(l.name), l.vertex, l.triangle, &bary));
+    }
+    std::vector<flatbuffers::Offset<fb::VertexSet>> sets;
+    for (const auto& s : m.vertex_sets) sets.push_back(fb::CreateVertexSet(fbb, str(s.name), vec(fbb, s.vertices)));
+
+    auto root = fb::CreateModel(fbb, meta, mesh, shape, skeleton, skin, fbb.CreateVector(landmarks),
+                                fbb.CreateVector(sets));
+    fb::FinishModelBuffer(fbb, root);
+    return pack_container(fbb.GetBufferPointer(), fbb.GetSize(), options.zstd_level);
+}
+
+void write_file(const std::string& path, const std::vector<unsigned char>& bytes) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+        if (!f) fail(SSC_ERROR_IO, "cannot open '" + tmp + "' for writing");
+        f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+        f.close();
+        if (!f) {
+            std::remove(tmp.c_str());
+            fail(SSC_ERROR_IO, "cannot write '" + tmp + "'");
+        }
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        fail(SSC_ERROR_IO, "cannot rename '" + tmp + "' to '" + path + "'");
+    }
+}
+
+}  // namespace ssc::format

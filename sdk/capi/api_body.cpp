@@ -1,0 +1,182 @@
+// Bodies: shape and pose in, vertices, normals and transforms out.
+#include "guard.hpp"
+#include "handles.hpp"
+#include "synthesis/rotation.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+using namespace ssc;
+using namespace ssc::capi;
+
+namespace {
+
+void check_finite(const float* v, std::size_t n, const char* what) {
+    for (std::size_t i = 0; i < n; ++i)
+        require_arg(std::isfinite(v[i]), std::string(what) + "[" + std::to_string(i) + "] is not finite");
+}
+
+void set_pose(ssc_body* body, ssc_rotation_format format, const float* rotations, uint32_t joint_count,
+              const float* translation) {
+    need(body, "body");
+    const uint32_t J = body->body.model().joint_count();
+    std::vector<float> quats(4ull * J, 0.f);
+    if (rotations) {
+        require_arg(joint_count == J, "joint_count is " + std::to_string(joint_count) + "; the model has " +
+                                          std::to_string(J) + " joints");
+        std::string error;
+        require_arg(to_unit_quaternions(format, rotations, J, quats.data(), error), error);
+    } else {
+        require_arg(joint_count == 0 || joint_count == J, "joint_count must be 0 or the joint count when rotations is NULL");
+        for (uint32_t j = 0; j < J; ++j) quats[4 * j + 3] = 1.f;
+    }
+    if (translation) check_finite(translation, 3, "translation");
+    body->body.set_pose(quats.data(), translation);
+}
+
+// Copies n xyz triples (packed) to out at stride.
+void copy_xyz(const float* src, std::size_t n, float* out, std::size_t stride) {
+    auto* base = reinterpret_cast<unsigned char*>(out);
+    if (stride == 12) {
+        std::memcpy(out, src, n * 12);
+        return;
+    }
+    for (std::size_t i = 0; i < n; ++i) std::memcpy(base + i * stride, src + 3 * i, 12);
+}
+
+void copy_matrices(const ssc_body* body, float* out, const float* src) {
+    std::memcpy(out, src, sizeof(float) * 16 * body->body.model().joint_count());
+}
+
+}  // namespace
+
+extern "C" {
+
+void ssc_body_def_init(ssc_body_def* def, size_t size) {
+    if (!def || size < sizeof(uint32_t)) return;
+    ssc_body_def d{};
+    d.struct_size = static_cast<uint32_t>(size < sizeof d ? size : sizeof d);
+    std::memcpy(def, &d, d.struct_size);
+}
+
+ssc_status ssc_body_create(ssc_model* model, const ssc_body_def* def, ssc_body** out) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        need(out, "out");
+        const ssc_body_def d = read_def(def, ssc_body_def_init, "def");
+        require_arg(d.reserved == 0, "def->reserved must be 0");
+        ssc_body* b = make<ssc_body>(allocator_of(model), model);
+        ssc_model_retain(model);
+        *out = b;
+    });
+}
+
+void ssc_body_destroy(ssc_body* body) {
+    if (!body) return;
+    ssc_model* model = body->model;
+    unmake(body);
+    ssc_model_release(model);
+}
+
+ssc_status ssc_body_set_shape(ssc_body* body, const float* coefficients, uint32_t count) {
+    return guarded(__func__, [&] {
+        need(body, "body");
+        const uint32_t K = body->body.model().component_count();
+        require_arg(count <= K, "count is " + std::to_string(count) + "; the model has " + std::to_string(K) + " components");
+        if (count) {
+            need(coefficients, "coefficients");
+            check_finite(coefficients, count, "coefficients");
+        }
+        body->body.set_shape(coefficients, count);
+    });
+}
+
+ssc_status ssc_body_get_shape(const ssc_body* body, float* out, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(body, "body");
+        const uint32_t K = body->body.model().component_count();
+        if (K == 0) return;
+        check_output(out, capacity, K, 0, 4);
+        std::memcpy(out, body->body.shape(), 4ull * K);
+    });
+}
+
+ssc_status ssc_body_set_pose(ssc_body* body, const float* rotations, uint32_t joint_count, const float* translation) {
+    return guarded(__func__, [&] { set_pose(body, SSC_ROTATION_QUATERNION, rotations, joint_count, translation); });
+}
+
+ssc_status ssc_body_set_pose_axis_angle(ssc_body* body, const float* rotations, uint32_t joint_count,
+                                        const float* translation) {
+    return guarded(__func__, [&] { set_pose(body, SSC_ROTATION_AXIS_ANGLE, rotations, joint_count, translation); });
+}
+
+ssc_status ssc_body_get_vertices(ssc_body* body, float* out, uint32_t capacity, size_t stride) {
+    return guarded(__func__, [&] {
+        need(body, "body");
+        const uint32_t V = body->body.model().vertex_count();
+        stride = check_output(out, capacity, V, stride, 12);
+        copy_xyz(body->body.posed(), V, out, stride);
+    });
+}
+
+ssc_status ssc_body_get_normals(ssc_body* body, float* out, uint32_t capacity, size_t stride) {
+    return guarded(__func__, [&] {
+        need(body, "body");
+        const uint32_t V = body->body.model().vertex_count();
+        stride = check_output(out, capacity, V, stride, 12);
+        copy_xyz(body->body.normals(), V, out, stride);
+    });
+}
+
+ssc_status ssc_body_get_rest_vertices(ssc_body* body, float* out, uint32_t capacity, size_t stride) {
+    return guarded(__func__, [&] {
+        need(body, "body");
+        const uint32_t V = body->body.model().vertex_count();
+        stride = check_output(out, capacity, V, stride, 12);
+        kernels::planar_to_xyz(body->body.rest_planar(), V, out, stride);
+    });
+}
+
+ssc_status ssc_body_get_landmarks(ssc_body* body, float* out, uint32_t capacity, size_t stride) {
+    return guarded(__func__, [&] {
+        need(body, "body");
+        const auto& d = body->body.model().data();
+        stride = check_output(out, capacity, d.landmarks.size(), stride, 12);
+        kernels::landmarks(d, body->body.posed(), out, stride);
+    });
+}
+
+ssc_status ssc_body_get_joint_transforms(ssc_body* body, float* out, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(body, "body");
+        check_output(out, capacity, body->body.model().joint_count(), 0, 64);
+        copy_matrices(body, out, body->body.world());
+    });
+}
+
+ssc_status ssc_body_get_inverse_bind_matrices(ssc_body* body, float* out, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(body, "body");
+        check_output(out, capacity, body->body.model().joint_count(), 0, 64);
+        copy_matrices(body, out, body->body.inverse_bind());
+    });
+}
+
+ssc_status ssc_body_get_skinning_matrices(ssc_body* body, float* out, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(body, "body");
+        const uint32_t J = body->body.model().joint_count();
+        check_output(out, capacity, J, 0, 64);
+        const kernels::Affine34* s = body->body.skinning();
+        for (uint32_t j = 0; j < J; ++j) {
+            float* o = out + 16 * j;
+            for (int c = 0; c < 4; ++c) {
+                for (int r = 0; r < 3; ++r) o[c * 4 + r] = s[j].m[r * 4 + c];
+                o[c * 4 + 3] = c == 3 ? 1.f : 0.f;
+            }
+        }
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,58 @@
+// The C boundary: every exported function runs its body through guarded(), so no C++ exception
+// crosses the ABI and every failure leaves a status and a thread-local message.
+#pragma once
+
+#include "common/error.hpp"
+
+#include <cstring>
+#include <new>
+#include <string>
+
+namespace ssc::capi {
+
+void set_last_error(const std::string& message);
+
+template <class F>
+ssc_status guarded(const char* function, F&& body) noexcept {
+    try {
+        body();
+        return SSC_OK;
+    } catch (const Error& e) {
+        set_last_error(std::string(function) + ": " + e.what());
+        return e.status();
+    } catch (const std::bad_alloc&) {
+        set_last_error(std::string(function) + ": out of memory");
+        return SSC_ERROR_OUT_OF_MEMORY;
+    } catch (const std::exception& e) {
+        set_last_error(std::string(function) + ": internal error: " + e.what());
+        return SSC_ERROR_INTERNAL;
+    } catch (...) {
+        set_last_error(std::string(function) + ": internal error");
+        return SSC_ERROR_INTERNAL;
+    }
+}
+
+// Argument checks shared by the exported functions.
+template <class T>
+void need(const T* p, const char* name) {
+    require_arg(p != nullptr, std::string(name) + " is NULL");
+}
+
+// Checks an output array of count elements of elem_bytes at stride (0 = packed); returns the stride.
+std::size_t check_output(const void* out, uint64_t capacity, uint64_t count, std::size_t stride, std::size_t elem_bytes);
+
+// Reads a caller's def struct: defaults first, then the struct_size bytes the caller declared.
+template <class Def>
+Def read_def(const Def* def, void (*init)(Def*, std::size_t), const char* name) {
+    Def out;
+    init(&out, sizeof out);
+    if (!def) return out;
+    require_arg(def->struct_size >= sizeof(uint32_t) && def->struct_size <= sizeof(Def),
+                std::string(name) + "->struct_size is " + std::to_string(def->struct_size) + "; expected " +
+                    std::to_string(sizeof(Def)) + " (use the _def_init function)");
+    std::memcpy(&out, def, def->struct_size);
+    out.struct_size = sizeof(Def);
+    return out;
+}
+
+}  // namespace ssc::capi

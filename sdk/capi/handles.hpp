@@ -1,0 +1,73 @@
+// The objects behind the opaque C handles. Contexts and models are reference counted: a model
+// holds its context, a body holds its model, so callers may release handles in any order.
+#pragma once
+
+#include "common/alloc.hpp"
+#include "common/thread_pool.hpp"
+#include "synthesis/body.hpp"
+#include "synthesis/model.hpp"
+
+#include <atomic>
+#include <cstdarg>
+#include <string>
+
+struct ssc_context {
+    std::atomic<uint32_t> refs{1};
+    ssc::Allocator allocator;
+    ssc_log_fn log = nullptr;
+    void* log_user = nullptr;
+    ssc_log_level log_level = SSC_LOG_WARNING;
+    uint64_t max_model_bytes = 0;
+    ssc::ThreadPool pool;
+
+    explicit ssc_context(unsigned workers) : pool(workers) {}
+    void message(ssc_log_level level, const std::string& text) const {
+        if (log && level >= log_level) log(log_user, level, text.c_str());
+    }
+};
+
+struct ssc_model {
+    std::atomic<uint32_t> refs{1};
+    ssc_context* context;  // holds one reference
+    ssc::Model model;
+
+    ssc_model(ssc_context* ctx, ssc::format::ModelData data) : context(ctx), model(std::move(data), &ctx->allocator) {}
+};
+
+struct ssc_body {
+    ssc_model* model;  // holds one reference
+    ssc::Body body;
+
+    explicit ssc_body(ssc_model* m) : model(m), body(m->model, &m->context->allocator) {}
+};
+
+namespace ssc::capi {
+
+inline Allocator allocator_of(const ssc_context* c) { return c->allocator; }
+inline Allocator allocator_of(const ssc_model* m) { return m->context->allocator; }
+inline Allocator allocator_of(const ssc_body* b) { return b->model->context->allocator; }
+
+// Objects live in memory from their context's allocator (the context itself: from its own).
+template <class T, class... Args>
+T* make(const Allocator& a, Args&&... args) {
+    void* p = a.allocate(sizeof(T), alignof(T) < 64 ? 64 : alignof(T));
+    try {
+        return new (p) T(std::forward<Args>(args)...);
+    } catch (...) {
+        a.deallocate(p);
+        throw;
+    }
+}
+
+template <class T>
+void unmake(T* p) {
+    const Allocator a = allocator_of(p);
+    p->~T();
+    a.deallocate(p);
+}
+
+
+void context_retain(ssc_context* ctx);
+void context_release(ssc_context* ctx);
+
+}  // namespace ssc::capi

@@ -1,0 +1,29 @@
+// The `sscape` command line: one file per command, all built on the public C API except
+// make-test-model, which drives the C++ model writer.
+#pragma once
+
+#include <sscape/sscape.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ssc::cli {
+
+// A usage or input problem: printed with the command's usage, exit code 2.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Throws std::runtime_error with the library's message when status is not SSC_OK.
+void check(ssc_status status, const std::string& what);
+
+// Parses "1.5,-2,0" into floats; UsageError on anything else.
+std::vector<float> parse_floats(const std::string& text, const std::string& option);
+uint32_t parse_count(const std::string& text, const std::string& option);
+
+int cmd_info(const std::vector<std::string>& args);
+int cmd_synth(const std::vector<std::string>& args);
+int cmd_make_test_model(const std::vector<std::string>& args);
+
+}  // namespace ssc::cli

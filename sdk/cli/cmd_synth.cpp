@@ -1,0 +1,141 @@
+#include "cli.hpp"
+
+#include "export/mesh_writers.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <random>
+#include <sstream>
+
+namespace ssc::cli {
+namespace {
+
+struct Options {
+    std::string model, out;
+    std::vector<float> shape, translation;
+    std::string pose;
+    uint32_t random = 0, seed = 1;
+    bool normals = false;
+};
+
+Options parse(const std::vector<std::string>& args) {
+    Options o;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+            return args[++i];
+        };
+        if (a == "-o" || a == "--output") o.out = value();
+        else if (a == "--shape") o.shape = parse_floats(value(), a);
+        else if (a == "--pose") o.pose = value();
+        else if (a == "--translation") o.translation = parse_floats(value(), a);
+        else if (a == "--random") o.random = parse_count(value(), a);
+        else if (a == "--seed") o.seed = parse_count(value(), a);
+        else if (a == "--normals") o.normals = true;
+        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+        else if (o.model.empty()) o.model = a;
+        else throw UsageError("unexpected argument '" + a + "'");
+    }
+    if (o.model.empty()) throw UsageError("synth needs a MODEL");
+    if (o.out.empty()) throw UsageError("synth needs -o OUT.obj or OUT.ply");
+    if (!o.translation.empty() && o.translation.size() != 3) throw UsageError("--translation needs 3 numbers");
+    if (o.random && !o.shape.empty()) throw UsageError("--random and --shape exclude each other");
+    if (o.random > 10000) throw UsageError("--random is limited to 10000 bodies");
+    return o;
+}
+
+// "--pose upperarm_l=0,0,-0.5;lowerarm_l=0.3,0,0": axis-angle radians per named joint.
+std::vector<float> parse_pose(ssc_model* model, const std::string& text) {
+    std::vector<float> aa(3ull * ssc_model_joint_count(model), 0.f);
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ';')) {
+        if (item.empty()) continue;
+        const auto eq = item.find('=');
+        if (eq == std::string::npos) throw UsageError("--pose: '" + item + "' is not JOINT=AX,AY,AZ");
+        const std::string name = item.substr(0, eq);
+        uint32_t j = 0;
+        if (ssc_model_find_joint(model, name.c_str(), &j) != SSC_OK) throw UsageError("--pose: the model has no joint '" + name + "'");
+        const std::vector<float> v = parse_floats(item.substr(eq + 1), "--pose " + name);
+        if (v.size() != 3) throw UsageError("--pose " + name + " needs 3 numbers (axis * angle in radians)");
+        std::copy(v.begin(), v.end(), aa.begin() + 3 * j);
+    }
+    return aa;
+}
+
+std::string numbered(const std::string& out, uint32_t i, uint32_t n) {
+    if (n <= 1) return out;
+    const auto dot = out.find_last_of('.');
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "_%03u", i);
+    return out.substr(0, dot) + buf + out.substr(dot);
+}
+
+}  // namespace
+
+int cmd_synth(const std::vector<std::string>& args) {
+    const Options o = parse(args);
+    ssc_model* model = nullptr;
+    check(ssc_model_load_file(nullptr, o.model.c_str(), &model), "cannot load '" + o.model + "'");
+    struct Release {
+        ssc_model* m;
+        ssc_body* b = nullptr;
+        ~Release() { ssc_body_destroy(b); ssc_model_release(m); }
+    } guard{model};
+
+    const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model);
+    const uint32_t K = ssc_model_shape_count(model), J = ssc_model_joint_count(model), U = ssc_model_uv_count(model);
+    if (o.shape.size() > K) throw UsageError("--shape has " + std::to_string(o.shape.size()) + " values; the model has " + std::to_string(K) + " components");
+    std::vector<uint32_t> tris(3ull * T), tri_uvs(U ? 3ull * T : 0);
+    std::vector<float> uvs(2ull * U);
+    check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
+    if (U) {
+        check(ssc_model_get_uvs(model, uvs.data(), U), "uvs");
+        check(ssc_model_get_triangle_uvs(model, tri_uvs.data(), T), "triangle uvs");
+    }
+    check(ssc_body_create(model, nullptr, &guard.b), "body");
+    const std::vector<float> pose = parse_pose(model, o.pose);
+    check(ssc_body_set_pose_axis_angle(guard.b, pose.data(), J, o.translation.empty() ? nullptr : o.translation.data()), "pose");
+
+    std::mt19937 rng(o.seed);
+    std::normal_distribution<float> normal;
+    const uint32_t n = o.random ? o.random : 1;
+    std::vector<float> verts(3ull * V), normals(o.normals ? 3ull * V : 0);
+    std::printf("%-28s %9s %9s %9s   first shape coefficients\n", "file", "height_m", "width_m", "depth_m");
+    for (uint32_t i = 0; i < n; ++i) {
+        std::vector<float> shape = o.shape;
+        if (o.random) {
+            // Standard normal coefficients, truncated at 2.5 SD so no body is implausibly extreme.
+            shape.resize(K);
+            for (float& c : shape) do c = normal(rng); while (std::abs(c) > 2.5f);
+        }
+        check(ssc_body_set_shape(guard.b, shape.data(), uint32_t(shape.size())), "shape");
+        check(ssc_body_get_vertices(guard.b, verts.data(), V, 0), "vertices");
+        if (o.normals) check(ssc_body_get_normals(guard.b, normals.data(), V, 0), "normals");
+        exporters::MeshView mesh;
+        mesh.vertex_count = V;
+        mesh.positions = verts.data();
+        mesh.normals = o.normals ? normals.data() : nullptr;
+        mesh.triangle_count = T;
+        mesh.triangles = tris.data();
+        mesh.uv_count = U;
+        mesh.uvs = U ? uvs.data() : nullptr;
+        mesh.triangle_uvs = U ? tri_uvs.data() : nullptr;
+        const std::string path = numbered(o.out, i, n);
+        exporters::write_mesh(path, mesh);
+        float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+        for (uint32_t v = 0; v < V; ++v)
+            for (int a = 0; a < 3; ++a) {
+                lo[a] = std::min(lo[a], verts[3 * v + a]);
+                hi[a] = std::max(hi[a], verts[3 * v + a]);
+            }
+        std::printf("%-28s %9.3f %9.3f %9.3f  ", path.c_str(), hi[1] - lo[1], hi[0] - lo[0], hi[2] - lo[2]);
+        for (std::size_t k = 0; k < std::min<std::size_t>(3, shape.size()); ++k) std::printf(" %+.2f", shape[k]);
+        std::printf("\n");
+    }
+    std::printf("wrote %u bod%s of %u vertices, %u triangles\n", n, n == 1 ? "y" : "ies", V, T);
+    return 0;
+}
+
+}  // namespace ssc::cli

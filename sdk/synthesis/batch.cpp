@@ -1,0 +1,62 @@
+#include "batch.hpp"
+
+#include "kernels.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace ssc {
+
+namespace {
+constexpr std::size_t kGroup = 8;  // bodies sharing one pass over the basis
+}
+
+void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
+    const uint32_t V = m.vertex_count(), J = m.joint_count(), K = m.component_count();
+    const std::size_t groups = (job.count + kGroup - 1) / kGroup;
+    std::vector<float> identity(4ull * J, 0.f);
+    for (uint32_t j = 0; j < J; ++j) identity[4 * j + 3] = 1.f;
+
+    // Scratch per thread, allocated before any output is written: an allocation failure leaves
+    // the caller's buffers untouched.
+    struct Scratch {
+        std::vector<float> coeffs, rest, joints, skeleton;
+        std::vector<kernels::Affine34> skinning;
+    };
+    std::vector<Scratch> scratch(pool.size());
+    for (auto& s : scratch) {
+        s.coeffs.resize(kGroup * K);
+        s.rest.resize(kGroup * 3ull * V);
+        s.joints.resize(kGroup * 3ull * J);
+        s.skinning.resize(J);
+        s.skeleton.resize(kernels::kSkeletonScratch * J);
+    }
+    pool.parallel_for(groups, [&](std::size_t group, unsigned worker) {
+        Scratch& s = scratch[worker];
+        const std::size_t first = group * kGroup, n = std::min(kGroup, job.count - first);
+        const float* cp[kGroup] = {};
+        float* rp[kGroup] = {};
+        float* jp[kGroup] = {};
+        for (std::size_t g = 0; g < n; ++g) {
+            float* c = &s.coeffs[g * K];
+            std::fill(c, c + K, 0.f);
+            if (job.shapes) std::copy_n(job.shapes + (first + g) * job.shape_count, job.shape_count, c);
+            cp[g] = c;
+            rp[g] = &s.rest[g * 3ull * V];
+            jp[g] = &s.joints[g * 3ull * J];
+        }
+        kernels::shape(m, n, cp, rp, jp);
+        const float zero[3] = {0, 0, 0};
+        for (std::size_t g = 0; g < n; ++g) {
+            const std::size_t b = first + g;
+            const float* q = job.quats ? job.quats + b * 4ull * J : identity.data();
+            const float* t = job.translations ? job.translations + 3 * b : zero;
+            kernels::skeleton(m, jp[g], q, t, s.skeleton.data(), nullptr, nullptr, s.skinning.data());
+            float* out = job.vertices + b * 3ull * V;
+            kernels::skin(m, rp[g], s.skinning.data(), out, 12);
+            if (job.normals) kernels::normals(m, out, 12, job.normals + b * 3ull * V, 12);
+        }
+    });
+}
+
+}  // namespace ssc

@@ -1,0 +1,23 @@
+// Many bodies at once, spread over a thread pool. Bodies are processed in groups so the shape
+// stage reads the basis once per group (see kernels_shape.cpp).
+#pragma once
+
+#include "common/thread_pool.hpp"
+#include "model.hpp"
+
+namespace ssc {
+
+struct BatchJob {
+    std::size_t count = 0;
+    const float* shapes = nullptr;   // count * shape_count, or null
+    uint32_t shape_count = 0;
+    const float* quats = nullptr;    // count * 4J unit quaternions, or null (rest pose)
+    const float* translations = nullptr;  // count * 3, or null
+    float* vertices = nullptr;       // count * 3V
+    float* normals = nullptr;        // count * 3V, or null
+};
+
+// Inputs must be valid (checked by the caller).
+void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job);
+
+}  // namespace ssc

@@ -1,0 +1,93 @@
+#include "body.hpp"
+
+#include <algorithm>
+
+namespace ssc {
+
+Body::Body(const Model& model, const Allocator* a)
+    : model_(model),
+      coeffs_(model.component_count(), 0.f, CAlloc<float>(a)),
+      rest_(3ull * model.vertex_count(), 0.f, CAlloc<float>(a)),
+      joints_(3ull * model.joint_count(), 0.f, CAlloc<float>(a)),
+      quats_(4ull * model.joint_count(), 0.f, CAlloc<float>(a)),
+      world_(16ull * model.joint_count(), 0.f, CAlloc<float>(a)),
+      inverse_bind_(16ull * model.joint_count(), 0.f, CAlloc<float>(a)),
+      posed_(3ull * model.vertex_count(), 0.f, CAlloc<float>(a)),
+      normals_(3ull * model.vertex_count(), 0.f, CAlloc<float>(a)),
+      scratch_(kernels::kSkeletonScratch * model.joint_count(), 0.f, CAlloc<float>(a)),
+      skinning_(model.joint_count(), kernels::Affine34{}, CAlloc<kernels::Affine34>(a)) {
+    for (uint32_t j = 0; j < model.joint_count(); ++j) quats_[4 * j + 3] = 1.f;
+}
+
+void Body::set_shape(const float* coeffs, uint32_t count) {
+    std::copy(coeffs, coeffs + count, coeffs_.begin());
+    std::fill(coeffs_.begin() + count, coeffs_.end(), 0.f);
+    rest_ok_ = skeleton_ok_ = posed_ok_ = normals_ok_ = false;
+}
+
+void Body::set_pose(const float* unit_quats, const float* translation) {
+    std::copy(unit_quats, unit_quats + quats_.size(), quats_.begin());
+    for (int a = 0; a < 3; ++a) translation_[a] = translation ? translation[a] : 0.f;
+    skeleton_ok_ = posed_ok_ = normals_ok_ = false;
+}
+
+void Body::update_rest() {
+    if (rest_ok_) return;
+    const float* c = coeffs_.data();
+    float* r = rest_.data();
+    float* j = joints_.data();
+    kernels::shape(model_, 1, &c, &r, &j);
+    rest_ok_ = true;
+}
+
+void Body::update_skeleton() {
+    if (skeleton_ok_) return;
+    update_rest();
+    kernels::skeleton(model_, joints_.data(), quats_.data(), translation_, scratch_.data(), world_.data(), inverse_bind_.data(),
+                      skinning_.data());
+    skeleton_ok_ = true;
+}
+
+const float* Body::rest_planar() {
+    update_rest();
+    return rest_.data();
+}
+
+const float* Body::rest_joints() {
+    update_rest();
+    return joints_.data();
+}
+
+const float* Body::posed() {
+    if (!posed_ok_) {
+        update_skeleton();
+        kernels::skin(model_, rest_.data(), skinning_.data(), posed_.data(), 12);
+        posed_ok_ = true;
+    }
+    return posed_.data();
+}
+
+const float* Body::normals() {
+    if (!normals_ok_) {
+        kernels::normals(model_, posed(), 12, normals_.data(), 12);
+        normals_ok_ = true;
+    }
+    return normals_.data();
+}
+
+const float* Body::world() {
+    update_skeleton();
+    return world_.data();
+}
+
+const float* Body::inverse_bind() {
+    update_skeleton();
+    return inverse_bind_.data();
+}
+
+const kernels::Affine34* Body::skinning() {
+    update_skeleton();
+    return skinning_.data();
+}
+
+}  // namespace ssc

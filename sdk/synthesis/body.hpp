@@ -1,0 +1,40 @@
+// One body's state: shape coefficients and pose in, cached stage outputs out. Each stage is
+// recomputed only when an input it depends on changed (shape -> rest, pose -> skeleton -> skin).
+// Inputs are validated by the caller (the C API shim); setters here assume valid values.
+#pragma once
+
+#include "kernels.hpp"
+#include "model.hpp"
+
+namespace ssc {
+
+class Body {
+public:
+    Body(const Model& model, const Allocator* alloc);
+
+    const Model& model() const { return model_; }
+
+    void set_shape(const float* coeffs, uint32_t count);  // count <= K, rest zero
+    const float* shape() const { return coeffs_.data(); }
+    void set_pose(const float* unit_quats, const float* translation);  // 4J, 3 (null = zero)
+
+    const float* rest_planar();     // 3V: x block, y block, z block
+    const float* rest_joints();     // 3J
+    const float* posed();           // 3V, xyz
+    const float* normals();         // 3V, xyz
+    const float* world();           // 16J column-major
+    const float* inverse_bind();    // 16J column-major
+    const kernels::Affine34* skinning();
+
+private:
+    void update_rest();
+    void update_skeleton();
+
+    const Model& model_;
+    Vec<float> coeffs_, rest_, joints_, quats_, world_, inverse_bind_, posed_, normals_, scratch_;
+    Vec<kernels::Affine34> skinning_;
+    float translation_[3] = {0, 0, 0};
+    bool rest_ok_ = false, skeleton_ok_ = false, posed_ok_ = false, normals_ok_ = false;
+};
+
+}  // namespace ssc

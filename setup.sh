@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# sscape setup: installs the Debian packages the build needs, builds, and runs a job.
+#   ./setup.sh         install, build (Release), run the main job: synthesize random bodies
+#   ./setup.sh test    install, build, run the whole test suite, also under ASan + UBSan
+# Environment: JOBS (parallel build jobs, default: number of cores).
+set -euo pipefail
+cd "$(dirname "$0")"
+
+mode="${1:-run}"
+case "$mode" in run|test) ;; *) echo "usage: $0 [run|test]" >&2; exit 2 ;; esac
+jobs="${JOBS:-$(nproc)}"
+
+packages=(cmake make g++ pkg-config libeigen3-dev libnanoflann-dev libflatbuffers-dev flatbuffers-compiler
+          libzstd-dev libxxhash-dev catch2 libbenchmark-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "setup: installing Debian packages: ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "setup: all Debian packages present"
+fi
+
+build() {  # build DIR [cmake args...]
+  local dir="$1"; shift
+  echo "setup: building in $dir"
+  cmake -S . -B "$dir" "$@" > "$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; exit 1; }
+  cmake --build "$dir" -j "$jobs"
+}
+
+if [ "$mode" = run ]; then
+  build build -DCMAKE_BUILD_TYPE=Release
+  mkdir -p out
+  # Until the trained default model exists, the main job runs on a procedural model of the same size.
+  ./build/bin/sscape make-test-model -o out/test-model.sscape
+  ./build/bin/sscape info out/test-model.sscape
+  ./build/bin/sscape synth out/test-model.sscape --random 5 --seed 1 --normals -o out/body.obj
+  echo "setup: bodies written to out/"
+else
+  build build -DCMAKE_BUILD_TYPE=Release
+  (cd build && ctest -j "$jobs" --output-on-failure)
+  build build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSSCAPE_SANITIZE=ON -DSSCAPE_BUILD_BENCHMARKS=OFF
+  (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest -j "$jobs" --output-on-failure)
+fi

@@ -1,0 +1,60 @@
+// Shared helpers for the tests: small models built in code, loading through the C API.
+#pragma once
+
+#include "sscape_format/model_io.hpp"
+#include "testing/synthetic_model.hpp"
+
+#include <sscape/sscape.h>
+
+#include <memory>
+#include <vector>
+
+namespace test {
+
+// A small model: 6 joints, 300 vertices, 4 components; identity rest orientations unless asked.
+inline ssc::testing::SyntheticModel mini_model(bool aligned = false, uint32_t seed = 7) {
+    ssc::testing::SyntheticSpec spec;
+    spec.skeleton = ssc::testing::SyntheticSkeleton::Mini6;
+    spec.vertex_count = 300;
+    spec.components = 4;
+    spec.seed = seed;
+    spec.aligned_rest_orientations = aligned;
+    return ssc::testing::build_synthetic_model(spec);
+}
+
+inline std::vector<unsigned char> mini_bytes(bool aligned = false) { return ssc::format::write_model(mini_model(aligned).data); }
+
+struct ModelDeleter {
+    void operator()(ssc_model* m) const { ssc_model_release(m); }
+};
+struct BodyDeleter {
+    void operator()(ssc_body* b) const { ssc_body_destroy(b); }
+};
+using ModelPtr = std::unique_ptr<ssc_model, ModelDeleter>;
+using BodyPtr = std::unique_ptr<ssc_body, BodyDeleter>;
+
+inline ModelPtr load(const std::vector<unsigned char>& bytes, ssc_context* ctx = nullptr) {
+    ssc_model* m = nullptr;
+    if (ssc_model_load_memory(ctx, bytes.data(), bytes.size(), &m) != SSC_OK) return nullptr;
+    return ModelPtr(m);
+}
+
+inline BodyPtr body(ssc_model* m) {
+    ssc_body* b = nullptr;
+    if (ssc_body_create(m, nullptr, &b) != SSC_OK) return nullptr;
+    return BodyPtr(b);
+}
+
+// Posed (or rest) vertices of a body of model m, packed xyz.
+inline std::vector<float> posed(ssc_model* m, ssc_body* b) {
+    std::vector<float> v(3ull * ssc_model_vertex_count(m));
+    if (ssc_body_get_vertices(b, v.data(), ssc_model_vertex_count(m), 0) != SSC_OK) v.clear();
+    return v;
+}
+inline std::vector<float> rest(ssc_model* m, ssc_body* b) {
+    std::vector<float> v(3ull * ssc_model_vertex_count(m));
+    if (ssc_body_get_rest_vertices(b, v.data(), ssc_model_vertex_count(m), 0) != SSC_OK) v.clear();
+    return v;
+}
+
+}  // namespace test

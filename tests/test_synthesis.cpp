@@ -1,0 +1,249 @@
+// Synthesis against hand-computed expectations.
+#include "support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+namespace {
+
+struct Fixture {
+    ssc::testing::SyntheticModel built;
+    test::ModelPtr model;
+    test::BodyPtr body;
+    uint32_t V, J, K;
+
+    explicit Fixture(bool aligned = false) : built(test::mini_model(aligned)) {
+        model = test::load(ssc::format::write_model(built.data));
+        REQUIRE(model);
+        body = test::body(model.get());
+        REQUIRE(body);
+        V = ssc_model_vertex_count(model.get());
+        J = ssc_model_joint_count(model.get());
+        K = ssc_model_shape_count(model.get());
+    }
+    std::vector<float> transforms() {
+        std::vector<float> t(16ull * J);
+        REQUIRE(ssc_body_get_joint_transforms(body.get(), t.data(), J) == SSC_OK);
+        return t;
+    }
+};
+
+Vector3d at(const std::vector<float>& v, uint32_t i) { return Vector3d(v[3 * i], v[3 * i + 1], v[3 * i + 2]); }
+
+}  // namespace
+
+TEST_CASE("the zero pose returns the rest shape", "[synthesis]") {
+    Fixture f;
+    const float shape[4] = {1.5f, -2.0f, 0.5f, 3.0f};
+    REQUIRE(ssc_body_set_shape(f.body.get(), shape, 4) == SSC_OK);
+    const auto rest = test::rest(f.model.get(), f.body.get());
+    const auto posed = test::posed(f.model.get(), f.body.get());
+    REQUIRE(rest.size() == posed.size());
+    for (std::size_t i = 0; i < rest.size(); ++i) REQUIRE(posed[i] == Approx(rest[i]).margin(1e-6));
+}
+
+TEST_CASE("a shape coefficient c moves vertices by c x stddev x basis vector", "[synthesis]") {
+    Fixture f;
+    const auto mean = test::rest(f.model.get(), f.body.get());
+    const auto& d = f.built.data;
+    const std::size_t rows = 3ull * f.V;
+    for (uint32_t k = 0; k < f.K; ++k) {
+        std::vector<float> c(f.K, 0.f);
+        c[k] = 2.5f;
+        REQUIRE(ssc_body_set_shape(f.body.get(), c.data(), f.K) == SSC_OK);
+        const auto moved = test::rest(f.model.get(), f.body.get());
+        for (uint32_t v = 0; v < f.V; ++v)
+            for (int a = 0; a < 3; ++a) {
+                // stddev x unit basis vector = the stored scaled basis, step x q.
+                const std::size_t i = k * rows + a * f.V + v;
+                const double expected = 2.5 * d.shape.basis.step[k] * d.shape.basis.q[i];
+                REQUIRE(moved[3 * v + a] - mean[3 * v + a] == Approx(expected).margin(2e-6));
+                // and the unquantized basis within the quantization tolerance
+                REQUIRE(std::abs(moved[3 * v + a] - mean[3 * v + a] - 2.5 * f.built.basis_float[i]) < 1e-4);
+            }
+    }
+    // Fewer coefficients than components: the rest are zero.
+    const float one[1] = {1.0f};
+    REQUIRE(ssc_body_set_shape(f.body.get(), one, 1) == SSC_OK);
+    std::vector<float> back(f.K);
+    REQUIRE(ssc_body_get_shape(f.body.get(), back.data(), f.K) == SSC_OK);
+    CHECK(back[0] == 1.0f);
+    for (uint32_t k = 1; k < f.K; ++k) CHECK(back[k] == 0.0f);
+}
+
+static void check_rotation(bool aligned) {
+    Fixture f(aligned);
+    uint32_t head = 0;
+    REQUIRE(ssc_model_find_joint(f.model.get(), "head", &head) == SSC_OK);
+    const auto rest_t = f.transforms();
+    const auto rest = test::rest(f.model.get(), f.body.get());
+    // 90 degrees about the joint's local X axis.
+    std::vector<float> q(4ull * f.J, 0.f);
+    for (uint32_t j = 0; j < f.J; ++j) q[4 * j + 3] = 1.f;
+    q[4 * head + 0] = float(std::sin(M_PI / 4));
+    q[4 * head + 3] = float(std::cos(M_PI / 4));
+    REQUIRE(ssc_body_set_pose(f.body.get(), q.data(), f.J, nullptr) == SSC_OK);
+    const auto posed = test::posed(f.model.get(), f.body.get());
+
+    // Expected: the head's rest frame W (rotation) and position p from its rest world transform;
+    // the rotation in world space is W Rx(90) W^T about p. Vertices blend by their skin weights.
+    Matrix3d W;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) W(r, c) = rest_t[16 * head + 4 * c + r];
+    const Vector3d p(rest_t[16 * head + 12], rest_t[16 * head + 13], rest_t[16 * head + 14]);
+    if (!aligned) CHECK(W.isIdentity(1e-6));
+    const Matrix3d R = W * Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitX()).toRotationMatrix() * W.transpose();
+    std::vector<uint16_t> joints(4ull * f.V);
+    std::vector<float> weights(4ull * f.V);
+    REQUIRE(ssc_model_get_skin(f.model.get(), joints.data(), weights.data(), f.V) == SSC_OK);
+    int moved = 0;
+    for (uint32_t v = 0; v < f.V; ++v) {
+        const Vector3d x = at(rest, v);
+        Vector3d expected = Vector3d::Zero();
+        for (int i = 0; i < 4; ++i) {
+            const double w = weights[4 * v + i];
+            expected += w * (joints[4 * v + i] == head ? Vector3d(R * (x - p) + p) : x);
+        }
+        REQUIRE((at(posed, v) - expected).norm() < 2e-6);
+        if ((expected - x).norm() > 1e-3) ++moved;
+    }
+    CHECK(moved > 10);  // the head's vertices really moved
+    // The head's world transform is the rotated frame at the same place.
+    const auto posed_t = f.transforms();
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) CHECK(posed_t[16 * head + 4 * c + r] == Approx((R * W)(r, c)).margin(1e-6));
+}
+
+TEST_CASE("rotating one joint by 90 degrees moves its skinned vertices as the math says", "[synthesis]") {
+    SECTION("identity rest orientations") { check_rotation(false); }
+    SECTION("bone-aligned rest orientations") { check_rotation(true); }
+}
+
+TEST_CASE("axis-angle and quaternion poses agree; translation moves everything", "[synthesis]") {
+    Fixture f(true);
+    std::vector<float> aa(3ull * f.J, 0.f), q(4ull * f.J, 0.f);
+    for (uint32_t j = 0; j < f.J; ++j) {
+        const Vector3d axis = Vector3d(0.3 * j + 0.1, -0.2, 0.5).normalized();
+        const double angle = 0.2 + 0.1 * j;
+        const Eigen::Quaterniond qq(Eigen::AngleAxisd(angle, axis));
+        for (int a = 0; a < 3; ++a) aa[3 * j + a] = float(axis[a] * angle);
+        q[4 * j] = float(qq.x()); q[4 * j + 1] = float(qq.y()); q[4 * j + 2] = float(qq.z()); q[4 * j + 3] = float(qq.w());
+    }
+    const float t[3] = {0.5f, -1.0f, 2.0f};
+    REQUIRE(ssc_body_set_pose(f.body.get(), q.data(), f.J, nullptr) == SSC_OK);
+    const auto a = test::posed(f.model.get(), f.body.get());
+    REQUIRE(ssc_body_set_pose_axis_angle(f.body.get(), aa.data(), f.J, nullptr) == SSC_OK);
+    const auto b = test::posed(f.model.get(), f.body.get());
+    REQUIRE(ssc_body_set_pose_axis_angle(f.body.get(), aa.data(), f.J, t) == SSC_OK);
+    const auto c = test::posed(f.model.get(), f.body.get());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        REQUIRE(a[i] == Approx(b[i]).margin(1e-5));
+        REQUIRE(c[i] - b[i] == Approx(t[i % 3]).margin(1e-5));
+    }
+}
+
+TEST_CASE("skinning matrices, world transforms and inverse binds are consistent", "[synthesis]") {
+    Fixture f(true);
+    const float shape[2] = {1.0f, -1.0f};
+    REQUIRE(ssc_body_set_shape(f.body.get(), shape, 2) == SSC_OK);
+    std::vector<float> aa(3ull * f.J, 0.f);
+    for (uint32_t j = 0; j < f.J; ++j) aa[3 * j + (j % 3)] = 0.4f;
+    const float t[3] = {0.1f, 0.2f, 0.3f};
+    REQUIRE(ssc_body_set_pose_axis_angle(f.body.get(), aa.data(), f.J, t) == SSC_OK);
+    std::vector<float> world(16ull * f.J), inv(16ull * f.J), skin(16ull * f.J);
+    REQUIRE(ssc_body_get_joint_transforms(f.body.get(), world.data(), f.J) == SSC_OK);
+    REQUIRE(ssc_body_get_inverse_bind_matrices(f.body.get(), inv.data(), f.J) == SSC_OK);
+    REQUIRE(ssc_body_get_skinning_matrices(f.body.get(), skin.data(), f.J) == SSC_OK);
+    for (uint32_t j = 0; j < f.J; ++j) {
+        const Eigen::Map<const Eigen::Matrix4f> Wm(&world[16 * j]), Im(&inv[16 * j]), Sm(&skin[16 * j]);
+        REQUIRE((Wm * Im - Sm).cwiseAbs().maxCoeff() < 1e-5f);
+        REQUIRE(Sm(3, 3) == 1.0f);
+    }
+    const auto rest = test::rest(f.model.get(), f.body.get());
+    const auto posed = test::posed(f.model.get(), f.body.get());
+    std::vector<uint16_t> joints(4ull * f.V);
+    std::vector<float> weights(4ull * f.V);
+    REQUIRE(ssc_model_get_skin(f.model.get(), joints.data(), weights.data(), f.V) == SSC_OK);
+    for (uint32_t v = 0; v < f.V; ++v) {
+        Eigen::Vector4f x(rest[3 * v], rest[3 * v + 1], rest[3 * v + 2], 1.f), p = Eigen::Vector4f::Zero();
+        for (int i = 0; i < 4; ++i) p += weights[4 * v + i] * Eigen::Map<const Eigen::Matrix4f>(&skin[16 * joints[4 * v + i]]) * x;
+        for (int a = 0; a < 3; ++a) REQUIRE(posed[3 * v + a] == Approx(p[a]).margin(1e-5));
+    }
+}
+
+TEST_CASE("normals are unit length and point out of the surface", "[synthesis]") {
+    Fixture f;
+    std::vector<float> n(3ull * f.V);
+    REQUIRE(ssc_body_get_normals(f.body.get(), n.data(), f.V, 0) == SSC_OK);
+    for (uint32_t v = 0; v < f.V; ++v) REQUIRE(at(n, v).norm() == Approx(1.0).margin(1e-5));
+    uint32_t tip = 0;
+    REQUIRE(ssc_model_find_landmark(f.model.get(), "head_tip", &tip) == SSC_OK);
+    const auto& lm = f.built.data.landmarks[tip];
+    CHECK(n[3 * lm.vertex + 1] > 0.99f);  // the top of the head faces up
+}
+
+TEST_CASE("strided output equals packed output; landmarks follow the body", "[synthesis]") {
+    Fixture f;
+    const auto packed = test::posed(f.model.get(), f.body.get());
+    std::vector<float> wide(5ull * f.V, -7.f);
+    REQUIRE(ssc_body_get_vertices(f.body.get(), wide.data(), f.V, 20) == SSC_OK);
+    for (uint32_t v = 0; v < f.V; ++v) {
+        for (int a = 0; a < 3; ++a) REQUIRE(wide[5 * v + a] == packed[3 * v + a]);
+        REQUIRE(wide[5 * v + 3] == -7.f);  // gaps untouched
+    }
+    const uint32_t L = ssc_model_landmark_count(f.model.get());
+    REQUIRE(L > 0);
+    std::vector<float> lm_model(3ull * L), lm_body(3ull * L);
+    REQUIRE(ssc_model_get_landmark_positions(f.model.get(), lm_model.data(), L, 0) == SSC_OK);
+    REQUIRE(ssc_body_get_landmarks(f.body.get(), lm_body.data(), L, 0) == SSC_OK);
+    for (std::size_t i = 0; i < lm_model.size(); ++i) REQUIRE(lm_body[i] == Approx(lm_model[i]).margin(1e-6));
+}
+
+TEST_CASE("a batch gives what single bodies give", "[synthesis][batch]") {
+    Fixture f(true);
+    ssc_context_def def;
+    ssc_context_def_init(&def, sizeof def);
+    def.worker_count = 2;
+    ssc_context* ctx = nullptr;
+    REQUIRE(ssc_context_create(&def, &ctx) == SSC_OK);
+    auto model = test::load(ssc::format::write_model(f.built.data), ctx);
+    ssc_context_destroy(ctx);  // the model keeps its context alive
+    REQUIRE(model);
+    const uint32_t n = 19;  // not a multiple of the group size
+    std::vector<float> shapes(n * 3ull), poses(n * 3ull * f.J), trans(3ull * n);
+    for (std::size_t i = 0; i < shapes.size(); ++i) shapes[i] = float(std::sin(i * 1.7));
+    for (std::size_t i = 0; i < poses.size(); ++i) poses[i] = float(0.3 * std::cos(i * 0.9));
+    for (std::size_t i = 0; i < trans.size(); ++i) trans[i] = float(i) * 0.01f;
+    std::vector<float> verts(n * 3ull * f.V), normals(n * 3ull * f.V);
+    ssc_batch_desc desc;
+    ssc_batch_desc_init(&desc, sizeof desc);
+    desc.body_count = n;
+    desc.shapes = shapes.data();
+    desc.shape_count = 3;
+    desc.pose_format = SSC_ROTATION_AXIS_ANGLE;
+    desc.poses = poses.data();
+    desc.translations = trans.data();
+    desc.vertices = verts.data();
+    desc.vertices_capacity = n * f.V;
+    desc.normals = normals.data();
+    desc.normals_capacity = n * f.V;
+    REQUIRE(ssc_model_synthesize_batch(model.get(), &desc) == SSC_OK);
+    auto b = test::body(model.get());
+    for (uint32_t i = 0; i < n; ++i) {
+        REQUIRE(ssc_body_set_shape(b.get(), &shapes[3 * i], 3) == SSC_OK);
+        REQUIRE(ssc_body_set_pose_axis_angle(b.get(), &poses[3ull * f.J * i], f.J, &trans[3 * i]) == SSC_OK);
+        const auto one = test::posed(model.get(), b.get());
+        std::vector<float> nn(3ull * f.V);
+        REQUIRE(ssc_body_get_normals(b.get(), nn.data(), f.V, 0) == SSC_OK);
+        for (std::size_t k = 0; k < one.size(); ++k) {
+            REQUIRE(verts[i * 3ull * f.V + k] == one[k]);
+            REQUIRE(normals[i * 3ull * f.V + k] == nn[k]);
+        }
+    }
+}
