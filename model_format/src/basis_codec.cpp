@@ -65,14 +65,14 @@ std::vector<uint8_t> encode_residuals(const QuantizedBasis& b, uint32_t n, const
 void decode_residuals(const uint8_t* planes, std::size_t plane_bytes, uint32_t n, uint32_t components,
                       const uint32_t* order, const uint32_t* predictor, Vec<int16_t>& q) {
     const std::size_t count = static_cast<std::size_t>(components) * 3 * n;
-    require_model(plane_bytes == 4 * count, "shape.residual_planes holds " + std::to_string(plane_bytes) +
+    SSC_REQUIRE_MODEL(plane_bytes == 4 * count, "shape.residual_planes holds " + std::to_string(plane_bytes) +
                                                 " bytes, expected " + std::to_string(4 * count));
     std::vector<uint8_t> seen(n, 0);
     for (uint32_t i = 0; i < n; ++i) {
-        require_model(order[i] < n && !seen[order[i]], "shape.vertex_order is not a permutation (position " +
+        SSC_REQUIRE_MODEL(order[i] < n && !seen[order[i]], "shape.vertex_order is not a permutation (position " +
                                                             std::to_string(i) + ")");
         seen[order[i]] = 1;
-        require_model(predictor[i] <= i, "shape.predictor[" + std::to_string(i) + "] refers forward");
+        SSC_REQUIRE_MODEL(predictor[i] <= i, "shape.predictor[" + std::to_string(i) + "] refers forward");
     }
     q.resize(count);
     std::vector<int32_t> value(n);  // by position, one row at a time
@@ -85,7 +85,7 @@ void decode_residuals(const uint8_t* planes, std::size_t plane_bytes, uint32_t n
             const int64_t r = static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
             const uint32_t p = predictor[i];
             const int64_t v = r + (p == i ? 0 : value[p]);
-            require_model(v >= -32768 && v <= 32767, "shape basis value out of 16-bit range (component " +
+            SSC_REQUIRE_MODEL(v >= -32768 && v <= 32767, "shape basis value out of 16-bit range (component " +
                                                          std::to_string(row / 3) + ")");
             value[i] = static_cast<int32_t>(v);
             out[order[i]] = static_cast<int16_t>(v);

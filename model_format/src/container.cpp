@@ -74,9 +74,9 @@ std::vector<unsigned char> pack_container(const void* payload, std::size_t size,
 
 void unpack_container(const void* data, std::size_t size, uint64_t max_bytes, Vec<unsigned char>& out) {
     const auto* p = static_cast<const unsigned char*>(data);
-    require_model(size >= kHeaderSize, "file is " + std::to_string(size) + " bytes, shorter than the " +
+    SSC_REQUIRE_MODEL(size >= kHeaderSize, "file is " + std::to_string(size) + " bytes, shorter than the " +
                                            std::to_string(kHeaderSize) + "-byte header");
-    require_model(std::memcmp(p, kMagic, 8) == 0, "bad magic at offset 0: not a .sscape file");
+    SSC_REQUIRE_MODEL(std::memcmp(p, kMagic, 8) == 0, "bad magic at offset 0: not a .sscape file");
     const auto major = static_cast<uint16_t>(get_le(p + 8, 2));
     const auto minor = static_cast<uint16_t>(get_le(p + 10, 2));
     if (major != kContainerMajor)
@@ -84,26 +84,26 @@ void unpack_container(const void* data, std::size_t size, uint64_t max_bytes, Ve
                                                 std::to_string(minor) + " (offset 8); this library reads " +
                                                 std::to_string(kContainerMajor) + ".x");
     const auto flags = static_cast<uint32_t>(get_le(p + 12, 4));
-    require_model(flags == kFlagZstd, "unknown container flags 0x" + std::to_string(flags) + " at offset 12");
+    SSC_REQUIRE_MODEL(flags == kFlagZstd, "unknown container flags 0x" + std::to_string(flags) + " at offset 12");
     const uint64_t payload = get_le(p + 16, 8);
     const uint64_t content = get_le(p + 24, 8);
-    require_model(payload == size - kHeaderSize, "payload size " + std::to_string(payload) +
+    SSC_REQUIRE_MODEL(payload == size - kHeaderSize, "payload size " + std::to_string(payload) +
                                                      " (offset 16) does not match the file: " +
                                                      std::to_string(size - kHeaderSize) + " bytes follow the header");
-    require_model(content > 0 && content <= max_bytes,
+    SSC_REQUIRE_MODEL(content > 0 && content <= max_bytes,
                   "content size " + std::to_string(content) + " (offset 24) is outside 1.." + std::to_string(max_bytes));
 
     const unsigned char* frame = p + kHeaderSize;
-    require_model(get_le(p + 32, 8) == checksum(p, frame, payload), "checksum (offset 32) does not match: the file is damaged");
+    SSC_REQUIRE_MODEL(get_le(p + 32, 8) == checksum(p, frame, payload), "checksum (offset 32) does not match: the file is damaged");
     ZSTD_frameHeader fh;
     const std::size_t hr = ZSTD_getFrameHeader(&fh, frame, payload);
-    require_model(hr == 0, "zstd frame header at offset " + std::to_string(kHeaderSize) + " is " + std::string(ZSTD_isError(hr) ? "invalid" : "truncated"));
-    require_model(fh.frameType == ZSTD_frame, "the payload is a skippable frame, not a zstd frame");
-    require_model(fh.frameContentSize == content, "zstd frame content size differs from the header's content size");
-    require_model(fh.checksumFlag == 1, "zstd frame has no content checksum");
+    SSC_REQUIRE_MODEL(hr == 0, "zstd frame header at offset " + std::to_string(kHeaderSize) + " is " + std::string(ZSTD_isError(hr) ? "invalid" : "truncated"));
+    SSC_REQUIRE_MODEL(fh.frameType == ZSTD_frame, "the payload is a skippable frame, not a zstd frame");
+    SSC_REQUIRE_MODEL(fh.frameContentSize == content, "zstd frame content size differs from the header's content size");
+    SSC_REQUIRE_MODEL(fh.checksumFlag == 1, "zstd frame has no content checksum");
     const std::size_t csize = ZSTD_findFrameCompressedSize(frame, payload);
-    require_model(!ZSTD_isError(csize), "zstd frame is truncated or invalid");
-    require_model(csize == payload, "payload holds " + std::to_string(payload - csize) + " bytes after the zstd frame");
+    SSC_REQUIRE_MODEL(!ZSTD_isError(csize), "zstd frame is truncated or invalid");
+    SSC_REQUIRE_MODEL(csize == payload, "payload holds " + std::to_string(payload - csize) + " bytes after the zstd frame");
 
     out.resize(static_cast<std::size_t>(content));
     const std::size_t n = ZSTD_decompress(out.data(), out.size(), frame, payload);
@@ -111,7 +111,7 @@ void unpack_container(const void* data, std::size_t size, uint64_t max_bytes, Ve
         out.clear();
         fail(SSC_ERROR_MODEL_CORRUPT, std::string("zstd payload: ") + ZSTD_getErrorName(n));
     }
-    require_model(n == content, "zstd payload decompressed to a different size than declared");
+    SSC_REQUIRE_MODEL(n == content, "zstd payload decompressed to a different size than declared");
 }
 
 }  // namespace ssc::format

@@ -23,7 +23,7 @@ void copy(const flatbuffers::Vector<T>* v, Vec<T>& out) {
 
 template <class T>
 const flatbuffers::Vector<T>* need(const flatbuffers::Vector<T>* v, const char* what) {
-    require_model(v != nullptr, std::string(what) + " is missing");
+    SSC_REQUIRE_MODEL(v != nullptr, std::string(what) + " is missing");
     return v;
 }
 
@@ -32,14 +32,14 @@ std::string text(const flatbuffers::String* s) { return s ? s->str() : std::stri
 }  // namespace
 
 ModelData read_model(const void* data, std::size_t size, const ReadOptions& options) {
-    require_arg(data != nullptr || size == 0, "data is NULL");
+    SSC_REQUIRE_ARG(data != nullptr || size == 0, "data is NULL");
     const Allocator* a = options.allocator;
     Vec<unsigned char> buffer{CAlloc<unsigned char>(a)};
     unpack_container(data, size, options.max_model_bytes ? options.max_model_bytes : kDefaultMaxModelBytes, buffer);
 
     flatbuffers::Verifier verifier(buffer.data(), buffer.size());
-    require_model(fb::ModelBufferHasIdentifier(buffer.data()), "FlatBuffers identifier is not \"SSCM\"");
-    require_model(fb::VerifyModelBuffer(verifier), "FlatBuffers verification failed: the model buffer is malformed");
+    SSC_REQUIRE_MODEL(fb::ModelBufferHasIdentifier(buffer.data()), "FlatBuffers identifier is not \"SSCM\"");
+    SSC_REQUIRE_MODEL(fb::VerifyModelBuffer(verifier), "FlatBuffers verification failed: the model buffer is malformed");
     const fb::Model* root = fb::GetModel(buffer.data());
 
     ModelData m;
@@ -62,7 +62,7 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
     }
 
     const auto* mesh = root->mesh();
-    require_model(mesh != nullptr, "mesh is missing");
+    SSC_REQUIRE_MODEL(mesh != nullptr, "mesh is missing");
     m.mesh.vertex_count = mesh->vertex_count();
     copy(need(mesh->triangles(), "mesh.triangles"), m.mesh.triangles);
     copy(mesh->quads(), m.mesh.quads);
@@ -71,23 +71,23 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
     copy(mesh->quad_uvs(), m.mesh.quad_uvs);
 
     const auto* shape = root->shape();
-    require_model(shape != nullptr, "shape is missing");
+    SSC_REQUIRE_MODEL(shape != nullptr, "shape is missing");
     copy(need(shape->mean(), "shape.mean"), m.shape.mean);
     copy(need(shape->stddev(), "shape.stddev"), m.shape.stddev);
     copy(need(shape->step(), "shape.step"), m.shape.basis.step);
     m.shape.basis.components = static_cast<uint32_t>(m.shape.stddev.size());
     const uint32_t V = m.mesh.vertex_count;
-    require_model(m.shape.mean.size() == 3ull * V, "shape.mean does not hold 3 floats per vertex");
+    SSC_REQUIRE_MODEL(m.shape.mean.size() == 3ull * V, "shape.mean does not hold 3 floats per vertex");
     const auto* order = need(shape->vertex_order(), "shape.vertex_order");
     const auto* pred = need(shape->predictor(), "shape.predictor");
     const auto* planes = need(shape->residual_planes(), "shape.residual_planes");
-    require_model(order->size() == V && pred->size() == V, "shape.vertex_order/predictor must hold one entry per vertex");
+    SSC_REQUIRE_MODEL(order->size() == V && pred->size() == V, "shape.vertex_order/predictor must hold one entry per vertex");
     // Bounded: the plane size is checked against components * 3V before q is allocated.
     decode_residuals(planes->data(), planes->size(), V, m.shape.basis.components, order->data(), pred->data(),
                      m.shape.basis.q);
 
     const auto* sk = root->skeleton();
-    require_model(sk != nullptr, "skeleton is missing");
+    SSC_REQUIRE_MODEL(sk != nullptr, "skeleton is missing");
     const auto* names = need(sk->joint_names(), "skeleton.joint_names");
     for (const auto* s : *names) m.skeleton.joint_names.push_back(text(s));
     copy(need(sk->parents(), "skeleton.parents"), m.skeleton.parents);
@@ -97,7 +97,7 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
     copy(need(sk->regressor_weights(), "skeleton.regressor_weights"), m.skeleton.regressor_weights);
 
     const auto* skin = root->skin();
-    require_model(skin != nullptr, "skin is missing");
+    SSC_REQUIRE_MODEL(skin != nullptr, "skin is missing");
     copy(need(skin->joints(), "skin.joints"), m.skin.joints);
     copy(need(skin->weights(), "skin.weights"), m.skin.weights);
 

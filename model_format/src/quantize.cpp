@@ -65,9 +65,9 @@ double quantization_error_bound(const float* basis, const QuantizedBasis& qb, ui
 }
 
 QuantizedBasis quantize_basis(const float* basis, uint32_t n, uint32_t K, double tolerance, QuantizeReport* report) {
-    require_arg(tolerance > 0 && std::isfinite(tolerance), "quantization tolerance must be positive");
+    SSC_REQUIRE_ARG(tolerance > 0 && std::isfinite(tolerance), "quantization tolerance must be positive");
     for (std::size_t i = 0; i < static_cast<std::size_t>(K) * 3 * n; ++i)
-        require_arg(std::isfinite(basis[i]), "basis value " + std::to_string(i) + " is not finite");
+        SSC_REQUIRE_ARG(std::isfinite(basis[i]), "basis value " + std::to_string(i) + " is not finite");
     // Bisection on log(step): the bound is monotone in the step up to rounding noise.
     double lo = std::log(1e-12), hi = std::log(1.0);
     QuantizedBasis best = quantize_with(basis, n, K, std::exp(lo));

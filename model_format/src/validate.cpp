@@ -12,28 +12,28 @@ namespace {
 
 template <class V>
 void require_size(const V& v, std::size_t expected, const char* what) {
-    require_model(v.size() == expected, std::string(what) + " has " + std::to_string(v.size()) +
+    SSC_REQUIRE_MODEL(v.size() == expected, std::string(what) + " has " + std::to_string(v.size()) +
                                             " values, expected " + std::to_string(expected));
 }
 
 template <class V>
 void require_finite(const V& v, const char* what) {
     for (std::size_t i = 0; i < v.size(); ++i)
-        require_model(std::isfinite(v[i]), std::string(what) + "[" + std::to_string(i) + "] is not finite");
+        SSC_REQUIRE_MODEL(std::isfinite(v[i]), std::string(what) + "[" + std::to_string(i) + "] is not finite");
 }
 
 template <class V>
 void require_below(const V& v, uint64_t limit, const char* what) {
     for (std::size_t i = 0; i < v.size(); ++i)
-        require_model(v[i] < limit, std::string(what) + "[" + std::to_string(i) + "] = " + std::to_string(v[i]) +
+        SSC_REQUIRE_MODEL(v[i] < limit, std::string(what) + "[" + std::to_string(i) + "] = " + std::to_string(v[i]) +
                                         " is out of range (< " + std::to_string(limit) + ")");
 }
 
 void require_unique_names(const std::vector<std::string>& names, const char* what) {
     std::set<std::string> seen;
     for (const auto& n : names) {
-        require_model(!n.empty(), std::string(what) + " has an empty name");
-        require_model(seen.insert(n).second, std::string(what) + " repeats the name '" + n + "'");
+        SSC_REQUIRE_MODEL(!n.empty(), std::string(what) + " has an empty name");
+        SSC_REQUIRE_MODEL(seen.insert(n).second, std::string(what) + " repeats the name '" + n + "'");
     }
 }
 
@@ -41,26 +41,26 @@ void require_unique_names(const std::vector<std::string>& names, const char* wha
 
 void validate_model(const ModelData& m) {
     const uint32_t V = m.mesh.vertex_count;
-    require_model(V >= 3, "mesh.vertex_count must be at least 3");
+    SSC_REQUIRE_MODEL(V >= 3, "mesh.vertex_count must be at least 3");
 
     // Mesh.
     const auto& mesh = m.mesh;
-    require_model(!mesh.triangles.empty() && mesh.triangles.size() % 3 == 0, "mesh.triangles must hold 3 indices per triangle");
-    require_model(mesh.quads.size() % 4 == 0, "mesh.quads must hold 4 indices per quad");
+    SSC_REQUIRE_MODEL(!mesh.triangles.empty() && mesh.triangles.size() % 3 == 0, "mesh.triangles must hold 3 indices per triangle");
+    SSC_REQUIRE_MODEL(mesh.quads.size() % 4 == 0, "mesh.quads must hold 4 indices per quad");
     require_below(mesh.triangles, V, "mesh.triangles");
     require_below(mesh.quads, V, "mesh.quads");
-    require_model(mesh.uvs.size() % 2 == 0, "mesh.uvs must hold 2 floats per coordinate");
+    SSC_REQUIRE_MODEL(mesh.uvs.size() % 2 == 0, "mesh.uvs must hold 2 floats per coordinate");
     require_finite(mesh.uvs, "mesh.uvs");
     if (mesh.uvs.empty()) {
-        require_model(mesh.triangle_uvs.empty() && mesh.quad_uvs.empty(), "mesh has UV indices but no UVs");
+        SSC_REQUIRE_MODEL(mesh.triangle_uvs.empty() && mesh.quad_uvs.empty(), "mesh has UV indices but no UVs");
     } else {
         require_size(mesh.triangle_uvs, mesh.triangles.size(), "mesh.triangle_uvs");
-        require_model(mesh.quad_uvs.empty() || mesh.quad_uvs.size() == mesh.quads.size(),
+        SSC_REQUIRE_MODEL(mesh.quad_uvs.empty() || mesh.quad_uvs.size() == mesh.quads.size(),
                       "mesh.quad_uvs must be empty or match mesh.quads");
         require_below(mesh.triangle_uvs, mesh.uvs.size() / 2, "mesh.triangle_uvs");
         require_below(mesh.quad_uvs, mesh.uvs.size() / 2, "mesh.quad_uvs");
     }
-    require_model(mesh.triangles.size() / 3 < (1ull << 32), "too many triangles");
+    SSC_REQUIRE_MODEL(mesh.triangles.size() / 3 < (1ull << 32), "too many triangles");
 
     // Shape space.
     const auto& s = m.shape;
@@ -71,31 +71,31 @@ void validate_model(const ModelData& m) {
     require_size(s.basis.step, K, "shape.step");
     require_size(s.basis.q, 3ull * V * K, "shape basis");
     for (uint32_t k = 0; k < K; ++k) {
-        require_model(std::isfinite(s.stddev[k]) && s.stddev[k] > 0, "shape.stddev[" + std::to_string(k) + "] must be finite and > 0");
-        require_model(std::isfinite(s.basis.step[k]) && s.basis.step[k] > 0, "shape.step[" + std::to_string(k) + "] must be finite and > 0");
+        SSC_REQUIRE_MODEL(std::isfinite(s.stddev[k]) && s.stddev[k] > 0, "shape.stddev[" + std::to_string(k) + "] must be finite and > 0");
+        SSC_REQUIRE_MODEL(std::isfinite(s.basis.step[k]) && s.basis.step[k] > 0, "shape.step[" + std::to_string(k) + "] must be finite and > 0");
     }
 
     // Skeleton.
     const auto& sk = m.skeleton;
     const std::size_t J = sk.parents.size();
-    require_model(J >= 1 && J <= 65535, "skeleton must have 1 to 65535 joints");
+    SSC_REQUIRE_MODEL(J >= 1 && J <= 65535, "skeleton must have 1 to 65535 joints");
     require_size(sk.joint_names, J, "skeleton.joint_names");
     require_unique_names(sk.joint_names, "skeleton.joint_names");
-    require_model(sk.parents[0] == -1, "skeleton.parents[0] must be -1 (the root comes first)");
+    SSC_REQUIRE_MODEL(sk.parents[0] == -1, "skeleton.parents[0] must be -1 (the root comes first)");
     for (std::size_t j = 1; j < J; ++j)
-        require_model(sk.parents[j] >= 0 && std::size_t(sk.parents[j]) < j,
+        SSC_REQUIRE_MODEL(sk.parents[j] >= 0 && std::size_t(sk.parents[j]) < j,
                       "skeleton.parents[" + std::to_string(j) + "] must name an earlier joint");
     require_size(sk.rest_orientations, 4 * J, "skeleton.rest_orientations");
     require_finite(sk.rest_orientations, "skeleton.rest_orientations");
     for (std::size_t j = 0; j < J; ++j) {
         const float* q = &sk.rest_orientations[4 * j];
         const double n = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] + double(q[2]) * q[2] + double(q[3]) * q[3]);
-        require_model(std::abs(n - 1.0) < 1e-3, "skeleton.rest_orientations[" + std::to_string(j) + "] is not a unit quaternion");
+        SSC_REQUIRE_MODEL(std::abs(n - 1.0) < 1e-3, "skeleton.rest_orientations[" + std::to_string(j) + "] is not a unit quaternion");
     }
     require_size(sk.regressor_offsets, J + 1, "skeleton.regressor_offsets");
-    require_model(sk.regressor_offsets[0] == 0, "skeleton.regressor_offsets[0] must be 0");
+    SSC_REQUIRE_MODEL(sk.regressor_offsets[0] == 0, "skeleton.regressor_offsets[0] must be 0");
     for (std::size_t j = 0; j < J; ++j)
-        require_model(sk.regressor_offsets[j] < sk.regressor_offsets[j + 1],
+        SSC_REQUIRE_MODEL(sk.regressor_offsets[j] < sk.regressor_offsets[j + 1],
                       "skeleton regressor of joint " + std::to_string(j) + " is empty or offsets decrease");
     require_size(sk.regressor_vertices, sk.regressor_offsets[J], "skeleton.regressor_vertices");
     require_size(sk.regressor_weights, sk.regressor_offsets[J], "skeleton.regressor_weights");
@@ -105,7 +105,7 @@ void validate_model(const ModelData& m) {
         double sum = 0;
         for (uint32_t e = sk.regressor_offsets[j]; e < sk.regressor_offsets[j + 1]; ++e) sum += sk.regressor_weights[e];
         // Weights summing to 1 make joints move with the body under translation.
-        require_model(std::abs(sum - 1.0) < 1e-3, "skeleton regressor weights of joint " + std::to_string(j) +
+        SSC_REQUIRE_MODEL(std::abs(sum - 1.0) < 1e-3, "skeleton regressor weights of joint " + std::to_string(j) +
                                                       " sum to " + std::to_string(sum) + ", not 1");
     }
 
@@ -117,10 +117,10 @@ void validate_model(const ModelData& m) {
         double sum = 0;
         for (int i = 0; i < 4; ++i) {
             const float w = m.skin.weights[4 * v + i];
-            require_model(std::isfinite(w) && w >= 0, "skin.weights of vertex " + std::to_string(v) + " must be finite and >= 0");
+            SSC_REQUIRE_MODEL(std::isfinite(w) && w >= 0, "skin.weights of vertex " + std::to_string(v) + " must be finite and >= 0");
             sum += w;
         }
-        require_model(std::abs(sum - 1.0) < 1e-3, "skin.weights of vertex " + std::to_string(v) + " sum to " +
+        SSC_REQUIRE_MODEL(std::abs(sum - 1.0) < 1e-3, "skin.weights of vertex " + std::to_string(v) + " sum to " +
                                                       std::to_string(sum) + ", not 1");
     }
 
@@ -130,17 +130,17 @@ void validate_model(const ModelData& m) {
     for (const auto& l : m.landmarks) {
         names.push_back(l.name);
         const bool on_vertex = l.vertex != kNone, on_triangle = l.triangle != kNone;
-        require_model(on_vertex != on_triangle, "landmark '" + l.name + "' must name exactly one of vertex or triangle");
+        SSC_REQUIRE_MODEL(on_vertex != on_triangle, "landmark '" + l.name + "' must name exactly one of vertex or triangle");
         if (on_vertex) {
-            require_model(l.vertex < V, "landmark '" + l.name + "' vertex out of range");
+            SSC_REQUIRE_MODEL(l.vertex < V, "landmark '" + l.name + "' vertex out of range");
         } else {
-            require_model(l.triangle < T, "landmark '" + l.name + "' triangle out of range");
+            SSC_REQUIRE_MODEL(l.triangle < T, "landmark '" + l.name + "' triangle out of range");
             double sum = 0;
             for (float b : l.barycentric) {
-                require_model(std::isfinite(b), "landmark '" + l.name + "' barycentric is not finite");
+                SSC_REQUIRE_MODEL(std::isfinite(b), "landmark '" + l.name + "' barycentric is not finite");
                 sum += b;
             }
-            require_model(std::abs(sum - 1.0) < 1e-3, "landmark '" + l.name + "' barycentric weights do not sum to 1");
+            SSC_REQUIRE_MODEL(std::abs(sum - 1.0) < 1e-3, "landmark '" + l.name + "' barycentric weights do not sum to 1");
         }
     }
     require_unique_names(names, "landmarks");
@@ -149,11 +149,11 @@ void validate_model(const ModelData& m) {
         names.push_back(set.name);
         require_below(set.vertices, V, ("vertex set '" + set.name + "'").c_str());
         for (std::size_t i = 1; i < set.vertices.size(); ++i)
-            require_model(set.vertices[i - 1] < set.vertices[i], "vertex set '" + set.name + "' is not sorted and unique");
+            SSC_REQUIRE_MODEL(set.vertices[i - 1] < set.vertices[i], "vertex set '" + set.name + "' is not sorted and unique");
     }
     require_unique_names(names, "vertex_sets");
 
-    require_model(!m.metadata.units.empty() && m.metadata.units == "m", "metadata.units must be \"m\"");
+    SSC_REQUIRE_MODEL(!m.metadata.units.empty() && m.metadata.units == "m", "metadata.units must be \"m\"");
 }
 
 }  // namespace ssc::format

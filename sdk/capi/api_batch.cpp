@@ -30,21 +30,21 @@ ssc_status ssc_model_synthesize_batch(const ssc_model* model, const ssc_batch_de
         const uint32_t V = m.vertex_count(), J = m.joint_count(), K = m.component_count();
         const std::size_t n = d.body_count;
         if (n == 0) return;
-        require_arg(d.shape_count <= K, "shape_count is " + std::to_string(d.shape_count) + "; the model has " +
+        SSC_REQUIRE_ARG(d.shape_count <= K, "shape_count is " + std::to_string(d.shape_count) + "; the model has " +
                                             std::to_string(K) + " components");
-        require_arg(d.pose_format == SSC_ROTATION_QUATERNION || d.pose_format == SSC_ROTATION_AXIS_ANGLE,
+        SSC_REQUIRE_ARG(d.pose_format == SSC_ROTATION_QUATERNION || d.pose_format == SSC_ROTATION_AXIS_ANGLE,
                     "pose_format is not a known ssc_rotation_format");
         check_output(d.vertices, d.vertices_capacity, uint64_t(n) * V, 0, 12);
         if (d.normals) check_output(d.normals, d.normals_capacity, uint64_t(n) * V, 0, 12);
         if (d.shapes) {
             for (std::size_t i = 0; i < n * d.shape_count; ++i)
-                require_arg(std::isfinite(d.shapes[i]), "shapes[" + std::to_string(i) + "] is not finite");
+                SSC_REQUIRE_ARG(std::isfinite(d.shapes[i]), "shapes[" + std::to_string(i) + "] is not finite");
         } else {
-            require_arg(d.shape_count == 0, "shape_count must be 0 when shapes is NULL");
+            SSC_REQUIRE_ARG(d.shape_count == 0, "shape_count must be 0 when shapes is NULL");
         }
         if (d.translations)
             for (std::size_t i = 0; i < 3 * n; ++i)
-                require_arg(std::isfinite(d.translations[i]), "translations[" + std::to_string(i) + "] is not finite");
+                SSC_REQUIRE_ARG(std::isfinite(d.translations[i]), "translations[" + std::to_string(i) + "] is not finite");
         std::vector<float> quats;
         if (d.poses) {
             quats.resize(n * 4ull * J);

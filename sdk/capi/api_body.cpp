@@ -14,7 +14,7 @@ namespace {
 
 void check_finite(const float* v, std::size_t n, const char* what) {
     for (std::size_t i = 0; i < n; ++i)
-        require_arg(std::isfinite(v[i]), std::string(what) + "[" + std::to_string(i) + "] is not finite");
+        SSC_REQUIRE_ARG(std::isfinite(v[i]), std::string(what) + "[" + std::to_string(i) + "] is not finite");
 }
 
 void set_pose(ssc_body* body, ssc_rotation_format format, const float* rotations, uint32_t joint_count,
@@ -23,12 +23,12 @@ void set_pose(ssc_body* body, ssc_rotation_format format, const float* rotations
     const uint32_t J = body->body.model().joint_count();
     std::vector<float> quats(4ull * J, 0.f);
     if (rotations) {
-        require_arg(joint_count == J, "joint_count is " + std::to_string(joint_count) + "; the model has " +
+        SSC_REQUIRE_ARG(joint_count == J, "joint_count is " + std::to_string(joint_count) + "; the model has " +
                                           std::to_string(J) + " joints");
         std::string error;
-        require_arg(to_unit_quaternions(format, rotations, J, quats.data(), error), error);
+        SSC_REQUIRE_ARG(to_unit_quaternions(format, rotations, J, quats.data(), error), error);
     } else {
-        require_arg(joint_count == 0 || joint_count == J, "joint_count must be 0 or the joint count when rotations is NULL");
+        SSC_REQUIRE_ARG(joint_count == 0 || joint_count == J, "joint_count must be 0 or the joint count when rotations is NULL");
         for (uint32_t j = 0; j < J; ++j) quats[4 * j + 3] = 1.f;
     }
     if (translation) check_finite(translation, 3, "translation");
@@ -65,7 +65,7 @@ ssc_status ssc_body_create(ssc_model* model, const ssc_body_def* def, ssc_body**
         need(model, "model");
         need(out, "out");
         const ssc_body_def d = read_def(def, ssc_body_def_init, "def");
-        require_arg(d.reserved == 0, "def->reserved must be 0");
+        SSC_REQUIRE_ARG(d.reserved == 0, "def->reserved must be 0");
         ssc_body* b = make<ssc_body>(allocator_of(model), model);
         ssc_model_retain(model);
         *out = b;
@@ -83,7 +83,7 @@ ssc_status ssc_body_set_shape(ssc_body* body, const float* coefficients, uint32_
     return guarded(__func__, [&] {
         need(body, "body");
         const uint32_t K = body->body.model().component_count();
-        require_arg(count <= K, "count is " + std::to_string(count) + "; the model has " + std::to_string(K) + " components");
+        SSC_REQUIRE_ARG(count <= K, "count is " + std::to_string(count) + "; the model has " + std::to_string(K) + " components");
         if (count) {
             need(coefficients, "coefficients");
             check_finite(coefficients, count, "coefficients");
@@ -168,14 +168,8 @@ ssc_status ssc_body_get_skinning_matrices(ssc_body* body, float* out, uint32_t c
         need(body, "body");
         const uint32_t J = body->body.model().joint_count();
         check_output(out, capacity, J, 0, 64);
-        const kernels::Affine34* s = body->body.skinning();
-        for (uint32_t j = 0; j < J; ++j) {
-            float* o = out + 16 * j;
-            for (int c = 0; c < 4; ++c) {
-                for (int r = 0; r < 3; ++r) o[c * 4 + r] = s[j].m[r * 4 + c];
-                o[c * 4 + 3] = c == 3 ? 1.f : 0.f;
-            }
-        }
+        const kernels::SkinMatrix* s = body->body.skinning();
+        for (uint32_t j = 0; j < J; ++j) std::memcpy(out + 16 * j, s[j].m, 64);
     });
 }
 

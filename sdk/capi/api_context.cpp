@@ -16,9 +16,9 @@ thread_local std::string t_last_error;
 void set_last_error(const std::string& message) { t_last_error = message; }
 
 std::size_t check_output(const void* out, uint64_t capacity, uint64_t count, std::size_t stride, std::size_t elem_bytes) {
-    require_arg(out != nullptr, "output buffer is NULL");
+    SSC_REQUIRE_ARG(out != nullptr, "output buffer is NULL");
     if (stride == 0) stride = elem_bytes;
-    require_arg(stride >= elem_bytes && stride % 4 == 0, "stride " + std::to_string(stride) +
+    SSC_REQUIRE_ARG(stride >= elem_bytes && stride % 4 == 0, "stride " + std::to_string(stride) +
                                                              " must be 0 or a multiple of 4 that is >= " +
                                                              std::to_string(elem_bytes));
     if (capacity < count)
@@ -70,11 +70,11 @@ ssc_status ssc_context_create(const ssc_context_def* def, ssc_context** out) {
     return guarded(__func__, [&] {
         need(out, "out");
         const ssc_context_def d = read_def(def, ssc_context_def_init, "def");
-        require_arg((d.alloc == nullptr) == (d.free == nullptr), "alloc and free must be set together");
-        require_arg(d.log_level >= SSC_LOG_DEBUG && d.log_level <= SSC_LOG_ERROR, "log_level is out of range");
+        SSC_REQUIRE_ARG((d.alloc == nullptr) == (d.free == nullptr), "alloc and free must be set together");
+        SSC_REQUIRE_ARG(d.log_level >= SSC_LOG_DEBUG && d.log_level <= SSC_LOG_ERROR, "log_level is out of range");
         unsigned workers = d.worker_count;
         if (workers == 0) workers = std::max(1u, std::thread::hardware_concurrency());
-        require_arg(workers <= 1024, "worker_count is larger than 1024");
+        SSC_REQUIRE_ARG(workers <= 1024, "worker_count is larger than 1024");
         Allocator a{d.alloc, d.free, d.alloc_user};
         ssc_context* ctx = make<ssc_context>(a, workers);
         ctx->allocator = a;

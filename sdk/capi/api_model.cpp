@@ -135,7 +135,7 @@ ssc_status ssc_model_get_joint_name(const ssc_model* m, uint32_t index, const ch
     return guarded(__func__, [&] {
         need(m, "model");
         need(out, "out");
-        require_arg(index < m->model.joint_count(), "joint index " + std::to_string(index) + " is out of range");
+        SSC_REQUIRE_ARG(index < m->model.joint_count(), "joint index " + std::to_string(index) + " is out of range");
         *out = data(m).skeleton.joint_names[index].c_str();
     });
 }
@@ -155,7 +155,7 @@ ssc_status ssc_model_get_landmark_name(const ssc_model* m, uint32_t index, const
     return guarded(__func__, [&] {
         need(m, "model");
         need(out, "out");
-        require_arg(index < data(m).landmarks.size(), "landmark index " + std::to_string(index) + " is out of range");
+        SSC_REQUIRE_ARG(index < data(m).landmarks.size(), "landmark index " + std::to_string(index) + " is out of range");
         *out = data(m).landmarks[index].name.c_str();
     });
 }
@@ -184,7 +184,7 @@ ssc_status ssc_model_get_landmark_positions(const ssc_model* m, float* out, uint
 ssc_status ssc_model_get_vertex_set(const ssc_model* m, uint32_t index, const char** out_name, uint32_t* out_size) {
     return guarded(__func__, [&] {
         need(m, "model");
-        require_arg(index < data(m).vertex_sets.size(), "vertex set index " + std::to_string(index) + " is out of range");
+        SSC_REQUIRE_ARG(index < data(m).vertex_sets.size(), "vertex set index " + std::to_string(index) + " is out of range");
         const auto& set = data(m).vertex_sets[index];
         if (out_name) *out_name = set.name.c_str();
         if (out_size) *out_size = static_cast<uint32_t>(set.vertices.size());
@@ -194,7 +194,7 @@ ssc_status ssc_model_get_vertex_set(const ssc_model* m, uint32_t index, const ch
 ssc_status ssc_model_get_vertex_set_indices(const ssc_model* m, uint32_t index, uint32_t* out, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(m, "model");
-        require_arg(index < data(m).vertex_sets.size(), "vertex set index " + std::to_string(index) + " is out of range");
+        SSC_REQUIRE_ARG(index < data(m).vertex_sets.size(), "vertex set index " + std::to_string(index) + " is out of range");
         copy_out(data(m).vertex_sets[index].vertices, out, capacity, 1);
     });
 }
@@ -229,7 +229,7 @@ ssc_status ssc_model_get_metadata(const ssc_model* m, ssc_metadata_key key, cons
 ssc_status ssc_model_get_skin(const ssc_model* m, uint16_t* joints, float* weights, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(m, "model");
-        require_arg(joints || weights, "joints and weights are both NULL");
+        SSC_REQUIRE_ARG(joints || weights, "joints and weights are both NULL");
         const uint32_t V = m->model.vertex_count();
         if (joints) check_output(joints, capacity, V, 0, 8);
         if (weights) check_output(weights, capacity, V, 0, 16);

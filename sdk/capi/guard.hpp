@@ -35,7 +35,7 @@ ssc_status guarded(const char* function, F&& body) noexcept {
 // Argument checks shared by the exported functions.
 template <class T>
 void need(const T* p, const char* name) {
-    require_arg(p != nullptr, std::string(name) + " is NULL");
+    SSC_REQUIRE_ARG(p != nullptr, std::string(name) + " is NULL");
 }
 
 // Checks an output array of count elements of elem_bytes at stride (0 = packed); returns the stride.
@@ -47,7 +47,7 @@ Def read_def(const Def* def, void (*init)(Def*, std::size_t), const char* name) 
     Def out;
     init(&out, sizeof out);
     if (!def) return out;
-    require_arg(def->struct_size >= sizeof(uint32_t) && def->struct_size <= sizeof(Def),
+    SSC_REQUIRE_ARG(def->struct_size >= sizeof(uint32_t) && def->struct_size <= sizeof(Def),
                 std::string(name) + "->struct_size is " + std::to_string(def->struct_size) + "; expected " +
                     std::to_string(sizeof(Def)) + " (use the _def_init function)");
     std::memcpy(&out, def, def->struct_size);

@@ -20,13 +20,19 @@ private:
 
 [[noreturn]] inline void fail(ssc_status status, const std::string& message) { throw Error(status, message); }
 
-// For untrusted model data: a failed check names what was wrong.
-inline void require_model(bool ok, const std::string& what) {
-    if (!ok) fail(SSC_ERROR_MODEL_CORRUPT, what);
-}
+}  // namespace ssc
 
-inline void require_arg(bool ok, const std::string& what) {
-    if (!ok) fail(SSC_ERROR_INVALID_ARGUMENT, what);
-}
+// Checks whose message names what was wrong. Macros so that the message is built only on failure:
+// many of these run once per vertex of untrusted model data.
+#define SSC_REQUIRE_MODEL(ok, message)                                            \
+    do {                                                                          \
+        if (!(ok)) ::ssc::fail(SSC_ERROR_MODEL_CORRUPT, (message));               \
+    } while (0)
+#define SSC_REQUIRE_ARG(ok, message)                                              \
+    do {                                                                          \
+        if (!(ok)) ::ssc::fail(SSC_ERROR_INVALID_ARGUMENT, (message));            \
+    } while (0)
+
+namespace ssc {
 
 }  // namespace ssc

@@ -20,16 +20,17 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
     // Scratch per thread, allocated before any output is written: an allocation failure leaves
     // the caller's buffers untouched.
     struct Scratch {
-        std::vector<float> coeffs, rest, joints, skeleton;
-        std::vector<kernels::Affine34> skinning;
+        std::vector<float> coeffs, rest, joints, skeleton, faces;
+        std::vector<kernels::SkinMatrix> skinning;
     };
     std::vector<Scratch> scratch(pool.size());
     for (auto& s : scratch) {
         s.coeffs.resize(kGroup * K);
-        s.rest.resize(kGroup * 3ull * V);
+        s.rest.resize(kGroup * m.padded_rows());
         s.joints.resize(kGroup * 3ull * J);
         s.skinning.resize(J);
         s.skeleton.resize(kernels::kSkeletonScratch * J);
+        if (job.normals) s.faces.resize(3ull * m.triangle_count());
     }
     pool.parallel_for(groups, [&](std::size_t group, unsigned worker) {
         Scratch& s = scratch[worker];
@@ -41,8 +42,9 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
             float* c = &s.coeffs[g * K];
             std::fill(c, c + K, 0.f);
             if (job.shapes) std::copy_n(job.shapes + (first + g) * job.shape_count, job.shape_count, c);
+            kernels::scale_coefficients(m, c, c);
             cp[g] = c;
-            rp[g] = &s.rest[g * 3ull * V];
+            rp[g] = &s.rest[g * m.padded_rows()];
             jp[g] = &s.joints[g * 3ull * J];
         }
         kernels::shape(m, n, cp, rp, jp);
@@ -53,8 +55,8 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
             const float* t = job.translations ? job.translations + 3 * b : zero;
             kernels::skeleton(m, jp[g], q, t, s.skeleton.data(), nullptr, nullptr, s.skinning.data());
             float* out = job.vertices + b * 3ull * V;
-            kernels::skin(m, rp[g], s.skinning.data(), out, 12);
-            if (job.normals) kernels::normals(m, out, 12, job.normals + b * 3ull * V, 12);
+            kernels::skin(m, rp[g], s.skinning.data(), out);
+            if (job.normals) kernels::normals(m, out, s.faces.data(), job.normals + b * 3ull * V);
         }
     });
 }

@@ -7,7 +7,8 @@ namespace ssc {
 Body::Body(const Model& model, const Allocator* a)
     : model_(model),
       coeffs_(model.component_count(), 0.f, CAlloc<float>(a)),
-      rest_(3ull * model.vertex_count(), 0.f, CAlloc<float>(a)),
+      scaled_(model.component_count(), 0.f, CAlloc<float>(a)),
+      rest_(model.padded_rows(), 0.f, CAlloc<float>(a)),
       joints_(3ull * model.joint_count(), 0.f, CAlloc<float>(a)),
       quats_(4ull * model.joint_count(), 0.f, CAlloc<float>(a)),
       world_(16ull * model.joint_count(), 0.f, CAlloc<float>(a)),
@@ -15,7 +16,8 @@ Body::Body(const Model& model, const Allocator* a)
       posed_(3ull * model.vertex_count(), 0.f, CAlloc<float>(a)),
       normals_(3ull * model.vertex_count(), 0.f, CAlloc<float>(a)),
       scratch_(kernels::kSkeletonScratch * model.joint_count(), 0.f, CAlloc<float>(a)),
-      skinning_(model.joint_count(), kernels::Affine34{}, CAlloc<kernels::Affine34>(a)) {
+      face_normals_(3ull * model.triangle_count(), 0.f, CAlloc<float>(a)),
+      skinning_(model.joint_count(), kernels::SkinMatrix{}, CAlloc<kernels::SkinMatrix>(a)) {
     for (uint32_t j = 0; j < model.joint_count(); ++j) quats_[4 * j + 3] = 1.f;
 }
 
@@ -33,7 +35,8 @@ void Body::set_pose(const float* unit_quats, const float* translation) {
 
 void Body::update_rest() {
     if (rest_ok_) return;
-    const float* c = coeffs_.data();
+    kernels::scale_coefficients(model_, coeffs_.data(), scaled_.data());
+    const float* c = scaled_.data();
     float* r = rest_.data();
     float* j = joints_.data();
     kernels::shape(model_, 1, &c, &r, &j);
@@ -61,7 +64,7 @@ const float* Body::rest_joints() {
 const float* Body::posed() {
     if (!posed_ok_) {
         update_skeleton();
-        kernels::skin(model_, rest_.data(), skinning_.data(), posed_.data(), 12);
+        kernels::skin(model_, rest_.data(), skinning_.data(), posed_.data());
         posed_ok_ = true;
     }
     return posed_.data();
@@ -69,7 +72,7 @@ const float* Body::posed() {
 
 const float* Body::normals() {
     if (!normals_ok_) {
-        kernels::normals(model_, posed(), 12, normals_.data(), 12);
+        kernels::normals(model_, posed(), face_normals_.data(), normals_.data());
         normals_ok_ = true;
     }
     return normals_.data();
@@ -85,7 +88,7 @@ const float* Body::inverse_bind() {
     return inverse_bind_.data();
 }
 
-const kernels::Affine34* Body::skinning() {
+const kernels::SkinMatrix* Body::skinning() {
     update_skeleton();
     return skinning_.data();
 }

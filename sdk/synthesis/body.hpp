@@ -24,15 +24,15 @@ public:
     const float* normals();         // 3V, xyz
     const float* world();           // 16J column-major
     const float* inverse_bind();    // 16J column-major
-    const kernels::Affine34* skinning();
+    const kernels::SkinMatrix* skinning();
 
 private:
     void update_rest();
     void update_skeleton();
 
     const Model& model_;
-    Vec<float> coeffs_, rest_, joints_, quats_, world_, inverse_bind_, posed_, normals_, scratch_;
-    Vec<kernels::Affine34> skinning_;
+    Vec<float> coeffs_, scaled_, rest_, joints_, quats_, world_, inverse_bind_, posed_, normals_, scratch_, face_normals_;
+    Vec<kernels::SkinMatrix> skinning_;
     float translation_[3] = {0, 0, 0};
     bool rest_ok_ = false, skeleton_ok_ = false, posed_ok_ = false, normals_ok_ = false;
 };

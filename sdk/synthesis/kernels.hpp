@@ -16,14 +16,19 @@ class Model;
 
 namespace kernels {
 
-// For bodies g < count: rest[g] (3V planar: x block, y block, z block) = mean + basis * coeffs[g]
-// and joints[g] (3J) likewise; coeffs[g] holds K values in standard deviations. The basis is read
-// once per row block for all bodies, so larger counts amortise its memory traffic.
-void shape(const Model& m, std::size_t count, const float* const* coeffs, float* const* rest, float* const* joints);
+// scaled[k] = coeffs[k] (standard deviations) * step[k] (metres per quantization unit): the
+// per-component factors shape() applies to the 16-bit basis. K values each.
+void scale_coefficients(const Model& m, const float* coeffs, float* scaled);
 
-// A 3x4 row-major affine transform: what skinning blends.
-struct Affine34 {
-    float m[12];
+// For bodies g < count: rest[g] (Model::padded_rows() floats, planar: x block, y block, z block,
+// then padding) = mean + basis * coeffs[g]
+// and joints[g] (3J) likewise, from scale_coefficients() output. Bodies share passes over the
+// basis, so larger counts amortise its memory traffic; results do not depend on count.
+void shape(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, float* const* joints);
+
+// A skinning matrix: column-major 4x4 (last row 0 0 0 1), aligned for SIMD loads.
+struct SkinMatrix {
+    alignas(32) float m[16];
 };
 
 // Floats of scratch that skeleton() needs per joint.
@@ -31,16 +36,16 @@ inline constexpr std::size_t kSkeletonScratch = 21;
 
 // quats: 4J unit quaternions xyzw (pose, in each joint's rest frame); translation: 3 floats;
 // scratch: kSkeletonScratch * J floats. Outputs (any may be null): world and inverse bind as
-// column-major 4x4, skinning as Affine34. Allocates nothing.
+// column-major 4x4, skinning matrices. Allocates nothing.
 void skeleton(const Model& m, const float* joints_rest, const float* quats, const float* translation, float* scratch,
-              float* world16, float* inverse_bind16, Affine34* skinning);
+              float* world16, float* inverse_bind16, SkinMatrix* skinning);
 
-// Posed vertex v = sum_i w_i * skinning[j_i] * rest(v); out is xyz at stride bytes.
-void skin(const Model& m, const float* rest_planar, const Affine34* skinning, float* out, std::size_t stride);
+// Posed vertex v = sum_i w_i * skinning[j_i] * rest(v); out is packed xyz.
+void skin(const Model& m, const float* rest_planar, const SkinMatrix* skinning, float* out);
 
-// Area-weighted unit normals of a mesh given as xyz at in_stride bytes. out is used to accumulate:
-// it must not alias xyz. Allocates nothing.
-void normals(const Model& m, const float* xyz, std::size_t in_stride, float* out, std::size_t out_stride);
+// Area-weighted unit normals of a mesh of packed xyz vertices into out (packed xyz).
+// scratch: 3 floats per triangle. Allocates nothing.
+void normals(const Model& m, const float* xyz, float* scratch, float* out);
 
 // Landmark positions from packed xyz vertices.
 void landmarks(const format::ModelData& d, const float* xyz, float* out, std::size_t stride);

@@ -10,14 +10,19 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstring>
+
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#define SSC_SKIN_AVX2 1
+#endif
 
 namespace ssc::kernels {
 namespace {
 
 using Eigen::Matrix3f;
 using Eigen::Vector3f;
-using MapV = Eigen::Map<Vector3f>;
 
 void store16(const Matrix3f& r, const Vector3f& t, float* out) {
     for (int c = 0; c < 3; ++c) {
@@ -33,11 +38,12 @@ void store16(const Matrix3f& r, const Vector3f& t, float* out) {
 }  // namespace
 
 void skeleton(const Model& m, const float* joints_rest, const float* quats, const float* translation, float* scratch,
-              float* world16, float* inverse_bind16, Affine34* skinning) {
+              float* world16, float* inverse_bind16, SkinMatrix* skinning) {
     const uint32_t J = m.joint_count();
     const auto& sk = m.data().skeleton;
     // Per joint: rest world rotation W, posed world rotation G and translation Gt (9 + 9 + 3 floats).
     using Map3 = Eigen::Map<Matrix3f>;
+    using MapV = Eigen::Map<Vector3f>;
     auto W = [&](uint32_t j) { return Map3(scratch + 21 * std::size_t(j)); };
     auto G = [&](uint32_t j) { return Map3(scratch + 21 * std::size_t(j) + 9); };
     auto Gt = [&](uint32_t j) { return MapV(scratch + 21 * std::size_t(j) + 18); };
@@ -64,68 +70,103 @@ void skeleton(const Model& m, const float* joints_rest, const float* quats, cons
         const Vector3f bt = -(Wt * p);
         if (world16) store16(G(j), Gt(j), world16 + 16 * j);
         if (inverse_bind16) store16(Wt, bt, inverse_bind16 + 16 * j);
-        if (skinning) {
-            const Matrix3f S = G(j) * Wt;
-            const Vector3f St = G(j) * bt + Gt(j);
-            float* o = skinning[j].m;
-            for (int row = 0; row < 3; ++row) {
-                o[row * 4 + 0] = S(row, 0);
-                o[row * 4 + 1] = S(row, 1);
-                o[row * 4 + 2] = S(row, 2);
-                o[row * 4 + 3] = St(row);
-            }
-        }
+        if (skinning) store16(G(j) * Wt, G(j) * bt + Gt(j), skinning[j].m);
     }
 }
 
-void skin(const Model& m, const float* rest, const Affine34* skinning, float* out, std::size_t stride) {
+namespace {
+
+// Skins the vertices that have exactly N influences. The blend accumulates w_0 M_0 + w_1 M_1 + ...
+// with FMAs, then transforms: p = (c0 x + c2 z) + (c1 y + c3), the same order in both paths.
+template <int N>
+void skin_group(const Model::SkinGroup& g, const float* xs, const float* ys, const float* zs, const float* mats,
+                float* out) {
+    const std::size_t n = g.vertices.size();
+    const uint32_t* off = g.offsets.data();
+    const float* w = g.weights.data();
+#ifdef SSC_SKIN_AVX2
+    for (std::size_t i = 0; i < n; ++i, off += N, w += N) {
+        const uint32_t v = g.vertices[i];
+        const __m256 w0 = _mm256_broadcast_ss(w);
+        __m256 lo = _mm256_mul_ps(w0, _mm256_load_ps(mats + off[0]));
+        __m256 hi = _mm256_mul_ps(w0, _mm256_load_ps(mats + off[0] + 8));
+        for (int k = 1; k < N; ++k) {
+            const __m256 wk = _mm256_broadcast_ss(w + k);
+            lo = _mm256_fmadd_ps(wk, _mm256_load_ps(mats + off[k]), lo);
+            hi = _mm256_fmadd_ps(wk, _mm256_load_ps(mats + off[k] + 8), hi);
+        }
+        const __m256 xy = _mm256_set_m128(_mm_set1_ps(ys[v]), _mm_set1_ps(xs[v]));
+        const __m256 z1 = _mm256_set_m128(_mm_set1_ps(1.f), _mm_set1_ps(zs[v]));
+        const __m256 r = _mm256_fmadd_ps(hi, z1, _mm256_mul_ps(lo, xy));
+        const __m128 p = _mm_add_ps(_mm256_castps256_ps128(r), _mm256_extractf128_ps(r, 1));
+        float* o = out + 3 * std::size_t(v);
+        _mm_storel_pi(reinterpret_cast<__m64*>(o), p);  // x, y
+        _mm_store_ss(o + 2, _mm_movehl_ps(p, p));       // z: exactly 12 bytes, vertices are not in order
+    }
+#else
+    for (std::size_t i = 0; i < n; ++i, off += N, w += N) {
+        const uint32_t v = g.vertices[i];
+        float b[16];
+        for (int e = 0; e < 16; ++e) b[e] = w[0] * mats[off[0] + e];
+        for (int k = 1; k < N; ++k)
+            for (int e = 0; e < 16; ++e) b[e] = std::fma(w[k], mats[off[k] + e], b[e]);
+        for (int a = 0; a < 3; ++a)
+            out[3 * std::size_t(v) + a] = std::fma(b[8 + a], zs[v], b[a] * xs[v]) + std::fma(b[12 + a], 1.f, b[4 + a] * ys[v]);
+    }
+#endif
+}
+
+}  // namespace
+
+void skin(const Model& m, const float* rest, const SkinMatrix* skinning, float* out) {
     const uint32_t V = m.vertex_count();
-    const uint16_t* joints = m.data().skin.joints.data();
-    const float* weights = m.data().skin.weights.data();
+    const float* mats = skinning[0].m;
     const float* xs = rest;
     const float* ys = rest + V;
     const float* zs = rest + 2 * std::size_t(V);
-    auto* base = reinterpret_cast<unsigned char*>(out);
-    for (uint32_t v = 0; v < V; ++v) {
-        float b[12];
-        const float* m0 = skinning[joints[4 * v]].m;
-        const float w0 = weights[4 * v];
-        for (int i = 0; i < 12; ++i) b[i] = w0 * m0[i];
-        for (int s = 1; s < 4; ++s) {
-            const float w = weights[4 * v + s];
-            if (w == 0.f) continue;  // most vertices have fewer than 4 influences
-            const float* ms = skinning[joints[4 * v + s]].m;
-            for (int i = 0; i < 12; ++i) b[i] += w * ms[i];
-        }
-        const float x = xs[v], y = ys[v], z = zs[v];
-        float* p = reinterpret_cast<float*>(base + v * stride);
-        p[0] = b[0] * x + b[1] * y + b[2] * z + b[3];
-        p[1] = b[4] * x + b[5] * y + b[6] * z + b[7];
-        p[2] = b[8] * x + b[9] * y + b[10] * z + b[11];
-    }
+    skin_group<1>(m.skin_group(1), xs, ys, zs, mats, out);
+    skin_group<2>(m.skin_group(2), xs, ys, zs, mats, out);
+    skin_group<3>(m.skin_group(3), xs, ys, zs, mats, out);
+    skin_group<4>(m.skin_group(4), xs, ys, zs, mats, out);
 }
 
-void normals(const Model& m, const float* xyz, std::size_t in_stride, float* out, std::size_t out_stride) {
-    const uint32_t V = m.vertex_count();
-    const auto* in = reinterpret_cast<const unsigned char*>(xyz);
-    auto* ob = reinterpret_cast<unsigned char*>(out);
-    auto at = [&](uint32_t v) { return Vector3f(reinterpret_cast<const float*>(in + v * in_stride)); };
-    auto acc = [&](uint32_t v) { return MapV(reinterpret_cast<float*>(ob + v * out_stride)); };
-    for (uint32_t v = 0; v < V; ++v) acc(v).setZero();
-    const auto& tris = m.data().mesh.triangles;
-    for (std::size_t t = 0; t + 3 <= tris.size(); t += 3) {
-        const uint32_t a = tris[t], b = tris[t + 1], c = tris[t + 2];
-        const Vector3f pa = at(a);
-        const Vector3f n = (at(b) - pa).cross(at(c) - pa);  // length = 2 x area: area weighting
-        acc(a) += n;
-        acc(b) += n;
-        acc(c) += n;
+void normals(const Model& m, const float* xyz, float* face, float* out) {
+    const uint32_t V = m.vertex_count(), T = m.triangle_count();
+    const uint32_t* tris = m.data().mesh.triangles.data();
+    for (uint32_t t = 0; t < T; ++t) {
+        const float* a = xyz + 3 * std::size_t(tris[3 * t]);
+        const float* b = xyz + 3 * std::size_t(tris[3 * t + 1]);
+        const float* c = xyz + 3 * std::size_t(tris[3 * t + 2]);
+        const float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        // Length = twice the area: area weighting for free.
+        float* n = face + 3 * std::size_t(t);
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
     }
+    const uint32_t* off = m.vertex_triangle_offsets();
+    const uint32_t* vt = m.vertex_triangles();
     for (uint32_t v = 0; v < V; ++v) {
-        auto n = acc(v);
-        const float len = n.norm();
-        if (len > 0) n /= len;
-        else n = Vector3f(0, 1, 0);  // a vertex on no triangle (or degenerate ones): any unit vector
+        float n[3] = {0.f, 0.f, 0.f};
+        for (uint32_t e = off[v]; e < off[v + 1]; ++e) {
+            const float* f = face + 3 * std::size_t(vt[e]);
+            n[0] += f[0];
+            n[1] += f[1];
+            n[2] += f[2];
+        }
+        const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        float* o = out + 3 * std::size_t(v);
+        if (len > 0) {
+            const float inv = 1.f / len;
+            o[0] = n[0] * inv;
+            o[1] = n[1] * inv;
+            o[2] = n[2] * inv;
+        } else {  // a vertex on no triangle, or on degenerate ones only: any unit vector
+            o[0] = 0.f;
+            o[1] = 1.f;
+            o[2] = 0.f;
+        }
     }
 }
 

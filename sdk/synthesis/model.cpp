@@ -2,6 +2,8 @@
 
 #include "kernels.hpp"
 
+#include <algorithm>
+
 namespace ssc {
 
 Model::Model(format::ModelData data, const Allocator* alloc)
@@ -9,20 +11,27 @@ Model::Model(format::ModelData data, const Allocator* alloc)
       V_(data_.vertex_count()),
       K_(data_.component_count()),
       J_(data_.joint_count()),
+      padded_rows_((3ull * V_ + kChunk - 1) / kChunk * kChunk),
+      basis_panels_(CAlloc<int16_t>(alloc)),
       mean_planar_(CAlloc<float>(alloc)),
       joint_mean_(CAlloc<float>(alloc)),
       joint_basis_(CAlloc<float>(alloc)),
       landmark_rest_(CAlloc<float>(alloc)) {
-    mean_planar_.resize(3ull * V_);
+    mean_planar_.assign(padded_rows_, 0.f);
     for (uint32_t v = 0; v < V_; ++v)
         for (int a = 0; a < 3; ++a) mean_planar_[a * V_ + v] = data_.shape.mean[3 * v + a];
+    const std::size_t rows = 3ull * V_;
+    basis_panels_.assign(padded_rows_ * K_, 0);
+    for (uint32_t k = 0; k < K_; ++k)
+        for (std::size_t r = 0; r < rows; ++r)
+            basis_panels_[(r / kChunk * K_ + k) * kChunk + r % kChunk] = data_.shape.basis.q[k * rows + r];
 
     // Joints are linear in the vertices, so regressing the mean and each basis vector once lets a
     // body get its joints from the coefficients alone (J x K instead of touching the vertices).
+    // Like the vertex basis, the joint basis is per quantization unit (scaled by step at use).
     const auto& sk = data_.skeleton;
     joint_mean_.assign(3ull * J_, 0.f);
     joint_basis_.assign(3ull * J_ * K_, 0.f);
-    const std::size_t rows = 3ull * V_;
     for (uint32_t j = 0; j < J_; ++j) {
         for (uint32_t e = sk.regressor_offsets[j]; e < sk.regressor_offsets[j + 1]; ++e) {
             const uint32_t v = sk.regressor_vertices[e];
@@ -30,10 +39,37 @@ Model::Model(format::ModelData data, const Allocator* alloc)
             for (int a = 0; a < 3; ++a) {
                 joint_mean_[3 * j + a] += w * mean_planar_[a * V_ + v];
                 for (uint32_t k = 0; k < K_; ++k)
-                    joint_basis_[(std::size_t(k) * J_ + j) * 3 + a] +=
-                        w * data_.shape.basis.step[k] * float(data_.shape.basis.q[k * rows + a * V_ + v]);
+                    joint_basis_[(std::size_t(k) * J_ + j) * 3 + a] += w * float(data_.shape.basis.q[k * rows + a * V_ + v]);
             }
         }
+    }
+
+    for (auto& g : skin_groups_) {
+        g.vertices = Vec<uint32_t>(CAlloc<uint32_t>(alloc));
+        g.offsets = Vec<uint32_t>(CAlloc<uint32_t>(alloc));
+        g.weights = Vec<float>(CAlloc<float>(alloc));
+    }
+    for (uint32_t v = 0; v < V_; ++v) {
+        int n = 0;
+        for (int i = 0; i < 4; ++i) n += data_.skin.weights[4 * v + i] > 0.f;
+        SkinGroup& g = skin_groups_[std::max(n, 1) - 1];  // validation guarantees a positive sum
+        g.vertices.push_back(v);
+        for (int i = 0; i < 4; ++i) {
+            if (data_.skin.weights[4 * v + i] > 0.f || (n == 0 && i == 0)) {
+                g.offsets.push_back(16u * data_.skin.joints[4 * v + i]);
+                g.weights.push_back(data_.skin.weights[4 * v + i]);
+            }
+        }
+    }
+
+    const auto& tris = data_.mesh.triangles;
+    vt_offsets_ = Vec<uint32_t>(V_ + 1, 0u, CAlloc<uint32_t>(alloc));
+    vt_triangles_ = Vec<uint32_t>(tris.size(), 0u, CAlloc<uint32_t>(alloc));
+    for (uint32_t i : tris) ++vt_offsets_[i + 1];
+    for (uint32_t v = 0; v < V_; ++v) vt_offsets_[v + 1] += vt_offsets_[v];
+    {
+        std::vector<uint32_t> fill(vt_offsets_.begin(), vt_offsets_.end() - 1);
+        for (std::size_t c = 0; c < tris.size(); ++c) vt_triangles_[fill[tris[c]]++] = static_cast<uint32_t>(c / 3);
     }
 
     for (uint32_t j = 0; j < J_; ++j) joint_index_.emplace(sk.joint_names[j], j);

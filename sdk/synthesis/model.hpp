@@ -22,12 +22,32 @@ public:
     uint32_t joint_count() const { return J_; }
     uint32_t triangle_count() const { return static_cast<uint32_t>(data_.mesh.triangles.size() / 3); }
 
-    const float* mean_planar() const { return mean_planar_.data(); }           // [axis][v]
-    const int16_t* basis_q() const { return data_.shape.basis.q.data(); }       // [k][axis][v]
+    // Synthesis works on "rows": the 3V coordinates in planar order (x block, y block, z block),
+    // padded with zeros to a multiple of 8 (kChunk) so SIMD kernels never need a tail.
+    static constexpr uint32_t kChunk = 8;
+    std::size_t padded_rows() const { return padded_rows_; }
+    const float* mean_planar() const { return mean_planar_.data(); }           // [row], padded
+    // The basis in panel layout: for each chunk of 8 rows, all K components' 8 values in a row
+    // ([chunk][k][8]), so a pass over the basis is one sequential stream.
+    const int16_t* basis_panels() const { return basis_panels_.data(); }
     const float* basis_step() const { return data_.shape.basis.step.data(); }   // [k]
     const float* joint_mean() const { return joint_mean_.data(); }             // [j][axis]
-    const float* joint_basis() const { return joint_basis_.data(); }           // [k][j][axis], metres per SD
+    const float* joint_basis() const { return joint_basis_.data(); }           // [k][j][axis], per quantization unit
     const float* landmark_rest() const { return landmark_rest_.data(); }       // mean shape, [l][axis]
+
+    // Skin influences grouped by count (1..4) so skinning runs branch-free loops that do only the
+    // work each vertex needs. Group n: vertices, then n matrix offsets (in floats) and n weights each.
+    struct SkinGroup {
+        Vec<uint32_t> vertices;
+        Vec<uint32_t> offsets;  // joint * 16
+        Vec<float> weights;
+    };
+    const SkinGroup& skin_group(int influences) const { return skin_groups_[influences - 1]; }
+
+    // Triangles around each vertex (CSR): normals gather face normals per vertex instead of
+    // scattering into shared vertices, which stalls on store forwarding.
+    const uint32_t* vertex_triangle_offsets() const { return vt_offsets_.data(); }  // V + 1
+    const uint32_t* vertex_triangles() const { return vt_triangles_.data(); }
 
     // -1 when absent.
     int64_t find_joint(const std::string& name) const;
@@ -36,7 +56,11 @@ public:
 private:
     format::ModelData data_;
     uint32_t V_, K_, J_;
+    std::size_t padded_rows_;
+    Vec<int16_t> basis_panels_;
     Vec<float> mean_planar_, joint_mean_, joint_basis_, landmark_rest_;
+    SkinGroup skin_groups_[4];
+    Vec<uint32_t> vt_offsets_, vt_triangles_;
     std::unordered_map<std::string, uint32_t> joint_index_, landmark_index_;
 };
 

@@ -100,7 +100,7 @@ SyntheticModel build_synthetic_model(const SyntheticSpec& spec) {
     for (std::size_t i = 1; i < B; ++i) if (area[i] > area[big]) big = i;
     std::vector<uint32_t> rings(B), seg_sides(B, sides);
     const double budget = double(spec.vertex_count) - 2.0 * B;
-    require_arg(budget > 4.0 * B * sides, "vertex_count too small for this skeleton");
+    SSC_REQUIRE_ARG(budget > 4.0 * B * sides, "vertex_count too small for this skeleton");
     for (std::size_t i = 0; i < B; ++i) rings[i] = std::max<uint32_t>(2, uint32_t(budget * area[i] / total_area / sides));
     auto used = [&] { uint64_t n = 0; for (std::size_t i = 0; i < B; ++i) if (i != big) n += uint64_t(rings[i]) * seg_sides[i] + 2; return n; };
     bool found = false;
@@ -110,7 +110,7 @@ SyntheticModel build_synthetic_model(const SyntheticSpec& spec) {
             if (rest > 0 && rest % s == 0 && rest / s >= 2) { seg_sides[big] = s; rings[big] = uint32_t(rest / s); found = true; }
         if (!found) rings[(big + 1 + attempt) % B == big ? (big + 2) % B : (big + 1 + attempt) % B] += 1;
     }
-    require_arg(found, "cannot split vertex_count over the segments");
+    SSC_REQUIRE_ARG(found, "cannot split vertex_count over the segments");
 
     SyntheticModel out;
     format::ModelData& m = out.data;
