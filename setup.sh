@@ -11,7 +11,7 @@ case "$mode" in run|test) ;; *) echo "usage: $0 [run|test]" >&2; exit 2 ;; esac
 jobs="${JOBS:-$(nproc)}"
 
 packages=(cmake make g++ pkg-config libeigen3-dev libnanoflann-dev libflatbuffers-dev flatbuffers-compiler
-          libzstd-dev libxxhash-dev catch2 libbenchmark-dev)
+          libzstd-dev libxxhash-dev libpng-dev catch2 libbenchmark-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -39,7 +39,7 @@ if [ "$mode" = run ]; then
   # Until the trained default model exists, the main job runs on a procedural model of the same size.
   ./build/bin/sscape make-test-model -o out/test-model.sscape
   ./build/bin/sscape info out/test-model.sscape
-  ./build/bin/sscape synth out/test-model.sscape --random 5 --seed 1 --normals -o out/body.obj
+  ./build/bin/sscape synth out/test-model.sscape --random 5 --seed 1 --normals -o out/body.obj --png out/bodies.png
   echo "setup: bodies written to out/"
 else
   build build -DCMAKE_BUILD_TYPE=Release

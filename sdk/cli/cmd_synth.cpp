@@ -1,6 +1,7 @@
 #include "cli.hpp"
 
 #include "export/mesh_writers.hpp"
+#include "render/raster.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -13,7 +14,7 @@ namespace {
 struct Options {
     std::string model, out;
     std::vector<float> shape, translation;
-    std::string pose;
+    std::string pose, png;
     uint32_t random = 0, seed = 1;
     bool normals = false;
 };
@@ -33,6 +34,7 @@ Options parse(const std::vector<std::string>& args) {
         else if (a == "--random") o.random = parse_count(value(), a);
         else if (a == "--seed") o.seed = parse_count(value(), a);
         else if (a == "--normals") o.normals = true;
+        else if (a == "--png") o.png = value();
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
         else if (o.model.empty()) o.model = a;
         else throw UsageError("unexpected argument '" + a + "'");
@@ -42,6 +44,9 @@ Options parse(const std::vector<std::string>& args) {
     if (!o.translation.empty() && o.translation.size() != 3) throw UsageError("--translation needs 3 numbers");
     if (o.random && !o.shape.empty()) throw UsageError("--random and --shape exclude each other");
     if (o.random > 10000) throw UsageError("--random is limited to 10000 bodies");
+    exporters::check_mesh_path(o.out);
+    if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
+        throw UsageError("--png needs a file name ending in .png");
     return o;
 }
 
@@ -62,6 +67,41 @@ std::vector<float> parse_pose(ssc_model* model, const std::string& text) {
         std::copy(v.begin(), v.end(), aa.begin() + 3 * j);
     }
     return aa;
+}
+
+// Front and side views of every body, side by side, at one common scale.
+void render_bodies(const std::string& path, const std::vector<std::vector<float>>& bodies, const std::vector<uint32_t>& tris) {
+    const int cell_w = 180, cell_h = 420, per_row = 5;
+    const int n = static_cast<int>(bodies.size());
+    const int cols = std::min(n, per_row), rows = (n + per_row - 1) / per_row;
+    float tallest = 0.f;
+    for (const auto& v : bodies) {
+        float lo = 1e30f, hi = -1e30f;
+        for (std::size_t i = 1; i < v.size(); i += 3) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+        tallest = std::max(tallest, hi - lo);
+    }
+    render::Image img(cols * 2 * cell_w, rows * cell_h);
+    std::vector<float> depth;
+    const float scale = 0.92f * cell_h / std::max(tallest, 1e-3f);
+    const uint8_t skin[3] = {225, 190, 160};
+    for (int b = 0; b < n; ++b) {
+        const auto& v = bodies[b];
+        float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+        for (std::size_t i = 0; i < v.size(); ++i) lo[i % 3] = std::min(lo[i % 3], v[i]), hi[i % 3] = std::max(hi[i % 3], v[i]);
+        for (int view = 0; view < 2; ++view) {
+            render::Viewport vp;
+            vp.x0 = (b % per_row) * 2 * cell_w + view * cell_w;
+            vp.y0 = (b / per_row) * cell_h;
+            vp.width = cell_w;
+            vp.height = cell_h;
+            vp.centre_x = view == 0 ? 0.5f * (lo[0] + hi[0]) : -0.5f * (lo[2] + hi[2]);
+            vp.centre_y = 0.5f * (lo[1] + hi[1]);
+            vp.scale = scale;
+            render::draw_mesh(img, depth, vp, view == 0 ? render::View::Front : render::View::Side, v.data(), tris.data(),
+                              static_cast<uint32_t>(tris.size() / 3), skin);
+        }
+    }
+    render::write_png(path, img);
 }
 
 std::string numbered(const std::string& out, uint32_t i, uint32_t n) {
@@ -102,6 +142,7 @@ int cmd_synth(const std::vector<std::string>& args) {
     std::normal_distribution<float> normal;
     const uint32_t n = o.random ? o.random : 1;
     std::vector<float> verts(3ull * V), normals(o.normals ? 3ull * V : 0);
+    std::vector<std::vector<float>> rendered;
     std::printf("%-28s %9s %9s %9s   first shape coefficients\n", "file", "height_m", "width_m", "depth_m");
     for (uint32_t i = 0; i < n; ++i) {
         std::vector<float> shape = o.shape;
@@ -124,6 +165,7 @@ int cmd_synth(const std::vector<std::string>& args) {
         mesh.triangle_uvs = U ? tri_uvs.data() : nullptr;
         const std::string path = numbered(o.out, i, n);
         exporters::write_mesh(path, mesh);
+        if (!o.png.empty() && rendered.size() < 20) rendered.push_back(verts);
         float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
         for (uint32_t v = 0; v < V; ++v)
             for (int a = 0; a < 3; ++a) {
@@ -135,6 +177,11 @@ int cmd_synth(const std::vector<std::string>& args) {
         std::printf("\n");
     }
     std::printf("wrote %u bod%s of %u vertices, %u triangles\n", n, n == 1 ? "y" : "ies", V, T);
+    if (!o.png.empty()) {
+        render_bodies(o.png, rendered, tris);
+        std::printf("rendered %zu bod%s (front and side views) to %s\n", rendered.size(), rendered.size() == 1 ? "y" : "ies",
+                    o.png.c_str());
+    }
     return 0;
 }
 

@@ -87,12 +87,23 @@ void write_ply(const std::string& path, const MeshView& m) {
     commit(path, s);
 }
 
-void write_mesh(const std::string& path, const MeshView& mesh) {
+namespace {
+std::string extension(const std::string& path) {
     std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext == ".obj") return write_obj(path, mesh);
-    if (ext == ".ply") return write_ply(path, mesh);
-    fail(SSC_ERROR_INVALID_ARGUMENT, "output '" + path + "' must end in .obj or .ply");
+    return ext;
+}
+}  // namespace
+
+void check_mesh_path(const std::string& path) {
+    const std::string ext = extension(path);
+    if (ext != ".obj" && ext != ".ply") fail(SSC_ERROR_INVALID_ARGUMENT, "output '" + path + "' must end in .obj or .ply");
+}
+
+void write_mesh(const std::string& path, const MeshView& mesh) {
+    check_mesh_path(path);
+    if (extension(path) == ".obj") write_obj(path, mesh);
+    else write_ply(path, mesh);
 }
 
 }  // namespace ssc::exporters

@@ -1,12 +1,14 @@
 // Shape stage: rest = mean + sum_k (c_k * step_k) * q_k over the 16-bit basis.
 //
 // Every output value is accumulated as acc = fma(c_k * step_k, q_k, acc) for k = 0, 1, ... in
-// that order, whatever the blocking; so one body and a batch give bit-identical results.
+// that order, whatever the vector width or blocking; so one body and a batch, and the AVX2 and
+// AVX-512 paths, give bit-identical results.
 //
 // Cost model: the basis is 4 MB for the default-size model, more than L2, so one body is bound by
 // the bandwidth of streaming it from L3. The panel layout (model.hpp) makes that one sequential
-// stream. A batch tiles bodies so each basis chunk, once loaded, feeds up to 8 bodies'
-// accumulators held in registers, which makes it compute-bound instead.
+// stream. A batch tiles bodies so each basis panel, once loaded, feeds several bodies'
+// accumulators held in registers, which makes it FMA-bound instead; AVX-512, where the CPU has it
+// (chosen at run time), doubles that throughput.
 #include "kernels.hpp"
 #include "model.hpp"
 
@@ -16,52 +18,121 @@
 #if defined(__AVX2__) && defined(__FMA__)
 #include <immintrin.h>
 #define SSC_SHAPE_AVX2 1
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define SSC_SHAPE_AVX512 1
+#endif
 #endif
 
 namespace ssc::kernels {
 namespace {
 
-constexpr std::size_t kChunk = Model::kChunk;
+constexpr std::size_t kChunk = Model::kChunk;  // rows per panel
 
 #ifdef SSC_SHAPE_AVX2
-// G bodies x C chunks (8 rows each) starting at chunk `chunk`: G * C independent accumulators
-// hide the FMA latency.
-template <int G, int C>
-void tile(const Model& m, std::size_t chunk, const float* const* scaled, float* const* rest) {
+// G bodies x P panels of 16 rows (2 ymm each) starting at panel `first`.
+template <int G, int P>
+void tile_avx2(const Model& m, std::size_t first, const float* const* scaled, float* const* rest) {
     const uint32_t K = m.component_count();
-    const std::size_t r = chunk * kChunk;
-    const int16_t* panel = m.basis_panels() + chunk * K * kChunk;
+    const std::size_t r = first * kChunk;
+    const int16_t* panel = m.basis_panels() + first * K * kChunk;
+    constexpr int H = 2 * P;  // 8-row halves
     const float* sg[G];
-    __m256 acc[G][C];
+    __m256 acc[G][H];
     for (int g = 0; g < G; ++g) sg[g] = scaled[g];
-    for (int c = 0; c < C; ++c) {
-        const __m256 mean = _mm256_loadu_ps(m.mean_planar() + r + kChunk * c);
-        for (int g = 0; g < G; ++g) acc[g][c] = mean;
+    for (int h = 0; h < H; ++h) {
+        const __m256 mean = _mm256_loadu_ps(m.mean_planar() + r + 8 * h);
+        for (int g = 0; g < G; ++g) acc[g][h] = mean;
     }
     for (uint32_t k = 0; k < K; ++k) {
-        __m256 b[C];
-        for (int c = 0; c < C; ++c) {
-            const auto* p = reinterpret_cast<const __m128i*>(panel + (c * K + k) * kChunk);
-            b[c] = _mm256_cvtepi32_ps(_mm256_cvtepi16_epi32(_mm_loadu_si128(p)));
+        __m256 b[H];
+        for (int h = 0; h < H; ++h) {
+            const auto* p = reinterpret_cast<const __m128i*>(panel + ((h / 2) * K + k) * kChunk + 8 * (h % 2));
+            b[h] = _mm256_cvtepi32_ps(_mm256_cvtepi16_epi32(_mm_loadu_si128(p)));
         }
         for (int g = 0; g < G; ++g) {
             const __m256 cg = _mm256_broadcast_ss(sg[g] + k);
-            for (int c = 0; c < C; ++c) acc[g][c] = _mm256_fmadd_ps(cg, b[c], acc[g][c]);
+            for (int h = 0; h < H; ++h) acc[g][h] = _mm256_fmadd_ps(cg, b[h], acc[g][h]);
         }
     }
     for (int g = 0; g < G; ++g)
-        for (int c = 0; c < C; ++c) _mm256_storeu_ps(rest[g] + r + kChunk * c, acc[g][c]);
+        for (int h = 0; h < H; ++h) _mm256_storeu_ps(rest[g] + r + 8 * h, acc[g][h]);
 }
 
-template <int G, int C>
-void tiles(const Model& m, const float* const* scaled, float* const* rest) {
-    const std::size_t chunks = m.padded_rows() / kChunk;
+template <int G, int P>
+void pass_avx2(const Model& m, const float* const* scaled, float* const* rest) {
+    const std::size_t panels = m.padded_rows() / kChunk;
     std::size_t c = 0;
-    for (; c + C <= chunks; c += C) tile<G, C>(m, c, scaled, rest);
-    for (; c < chunks; ++c) tile<G, 1>(m, c, scaled, rest);
+    for (; c + P <= panels; c += P) tile_avx2<G, P>(m, c, scaled, rest);
+    for (; c < panels; ++c) tile_avx2<G, 1>(m, c, scaled, rest);
 }
-#else
-void tiles_scalar(const Model& m, std::size_t count, const float* const* scaled, float* const* rest) {
+
+void shape_avx2(const Model& m, std::size_t count, const float* const* scaled, float* const* rest) {
+    for (std::size_t g = 0; g < count;) {
+        const std::size_t left = count - g;
+        if (left >= 4) pass_avx2<4, 1>(m, scaled + g, rest + g), g += 4;
+        else if (left >= 2) pass_avx2<2, 2>(m, scaled + g, rest + g), g += 2;
+        else pass_avx2<1, 4>(m, scaled + g, rest + g), g += 1;
+    }
+}
+#endif
+
+#ifdef SSC_SHAPE_AVX512
+#define SSC_AVX512 __attribute__((target("avx512f")))
+
+template <int G, int P>
+SSC_AVX512 void tile_avx512(const Model& m, std::size_t first, const float* const* scaled, float* const* rest) {
+    const uint32_t K = m.component_count();
+    const std::size_t r = first * kChunk;
+    const int16_t* panel = m.basis_panels() + first * K * kChunk;
+    const float* sg[G];
+    __m512 acc[G][P];
+    for (int g = 0; g < G; ++g) sg[g] = scaled[g];
+    for (int p = 0; p < P; ++p) {
+        const __m512 mean = _mm512_loadu_ps(m.mean_planar() + r + kChunk * p);
+        for (int g = 0; g < G; ++g) acc[g][p] = mean;
+    }
+    for (uint32_t k = 0; k < K; ++k) {
+        __m512 b[P];
+        for (int p = 0; p < P; ++p) {
+            const auto* q = reinterpret_cast<const __m256i*>(panel + (p * K + k) * kChunk);
+            // maskz forms with a full mask: same instructions, and no GCC 12 false
+            // -Wmaybe-uninitialized from the unmasked intrinsics' undefined source operand.
+            b[p] = _mm512_maskz_cvtepi32_ps(0xFFFF, _mm512_maskz_cvtepi16_epi32(0xFFFF, _mm256_loadu_si256(q)));
+        }
+        for (int g = 0; g < G; ++g) {
+            const __m512 cg = _mm512_set1_ps(sg[g][k]);
+            for (int p = 0; p < P; ++p) acc[g][p] = _mm512_fmadd_ps(cg, b[p], acc[g][p]);
+        }
+    }
+    for (int g = 0; g < G; ++g)
+        for (int p = 0; p < P; ++p) _mm512_storeu_ps(rest[g] + r + kChunk * p, acc[g][p]);
+}
+
+template <int G, int P>
+SSC_AVX512 void pass_avx512(const Model& m, const float* const* scaled, float* const* rest) {
+    const std::size_t panels = m.padded_rows() / kChunk;
+    std::size_t c = 0;
+    for (; c + P <= panels; c += P) tile_avx512<G, P>(m, c, scaled, rest);
+    for (; c < panels; ++c) tile_avx512<G, 1>(m, c, scaled, rest);
+}
+
+SSC_AVX512 void shape_avx512(const Model& m, std::size_t count, const float* const* scaled, float* const* rest) {
+    for (std::size_t g = 0; g < count;) {
+        const std::size_t left = count - g;
+        if (left >= 8) pass_avx512<8, 2>(m, scaled + g, rest + g), g += 8;
+        else if (left >= 4) pass_avx512<4, 2>(m, scaled + g, rest + g), g += 4;
+        else if (left >= 2) pass_avx512<2, 4>(m, scaled + g, rest + g), g += 2;
+        else pass_avx512<1, 8>(m, scaled + g, rest + g), g += 1;
+    }
+}
+
+bool cpu_has_avx512() {
+    // Reads the CPU-feature word libgcc fills at start-up (it also checks OS register support).
+    return __builtin_cpu_supports("avx512f");
+}
+#endif
+
+[[maybe_unused]] void shape_scalar(const Model& m, std::size_t count, const float* const* scaled, float* const* rest) {
     const uint32_t K = m.component_count();
     for (std::size_t g = 0; g < count; ++g)
         for (std::size_t r = 0; r < m.padded_rows(); ++r) {
@@ -71,7 +142,6 @@ void tiles_scalar(const Model& m, std::size_t count, const float* const* scaled,
             rest[g][r] = acc;
         }
 }
-#endif
 
 }  // namespace
 
@@ -80,17 +150,13 @@ void scale_coefficients(const Model& m, const float* coeffs, float* scaled) {
 }
 
 void shape(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, float* const* joints) {
-#ifdef SSC_SHAPE_AVX2
-    // Bodies in groups of 8, 4, 2, 1; each group is one pass over the basis.
-    for (std::size_t g = 0; g < count;) {
-        const std::size_t left = count - g;
-        if (left >= 8) tiles<8, 1>(m, scaled + g, rest + g), g += 8;
-        else if (left >= 4) tiles<4, 2>(m, scaled + g, rest + g), g += 4;
-        else if (left >= 2) tiles<2, 4>(m, scaled + g, rest + g), g += 2;
-        else tiles<1, 8>(m, scaled + g, rest + g), g += 1;
-    }
+#if defined(SSC_SHAPE_AVX512)
+    if (cpu_has_avx512()) shape_avx512(m, count, scaled, rest);
+    else shape_avx2(m, count, scaled, rest);
+#elif defined(SSC_SHAPE_AVX2)
+    shape_avx2(m, count, scaled, rest);
 #else
-    tiles_scalar(m, count, scaled, rest);
+    shape_scalar(m, count, scaled, rest);
 #endif
     const uint32_t J = m.joint_count(), K = m.component_count();
     for (std::size_t g = 0; g < count; ++g) {

@@ -23,12 +23,12 @@ public:
     uint32_t triangle_count() const { return static_cast<uint32_t>(data_.mesh.triangles.size() / 3); }
 
     // Synthesis works on "rows": the 3V coordinates in planar order (x block, y block, z block),
-    // padded with zeros to a multiple of 8 (kChunk) so SIMD kernels never need a tail.
-    static constexpr uint32_t kChunk = 8;
+    // padded with zeros to a multiple of 16 (kChunk) so SIMD kernels never need a tail.
+    static constexpr uint32_t kChunk = 16;
     std::size_t padded_rows() const { return padded_rows_; }
     const float* mean_planar() const { return mean_planar_.data(); }           // [row], padded
-    // The basis in panel layout: for each chunk of 8 rows, all K components' 8 values in a row
-    // ([chunk][k][8]), so a pass over the basis is one sequential stream.
+    // The basis in panel layout: for each chunk of 16 rows, all K components' 16 values in a row
+    // ([chunk][k][16]), so a pass over the basis is one sequential stream.
     const int16_t* basis_panels() const { return basis_panels_.data(); }
     const float* basis_step() const { return data_.shape.basis.step.data(); }   // [k]
     const float* joint_mean() const { return joint_mean_.data(); }             // [j][axis]

@@ -1,0 +1,35 @@
+// A small software rasterizer for looking at bodies: orthographic views, z-buffered, flat Lambert
+// shading, written as PNG. Used by `sscape synth --png` and by tools that need pictures.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ssc::render {
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgb;  // 3 bytes per pixel, rows top to bottom
+    Image(int w, int h, uint8_t background = 255) : width(w), height(h), rgb(std::size_t(w) * h * 3, background) {}
+    void set(int x, int y, uint8_t r, uint8_t g, uint8_t b);
+};
+
+enum class View { Front, Side };  // Front: looking along -Z; Side: looking along -X (the body's left)
+
+struct Viewport {
+    int x0, y0, width, height;  // pixel rectangle in the image
+    float centre_x, centre_y, scale;  // world point at the rectangle's centre; pixels per metre
+};
+
+// Draws a triangle mesh (packed xyz, 3 indices per triangle) into a viewport.
+void draw_mesh(Image& img, std::vector<float>& depth, const Viewport& vp, View view, const float* xyz,
+               const uint32_t* triangles, uint32_t triangle_count, const uint8_t colour[3]);
+
+// Marks a point (e.g. a landmark) with a filled disc drawn over everything.
+void draw_point(Image& img, const Viewport& vp, View view, const float* p, int radius, const uint8_t colour[3]);
+
+// Writes the image as an 8-bit RGB PNG (temporary file + rename). Throws ssc::Error(SSC_ERROR_IO).
+void write_png(const std::string& path, const Image& img);
+
+}  // namespace ssc::render
