@@ -116,7 +116,7 @@ ssc_status ssc_body_get_vertices(ssc_body* body, float* out, uint32_t capacity, 
         need(body, "body");
         const uint32_t V = body->body.model().vertex_count();
         stride = check_output(out, capacity, V, stride, 12);
-        copy_xyz(body->body.posed(), V, out, stride);
+        kernels::planar_to_xyz(body->body.posed(), V, out, stride);
     });
 }
 

@@ -20,7 +20,7 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
     // Scratch per thread, allocated before any output is written: an allocation failure leaves
     // the caller's buffers untouched.
     struct Scratch {
-        std::vector<float> coeffs, rest, joints, skeleton, faces;
+        std::vector<float> coeffs, rest, joints, skeleton, faces, posed;
         std::vector<kernels::SkinMatrix> skinning;
     };
     std::vector<Scratch> scratch(pool.size());
@@ -29,6 +29,7 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
         s.rest.resize(kGroup * m.padded_rows());
         s.joints.resize(kGroup * 3ull * J);
         s.skinning.resize(J);
+        s.posed.resize(3ull * V);
         s.skeleton.resize(kernels::kSkeletonScratch * J);
         if (job.normals) s.faces.resize(3ull * m.triangle_count());
     }
@@ -54,9 +55,9 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
             const float* q = job.quats ? job.quats + b * 4ull * J : identity.data();
             const float* t = job.translations ? job.translations + 3 * b : zero;
             kernels::skeleton(m, jp[g], q, t, s.skeleton.data(), nullptr, nullptr, s.skinning.data());
-            float* out = job.vertices + b * 3ull * V;
-            kernels::skin(m, rp[g], s.skinning.data(), out);
-            if (job.normals) kernels::normals(m, out, s.faces.data(), job.normals + b * 3ull * V);
+            kernels::skin(m, rp[g], s.skinning.data(), s.posed.data());
+            kernels::planar_to_xyz(s.posed.data(), V, job.vertices + b * 3ull * V, 12, /*streaming=*/true);
+            if (job.normals) kernels::normals(m, s.posed.data(), s.faces.data(), job.normals + b * 3ull * V);
         }
     });
 }

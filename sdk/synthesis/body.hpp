@@ -20,7 +20,7 @@ public:
 
     const float* rest_planar();     // 3V: x block, y block, z block
     const float* rest_joints();     // 3J
-    const float* posed();           // 3V, xyz
+    const float* posed();           // 3V planar: x block, y block, z block
     const float* normals();         // 3V, xyz
     const float* world();           // 16J column-major
     const float* inverse_bind();    // 16J column-major

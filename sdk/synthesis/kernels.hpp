@@ -40,18 +40,20 @@ inline constexpr std::size_t kSkeletonScratch = 21;
 void skeleton(const Model& m, const float* joints_rest, const float* quats, const float* translation, float* scratch,
               float* world16, float* inverse_bind16, SkinMatrix* skinning);
 
-// Posed vertex v = sum_i w_i * skinning[j_i] * rest(v); out is packed xyz.
-void skin(const Model& m, const float* rest_planar, const SkinMatrix* skinning, float* out);
+// Posed vertex v = sum_i w_i * skinning[j_i] * rest(v). rest and out are planar (x block, y block,
+// z block; 3V floats, out must not alias rest).
+void skin(const Model& m, const float* rest_planar, const SkinMatrix* skinning, float* out_planar);
 
-// Area-weighted unit normals of a mesh of packed xyz vertices into out (packed xyz).
+// Area-weighted unit normals of the mesh with planar vertices into out (packed xyz).
 // scratch: 3 floats per triangle. Allocates nothing.
-void normals(const Model& m, const float* xyz, float* scratch, float* out);
+void normals(const Model& m, const float* planar, float* scratch, float* out);
 
-// Landmark positions from packed xyz vertices.
-void landmarks(const format::ModelData& d, const float* xyz, float* out, std::size_t stride);
+// Landmark positions from planar vertices (x block, y block, z block), xyz at stride bytes.
+void landmarks(const format::ModelData& d, const float* planar, float* out, std::size_t stride);
 
-// Planar (x block, y block, z block) to xyz at stride bytes.
-void planar_to_xyz(const float* planar, uint32_t n, float* out, std::size_t stride);
+// Planar (x block, y block, z block) to xyz at stride bytes. streaming: bypass the cache for
+// outputs too large to stay in it (batches).
+void planar_to_xyz(const float* planar, uint32_t n, float* out, std::size_t stride, bool streaming = false);
 
 }  // namespace kernels
 }  // namespace ssc

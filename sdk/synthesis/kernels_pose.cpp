@@ -76,42 +76,89 @@ void skeleton(const Model& m, const float* joints_rest, const float* quats, cons
 
 namespace {
 
-// Skins the vertices that have exactly N influences. The blend accumulates w_0 M_0 + w_1 M_1 + ...
-// with FMAs, then transforms: p = (c0 x + c2 z) + (c1 y + c3), the same order in both paths.
+// The 12 elements of a column-major 4x4 affine matrix that skinning uses: rows 0..2 of each column.
+constexpr int kRowX[4] = {0, 4, 8, 12}, kRowY[4] = {1, 5, 9, 13}, kRowZ[4] = {2, 6, 10, 14};
+
+// One run: N joints shared by every vertex, weights per vertex. Blends the 12 matrix elements
+// w_0 M_0 + w_1 M_1 + ... (FMAs in influence order) and transforms:
+// p = (m0 x + m8 z) + (m4 y + m12) per row, the same order in the SIMD and the scalar path.
 template <int N>
-void skin_group(const Model::SkinGroup& g, const float* xs, const float* ys, const float* zs, const float* mats,
-                float* out) {
-    const std::size_t n = g.vertices.size();
-    const uint32_t* off = g.offsets.data();
-    const float* w = g.weights.data();
+void skin_run(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
+    const uint32_t V = m.vertex_count();
+    const float* xs = rest;
+    const float* ys = rest + V;
+    const float* zs = rest + 2 * std::size_t(V);
+    float* ox = out;
+    float* oy = out + V;
+    float* oz = out + 2 * std::size_t(V);
+    const uint32_t* vid = m.skin_vertices();
+    const float* M[N];
+    const float* W[N];
+    for (int i = 0; i < N; ++i) {
+        M[i] = mats + run.offsets[i];
+        W[i] = m.skin_weights(i);
+    }
 #ifdef SSC_SKIN_AVX2
-    for (std::size_t i = 0; i < n; ++i, off += N, w += N) {
-        const uint32_t v = g.vertices[i];
-        const __m256 w0 = _mm256_broadcast_ss(w);
-        __m256 lo = _mm256_mul_ps(w0, _mm256_load_ps(mats + off[0]));
-        __m256 hi = _mm256_mul_ps(w0, _mm256_load_ps(mats + off[0] + 8));
-        for (int k = 1; k < N; ++k) {
-            const __m256 wk = _mm256_broadcast_ss(w + k);
-            lo = _mm256_fmadd_ps(wk, _mm256_load_ps(mats + off[k]), lo);
-            hi = _mm256_fmadd_ps(wk, _mm256_load_ps(mats + off[k] + 8), hi);
+    for (uint32_t b = run.begin; b < run.end; b += Model::kSkinBlock) {
+        const bool contiguous = m.skin_block_contiguous()[b / Model::kSkinBlock];
+        const uint32_t v0 = vid[b];
+        __m256 x, y, z;
+        __m256i idx = _mm256_setzero_si256();
+        if (contiguous) {
+            x = _mm256_loadu_ps(xs + v0);
+            y = _mm256_loadu_ps(ys + v0);
+            z = _mm256_loadu_ps(zs + v0);
+        } else {
+            idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(vid + b));
+            x = _mm256_i32gather_ps(xs, idx, 4);
+            y = _mm256_i32gather_ps(ys, idx, 4);
+            z = _mm256_i32gather_ps(zs, idx, 4);
         }
-        const __m256 xy = _mm256_set_m128(_mm_set1_ps(ys[v]), _mm_set1_ps(xs[v]));
-        const __m256 z1 = _mm256_set_m128(_mm_set1_ps(1.f), _mm_set1_ps(zs[v]));
-        const __m256 r = _mm256_fmadd_ps(hi, z1, _mm256_mul_ps(lo, xy));
-        const __m128 p = _mm_add_ps(_mm256_castps256_ps128(r), _mm256_extractf128_ps(r, 1));
-        float* o = out + 3 * std::size_t(v);
-        _mm_storel_pi(reinterpret_cast<__m64*>(o), p);  // x, y
-        _mm_store_ss(o + 2, _mm_movehl_ps(p, p));       // z: exactly 12 bytes, vertices are not in order
+        __m256 w[N];
+        for (int i = 0; i < N; ++i) w[i] = _mm256_loadu_ps(W[i] + b);
+        auto blend = [&](int e) {
+            __m256 acc = _mm256_mul_ps(w[0], _mm256_broadcast_ss(M[0] + e));
+            for (int i = 1; i < N; ++i) acc = _mm256_fmadd_ps(w[i], _mm256_broadcast_ss(M[i] + e), acc);
+            return acc;
+        };
+        auto row = [&](const int* e) {
+            const __m256 a = _mm256_fmadd_ps(blend(e[2]), z, _mm256_mul_ps(blend(e[0]), x));
+            const __m256 c = _mm256_fmadd_ps(blend(e[1]), y, blend(e[3]));
+            return _mm256_add_ps(a, c);
+        };
+        const __m256 px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
+        if (contiguous) {
+            _mm256_storeu_ps(ox + v0, px);
+            _mm256_storeu_ps(oy + v0, py);
+            _mm256_storeu_ps(oz + v0, pz);
+        } else {
+            alignas(32) float tx[8], ty[8], tz[8];
+            alignas(32) uint32_t ti[8];
+            _mm256_store_ps(tx, px);
+            _mm256_store_ps(ty, py);
+            _mm256_store_ps(tz, pz);
+            _mm256_store_si256(reinterpret_cast<__m256i*>(ti), idx);
+            for (int l = 0; l < 8; ++l) {
+                ox[ti[l]] = tx[l];
+                oy[ti[l]] = ty[l];
+                oz[ti[l]] = tz[l];
+            }
+        }
     }
 #else
-    for (std::size_t i = 0; i < n; ++i, off += N, w += N) {
-        const uint32_t v = g.vertices[i];
-        float b[16];
-        for (int e = 0; e < 16; ++e) b[e] = w[0] * mats[off[0] + e];
-        for (int k = 1; k < N; ++k)
-            for (int e = 0; e < 16; ++e) b[e] = std::fma(w[k], mats[off[k] + e], b[e]);
-        for (int a = 0; a < 3; ++a)
-            out[3 * std::size_t(v) + a] = std::fma(b[8 + a], zs[v], b[a] * xs[v]) + std::fma(b[12 + a], 1.f, b[4 + a] * ys[v]);
+    for (uint32_t s = run.begin; s < run.end; ++s) {
+        const uint32_t v = vid[s];
+        auto blend = [&](int e) {
+            float acc = W[0][s] * M[0][e];
+            for (int i = 1; i < N; ++i) acc = std::fma(W[i][s], M[i][e], acc);
+            return acc;
+        };
+        auto row = [&](const int* e) {
+            return std::fma(blend(e[2]), zs[v], blend(e[0]) * xs[v]) + std::fma(blend(e[1]), ys[v], blend(e[3]));
+        };
+        ox[v] = row(kRowX);
+        oy[v] = row(kRowY);
+        oz[v] = row(kRowZ);
     }
 #endif
 }
@@ -119,26 +166,27 @@ void skin_group(const Model::SkinGroup& g, const float* xs, const float* ys, con
 }  // namespace
 
 void skin(const Model& m, const float* rest, const SkinMatrix* skinning, float* out) {
-    const uint32_t V = m.vertex_count();
     const float* mats = skinning[0].m;
-    const float* xs = rest;
-    const float* ys = rest + V;
-    const float* zs = rest + 2 * std::size_t(V);
-    skin_group<1>(m.skin_group(1), xs, ys, zs, mats, out);
-    skin_group<2>(m.skin_group(2), xs, ys, zs, mats, out);
-    skin_group<3>(m.skin_group(3), xs, ys, zs, mats, out);
-    skin_group<4>(m.skin_group(4), xs, ys, zs, mats, out);
+    for (const auto& run : m.skin_runs()) {
+        switch (run.influences) {
+            case 1: skin_run<1>(m, run, mats, rest, out); break;
+            case 2: skin_run<2>(m, run, mats, rest, out); break;
+            case 3: skin_run<3>(m, run, mats, rest, out); break;
+            default: skin_run<4>(m, run, mats, rest, out); break;
+        }
+    }
 }
 
-void normals(const Model& m, const float* xyz, float* face, float* out) {
+void normals(const Model& m, const float* planar, float* face, float* out) {
     const uint32_t V = m.vertex_count(), T = m.triangle_count();
     const uint32_t* tris = m.data().mesh.triangles.data();
+    const float* X = planar;
+    const float* Y = planar + V;
+    const float* Z = planar + 2 * std::size_t(V);
     for (uint32_t t = 0; t < T; ++t) {
-        const float* a = xyz + 3 * std::size_t(tris[3 * t]);
-        const float* b = xyz + 3 * std::size_t(tris[3 * t + 1]);
-        const float* c = xyz + 3 * std::size_t(tris[3 * t + 2]);
-        const float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-        const float e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const uint32_t a = tris[3 * t], b = tris[3 * t + 1], c = tris[3 * t + 2];
+        const float e1[3] = {X[b] - X[a], Y[b] - Y[a], Z[b] - Z[a]};
+        const float e2[3] = {X[c] - X[a], Y[c] - Y[a], Z[c] - Z[a]};
         // Length = twice the area: area weighting for free.
         float* n = face + 3 * std::size_t(t);
         n[0] = e1[1] * e2[2] - e1[2] * e2[1];
@@ -170,18 +218,20 @@ void normals(const Model& m, const float* xyz, float* face, float* out) {
     }
 }
 
-void landmarks(const format::ModelData& d, const float* xyz, float* out, std::size_t stride) {
+void landmarks(const format::ModelData& d, const float* planar, float* out, std::size_t stride) {
+    const uint32_t V = d.vertex_count();
     auto* base = reinterpret_cast<unsigned char*>(out);
     for (std::size_t l = 0; l < d.landmarks.size(); ++l) {
         const auto& lm = d.landmarks[l];
         float* p = reinterpret_cast<float*>(base + l * stride);
-        if (lm.vertex != format::kNone) {
-            for (int a = 0; a < 3; ++a) p[a] = xyz[3 * lm.vertex + a];
-        } else {
-            const uint32_t* t = &d.mesh.triangles[3 * lm.triangle];
-            for (int a = 0; a < 3; ++a)
-                p[a] = lm.barycentric[0] * xyz[3 * t[0] + a] + lm.barycentric[1] * xyz[3 * t[1] + a] +
-                       lm.barycentric[2] * xyz[3 * t[2] + a];
+        for (int a = 0; a < 3; ++a) {
+            const float* c = planar + std::size_t(a) * V;
+            if (lm.vertex != format::kNone) {
+                p[a] = c[lm.vertex];
+            } else {
+                const uint32_t* t = &d.mesh.triangles[3 * lm.triangle];
+                p[a] = lm.barycentric[0] * c[t[0]] + lm.barycentric[1] * c[t[1]] + lm.barycentric[2] * c[t[2]];
+            }
         }
     }
 }

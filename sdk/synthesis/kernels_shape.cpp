@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #if defined(__AVX2__) && defined(__FMA__)
 #include <immintrin.h>
@@ -169,13 +170,50 @@ void shape(const Model& m, std::size_t count, const float* const* scaled, float*
     }
 }
 
-void planar_to_xyz(const float* planar, uint32_t n, float* out, std::size_t stride) {
+void planar_to_xyz(const float* planar, uint32_t n, float* out, std::size_t stride, bool streaming) {
+    const float* xs = planar;
+    const float* ys = planar + n;
+    const float* zs = planar + 2 * std::size_t(n);
+    uint32_t v = 0;
+#ifdef SSC_SHAPE_AVX2
+    // Streaming (non-temporal) stores skip reading the destination into cache first: they halve the
+    // memory traffic of large batch outputs that the caller will not read back soon.
+    streaming = streaming && reinterpret_cast<std::uintptr_t>(out) % 16 == 0;
+    if (stride == 12) {  // packed: interleave 4 vertices per step with SSE shuffles
+        for (; v + 4 <= n; v += 4) {
+            const __m128 x = _mm_loadu_ps(xs + v), y = _mm_loadu_ps(ys + v), z = _mm_loadu_ps(zs + v);
+            const __m128 xy01 = _mm_unpacklo_ps(x, y);                            // x0 y0 x1 y1
+            const __m128 xy23 = _mm_unpackhi_ps(x, y);                            // x2 y2 x3 y3
+            const __m128 z0z1 = _mm_shuffle_ps(z, z, _MM_SHUFFLE(1, 1, 0, 0));     // z0 z0 z1 z1
+            const __m128 out0 = _mm_shuffle_ps(xy01, _mm_shuffle_ps(z0z1, xy01, _MM_SHUFFLE(2, 2, 0, 0)),
+                                               _MM_SHUFFLE(2, 0, 1, 0));           // x0 y0 z0 x1
+            const __m128 out1 = _mm_shuffle_ps(_mm_shuffle_ps(xy01, z, _MM_SHUFFLE(1, 1, 3, 3)), xy23,
+                                               _MM_SHUFFLE(1, 0, 2, 0));           // y1 z1 x2 y2
+            const __m128 out2 = _mm_shuffle_ps(_mm_shuffle_ps(z, xy23, _MM_SHUFFLE(2, 2, 2, 2)),
+                                               _mm_shuffle_ps(xy23, z, _MM_SHUFFLE(3, 3, 3, 3)),
+                                               _MM_SHUFFLE(2, 0, 2, 0));           // z2 x3 y3 z3
+            float* o = out + 3 * std::size_t(v);
+            if (streaming) {
+                _mm_stream_ps(o, out0);
+                _mm_stream_ps(o + 4, out1);
+                _mm_stream_ps(o + 8, out2);
+            } else {
+                _mm_storeu_ps(o, out0);
+                _mm_storeu_ps(o + 4, out1);
+                _mm_storeu_ps(o + 8, out2);
+            }
+        }
+        if (streaming) _mm_sfence();
+    }
+#else
+    (void)streaming;
+#endif
     auto* base = reinterpret_cast<unsigned char*>(out);
-    for (uint32_t v = 0; v < n; ++v) {
+    for (; v < n; ++v) {
         float* p = reinterpret_cast<float*>(base + v * stride);
-        p[0] = planar[v];
-        p[1] = planar[n + v];
-        p[2] = planar[2 * n + v];
+        p[0] = xs[v];
+        p[1] = ys[v];
+        p[2] = zs[v];
     }
 }
 

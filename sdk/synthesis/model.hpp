@@ -8,6 +8,7 @@
 
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 namespace ssc {
 
@@ -35,14 +36,21 @@ public:
     const float* joint_basis() const { return joint_basis_.data(); }           // [k][j][axis], per quantization unit
     const float* landmark_rest() const { return landmark_rest_.data(); }       // mean shape, [l][axis]
 
-    // Skin influences grouped by count (1..4) so skinning runs branch-free loops that do only the
-    // work each vertex needs. Group n: vertices, then n matrix offsets (in floats) and n weights each.
-    struct SkinGroup {
-        Vec<uint32_t> vertices;
-        Vec<uint32_t> offsets;  // joint * 16
-        Vec<float> weights;
+    // Skinning layout. Vertices are sorted by the set of joints that influence them, and each run of
+    // vertices sharing a set is padded to whole blocks of 8 (repeating its last vertex, which
+    // rewrites the same value). Within a run the joints' matrices are constants, so 8 vertices are
+    // skinned at once from structure-of-arrays weights; a block of 8 consecutive vertex indices
+    // loads and stores positions directly, any other block gathers and scatters.
+    static constexpr uint32_t kSkinBlock = 8;
+    struct SkinRun {
+        uint32_t begin, end;     // slots in the arrays below, multiples of kSkinBlock
+        uint32_t influences;     // 1..4
+        uint32_t offsets[4];     // joint * 16: where each joint's skinning matrix starts
     };
-    const SkinGroup& skin_group(int influences) const { return skin_groups_[influences - 1]; }
+    const std::vector<SkinRun>& skin_runs() const { return skin_runs_; }
+    const uint32_t* skin_vertices() const { return skin_vertices_.data(); }    // per slot
+    const float* skin_weights(int i) const { return skin_weights_[i].data(); }  // per slot, influence i
+    const uint8_t* skin_block_contiguous() const { return skin_contiguous_.data(); }  // per block
 
     // Triangles around each vertex (CSR): normals gather face normals per vertex instead of
     // scattering into shared vertices, which stalls on store forwarding.
@@ -54,12 +62,17 @@ public:
     int64_t find_landmark(const std::string& name) const;
 
 private:
+    void build_skin_runs(const Allocator* alloc);
+
     format::ModelData data_;
     uint32_t V_, K_, J_;
     std::size_t padded_rows_;
     Vec<int16_t> basis_panels_;
     Vec<float> mean_planar_, joint_mean_, joint_basis_, landmark_rest_;
-    SkinGroup skin_groups_[4];
+    std::vector<SkinRun> skin_runs_;
+    Vec<uint32_t> skin_vertices_;
+    Vec<float> skin_weights_[4];
+    Vec<uint8_t> skin_contiguous_;
     Vec<uint32_t> vt_offsets_, vt_triangles_;
     std::unordered_map<std::string, uint32_t> joint_index_, landmark_index_;
 };
