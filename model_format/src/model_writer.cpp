@@ -1,11 +1,10 @@
+#include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "sscape_format/basis_codec.hpp"
 #include "sscape_format/container.hpp"
 #include "sscape_format/model_io.hpp"
 #include "sscape_model_generated.h"
 
-#include <cstdio>
-#include <fstream>
 
 namespace ssc::format {
 namespace {
@@ -71,21 +70,7 @@ std::vector<unsigned char> write_model(const ModelData& m, const WriteOptions& o
 }
 
 void write_file(const std::string& path, const std::vector<unsigned char>& bytes) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        if (!f) fail(SSC_ERROR_IO, "cannot open '" + tmp + "' for writing");
-        f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-        f.close();
-        if (!f) {
-            std::remove(tmp.c_str());
-            fail(SSC_ERROR_IO, "cannot write '" + tmp + "'");
-        }
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        fail(SSC_ERROR_IO, "cannot rename '" + tmp + "' to '" + path + "'");
-    }
+    write_file_atomically(path, bytes.data(), bytes.size());
 }
 
 }  // namespace ssc::format

@@ -1,5 +1,6 @@
 #include "mesh_writers.hpp"
 
+#include "common/atomic_file.hpp"
 #include "common/error.hpp"
 
 #include <algorithm>
@@ -12,23 +13,7 @@
 namespace ssc::exporters {
 namespace {
 
-void commit(const std::string& path, const std::string& bytes) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        if (!f) fail(SSC_ERROR_IO, "cannot open '" + tmp + "' for writing");
-        f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        f.close();
-        if (!f) {
-            std::remove(tmp.c_str());
-            fail(SSC_ERROR_IO, "cannot write '" + tmp + "'");
-        }
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        fail(SSC_ERROR_IO, "cannot rename '" + tmp + "' to '" + path + "'");
-    }
-}
+void commit(const std::string& path, const std::string& bytes) { write_file_atomically(path, bytes.data(), bytes.size()); }
 
 }  // namespace
 

@@ -46,6 +46,20 @@ struct Params {
     }
 };
 
+// One body on the benchmark model, with a pool of parameters and an output buffer.
+struct OneBody {
+    ssc_model* m = load();
+    ssc_body* b = nullptr;
+    uint32_t V = ssc_model_vertex_count(m), J = ssc_model_joint_count(m), K = ssc_model_shape_count(m);
+    Params p{K, J};
+    std::vector<float> out = std::vector<float>(3ull * V);
+    OneBody() { ssc_body_create(m, nullptr, &b); }
+    ~OneBody() {
+        ssc_body_destroy(b);
+        ssc_model_release(m);
+    }
+};
+
 void BM_Load(benchmark::State& state) {
     model_bytes();
     for (auto _ : state) {
@@ -57,57 +71,36 @@ void BM_Load(benchmark::State& state) {
 }
 
 void BM_PoseOnly(benchmark::State& state) {
-    ssc_model* m = load();
-    ssc_body* b = nullptr;
-    ssc_body_create(m, nullptr, &b);
-    const uint32_t V = ssc_model_vertex_count(m), J = ssc_model_joint_count(m), K = ssc_model_shape_count(m);
-    Params p(K, J);
-    ssc_body_set_shape(b, p.shapes[0].data(), K);
-    std::vector<float> out(3ull * V);
-    ssc_body_get_vertices(b, out.data(), V, 0);  // shape stage done once, outside the loop
+    OneBody f;
+    ssc_body_set_shape(f.b, f.p.shapes[0].data(), f.K);
+    ssc_body_get_vertices(f.b, f.out.data(), f.V, 0);  // shape stage done once, outside the loop
     std::size_t i = 0;
     for (auto _ : state) {
-        ssc_body_set_pose_axis_angle(b, p.poses[i++ % p.poses.size()].data(), J, nullptr);
-        ssc_body_get_vertices(b, out.data(), V, 0);
+        ssc_body_set_pose_axis_angle(f.b, f.p.poses[i++ % f.p.poses.size()].data(), f.J, nullptr);
+        ssc_body_get_vertices(f.b, f.out.data(), f.V, 0);
         benchmark::ClobberMemory();
     }
-    ssc_body_destroy(b);
-    ssc_model_release(m);
 }
 
 void BM_ShapeAndPose(benchmark::State& state) {
-    ssc_model* m = load();
-    ssc_body* b = nullptr;
-    ssc_body_create(m, nullptr, &b);
-    const uint32_t V = ssc_model_vertex_count(m), J = ssc_model_joint_count(m), K = ssc_model_shape_count(m);
-    Params p(K, J);
-    std::vector<float> out(3ull * V);
+    OneBody f;
     std::size_t i = 0;
     for (auto _ : state) {
-        ssc_body_set_shape(b, p.shapes[i % p.shapes.size()].data(), K);
-        ssc_body_set_pose_axis_angle(b, p.poses[i++ % p.poses.size()].data(), J, nullptr);
-        ssc_body_get_vertices(b, out.data(), V, 0);
+        ssc_body_set_shape(f.b, f.p.shapes[i % f.p.shapes.size()].data(), f.K);
+        ssc_body_set_pose_axis_angle(f.b, f.p.poses[i++ % f.p.poses.size()].data(), f.J, nullptr);
+        ssc_body_get_vertices(f.b, f.out.data(), f.V, 0);
         benchmark::ClobberMemory();
     }
-    ssc_body_destroy(b);
-    ssc_model_release(m);
 }
 
 void BM_Normals(benchmark::State& state) {
-    ssc_model* m = load();
-    ssc_body* b = nullptr;
-    ssc_body_create(m, nullptr, &b);
-    const uint32_t V = ssc_model_vertex_count(m), J = ssc_model_joint_count(m), K = ssc_model_shape_count(m);
-    Params p(K, J);
-    std::vector<float> out(3ull * V);
+    OneBody f;
     std::size_t i = 0;
     for (auto _ : state) {
-        ssc_body_set_pose_axis_angle(b, p.poses[i++ % p.poses.size()].data(), J, nullptr);
-        ssc_body_get_normals(b, out.data(), V, 0);  // includes the pose update
+        ssc_body_set_pose_axis_angle(f.b, f.p.poses[i++ % f.p.poses.size()].data(), f.J, nullptr);
+        ssc_body_get_normals(f.b, f.out.data(), f.V, 0);  // includes the pose update
         benchmark::ClobberMemory();
     }
-    ssc_body_destroy(b);
-    ssc_model_release(m);
 }
 
 void BM_Batch(benchmark::State& state) {
