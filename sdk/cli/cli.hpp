@@ -25,5 +25,6 @@ uint32_t parse_count(const std::string& text, const std::string& option);
 int cmd_info(const std::vector<std::string>& args);
 int cmd_synth(const std::vector<std::string>& args);
 int cmd_make_test_model(const std::vector<std::string>& args);
+int cmd_train(const std::vector<std::string>& args);
 
 }  // namespace ssc::cli

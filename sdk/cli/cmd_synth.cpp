@@ -71,18 +71,20 @@ std::vector<float> parse_pose(ssc_model* model, const std::string& text) {
 
 // Front and side views of every body, side by side, at one common scale.
 void render_bodies(const std::string& path, const std::vector<std::vector<float>>& bodies, const std::vector<uint32_t>& tris) {
-    const int cell_w = 180, cell_h = 420, per_row = 5;
+    const int cell_h = 420, per_row = 5;
     const int n = static_cast<int>(bodies.size());
     const int cols = std::min(n, per_row), rows = (n + per_row - 1) / per_row;
-    float tallest = 0.f;
+    float tallest = 0.f, widest = 0.f;  // widest over both views: x extent and z extent
     for (const auto& v : bodies) {
-        float lo = 1e30f, hi = -1e30f;
-        for (std::size_t i = 1; i < v.size(); i += 3) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
-        tallest = std::max(tallest, hi - lo);
+        float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+        for (std::size_t i = 0; i < v.size(); ++i) lo[i % 3] = std::min(lo[i % 3], v[i]), hi[i % 3] = std::max(hi[i % 3], v[i]);
+        tallest = std::max(tallest, hi[1] - lo[1]);
+        widest = std::max({widest, hi[0] - lo[0], hi[2] - lo[2]});
     }
+    const float scale = 0.92f * cell_h / std::max(tallest, 1e-3f);
+    const int cell_w = std::max(120, int(scale * widest) + 16);
     render::Image img(cols * 2 * cell_w, rows * cell_h);
     std::vector<float> depth;
-    const float scale = 0.92f * cell_h / std::max(tallest, 1e-3f);
     const uint8_t skin[3] = {225, 190, 160};
     for (int b = 0; b < n; ++b) {
         const auto& v = bodies[b];

@@ -51,7 +51,10 @@ const char* kUsage =
     "        [--translation X,Y,Z] [--random N [--seed S]] [--normals] [--png VIEW.png]\n"
     "                             write posed bodies; with --random N, N random shapes to OUT_000.obj ...\n"
     "  make-test-model -o OUT.sscape [--vertices N] [--components K] [--skeleton humanoid|mini] [--seed S]\n"
-    "                             write a procedural test model\n";
+    "                             write a procedural test model\n"
+    "  train --assets MAKEHUMAN_DIR -o OUT.sscape [--bodies N] [--components K] [--seed S]\n"
+    "        [--heldout N] [--population-csv FILE] [--procrustes]\n"
+    "                             train a model from the CC0 MakeHuman assets\n";
 
 }  // namespace
 
@@ -66,6 +69,7 @@ int main(int argc, char** argv) {
         if (command == "info") return ssc::cli::cmd_info(args);
         if (command == "synth") return ssc::cli::cmd_synth(args);
         if (command == "make-test-model") return ssc::cli::cmd_make_test_model(args);
+        if (command == "train") return ssc::cli::cmd_train(args);
         throw ssc::cli::UsageError("unknown command '" + command + "'");
     } catch (const ssc::cli::UsageError& e) {
         std::fprintf(stderr, "sscape: %s\n%s", e.what(), kUsage);

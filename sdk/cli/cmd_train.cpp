@@ -1,0 +1,73 @@
+#include "cli.hpp"
+
+#include "sscape_format/model_io.hpp"
+#include "training/train.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace ssc::cli {
+
+int cmd_train(const std::vector<std::string>& args) {
+    training::TrainSpec spec;
+    std::string out;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+            return args[++i];
+        };
+        if (a == "-o" || a == "--output") out = value();
+        else if (a == "--assets") spec.assets_root = value();
+        else if (a == "--bodies") spec.population.count = parse_count(value(), a);
+        else if (a == "--components") spec.components = parse_count(value(), a);
+        else if (a == "--seed") spec.population.seed = parse_count(value(), a);
+        else if (a == "--heldout") spec.heldout = parse_count(value(), a);
+        else if (a == "--population-csv") spec.population_csv = value();
+        else if (a == "--procrustes") spec.procrustes = true;
+        else throw UsageError("unknown option '" + a + "'");
+    }
+    if (out.empty()) throw UsageError("train needs -o OUT.sscape");
+    if (spec.assets_root.empty()) throw UsageError("train needs --assets PATH (the shared/makehuman folder)");
+    if (spec.components < 1 || spec.components > 500) throw UsageError("--components must be 1..500");
+    if (spec.population.count > 20000) throw UsageError("--bodies is limited to 20000");
+    if (spec.population.count <= spec.heldout + spec.components)
+        throw UsageError("--bodies must exceed --heldout plus --components");
+
+    const auto t0 = std::chrono::steady_clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    training::TrainReport report;
+    const format::ModelData model = training::train_model(spec, report, [&](const std::string& s) {
+        std::printf("[%7.1f s] %s\n", elapsed(), s.c_str());
+        std::fflush(stdout);
+    });
+    const std::vector<unsigned char> bytes = format::write_model(model);
+    format::write_file(out, bytes);
+
+    std::printf("wrote %s: %zu bytes (%.3f MB), %u vertices, %u joints, %u components, in %.1f s\n", out.c_str(), bytes.size(),
+                bytes.size() / 1e6, model.vertex_count(), model.joint_count(), model.component_count(), elapsed());
+    std::printf("basis quantization: worst vertex error %.4f mm with every component at +-3 SD\n", report.quantization.max_error * 1e3);
+    std::printf("joint regressor, %u held-out bodies: mean error %.2f mm, max %.2f mm\n", spec.heldout,
+                report.regressor_mean_error * 1e3, report.regressor_max_error * 1e3);
+    double cum = 0;
+    std::printf("compactness (cumulative explained variance):");
+    for (std::size_t k = 0; k < report.stddev.size(); ++k) {
+        cum += report.stddev[k] * report.stddev[k];
+        if (k + 1 == 1 || k + 1 == 5 || k + 1 == 10 || k + 1 == 20 || k + 1 == report.stddev.size())
+            std::printf(" %zu: %.2f%%", k + 1, 100 * cum / report.total_variance);
+    }
+    std::printf("\n");
+    for (int sex = 1; sex >= 0; --sex) {
+        double s = 0, s2 = 0;
+        int n = 0;
+        for (std::size_t i = 0; i < report.statures.size(); ++i)
+            if (report.male[i] == sex) s += report.statures[i], s2 += report.statures[i] * report.statures[i], ++n;
+        if (n > 1)
+            std::printf("stature, %s (n=%d): mean %.1f cm, sd %.1f cm\n", sex ? "men" : "women", n, 100 * s / n,
+                        100 * std::sqrt(std::max(0.0, (s2 - s * s / n) / (n - 1))));
+    }
+    return 0;
+}
+
+}  // namespace ssc::cli

@@ -1,0 +1,65 @@
+#include "pca.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/SVD>
+
+#include <random>
+
+namespace ssc::training {
+
+void procrustes_align(SampleMatrix& X, int iterations) {
+    const Eigen::Index N = X.rows(), V = X.cols() / 3;
+    auto body = [&](Eigen::Index i) { return Eigen::Map<Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>>(X.row(i).data(), V, 3); };
+    Eigen::MatrixX3d mean = body(0).cast<double>();
+    for (int it = 0; it < iterations; ++it) {
+        const Eigen::RowVector3d mc = mean.colwise().mean();
+        const Eigen::MatrixX3d centred_mean = mean.rowwise() - mc;
+        Eigen::MatrixX3d next = Eigen::MatrixX3d::Zero(V, 3);
+        for (Eigen::Index i = 0; i < N; ++i) {
+            auto b = body(i);
+            const Eigen::RowVector3d c = b.cast<double>().colwise().mean();
+            const Eigen::MatrixX3d p = b.cast<double>().rowwise() - c;
+            // Kabsch: rotation R minimising ||p R - centred_mean||.
+            Eigen::JacobiSVD<Eigen::Matrix3d> svd(p.transpose() * centred_mean, Eigen::ComputeFullU | Eigen::ComputeFullV);
+            Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+            D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1 : 1;
+            const Eigen::Matrix3d R = svd.matrixU() * D * svd.matrixV().transpose();
+            const Eigen::MatrixX3d aligned = (p * R).rowwise() + mc;
+            b = aligned.cast<float>();
+            next += aligned;
+        }
+        mean = next / double(N);
+    }
+}
+
+Pca pca(SampleMatrix& X, uint32_t K, uint32_t seed, int power) {
+    const Eigen::Index N = X.rows(), D = X.cols();
+    Pca out;
+    out.mean = X.colwise().mean().transpose();
+    X.rowwise() -= out.mean.transpose();
+    out.total_variance = double(X.cast<double>().squaredNorm()) / double(N - 1);
+
+    const Eigen::Index l = std::min<Eigen::Index>(Eigen::Index(K) + 10, std::min(N, D));
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> normal;
+    Eigen::MatrixXf omega(N, l);
+    for (Eigen::Index i = 0; i < omega.size(); ++i) omega.data()[i] = normal(rng);
+    // Range of X^T (the principal directions), sharpened by power iterations.
+    Eigen::MatrixXf Y = X.transpose() * omega;  // D x l
+    for (int p = 0; p < power; ++p) {
+        Eigen::HouseholderQR<Eigen::MatrixXf> qr(Y);
+        Y = qr.householderQ() * Eigen::MatrixXf::Identity(D, l);
+        const Eigen::MatrixXf Z = X * Y;  // N x l
+        Y = X.transpose() * Z;
+    }
+    Eigen::HouseholderQR<Eigen::MatrixXf> qr(Y);
+    const Eigen::MatrixXf Q = qr.householderQ() * Eigen::MatrixXf::Identity(D, l);
+    const Eigen::MatrixXd B = (X * Q).cast<double>();  // N x l
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(B, Eigen::ComputeThinV);
+    const Eigen::Index k = std::min<Eigen::Index>(K, l);
+    out.basis = Q * svd.matrixV().leftCols(k).cast<float>();
+    out.stddev = svd.singularValues().head(k) / std::sqrt(double(N - 1));
+    return out;
+}
+
+}  // namespace ssc::training

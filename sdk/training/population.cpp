@@ -1,0 +1,100 @@
+#include "population.hpp"
+
+#include "common/atomic_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+namespace ssc::training {
+
+double stature(const std::vector<float>& xyz) {
+    float lo = 1e30f, hi = -1e30f;
+    for (uint32_t v = 0; v < mh::kBodyVertices; ++v) {
+        lo = std::min(lo, xyz[3 * v + 1]);
+        hi = std::max(hi, xyz[3 * v + 1]);
+    }
+    return double(hi) - lo;
+}
+
+namespace {
+
+double clamp01(double x) { return std::min(1.0, std::max(0.0, x)); }
+
+// The height slider giving the target stature, by bisection (stature grows with the slider).
+double calibrate_height(const mh::Assets& a, BodyParams& b, std::vector<float>& xyz) {
+    double lo = 0, hi = 1;
+    for (int it = 0; it < 18; ++it) {
+        b.macro.height = 0.5 * (lo + hi);
+        mh::generate_body(a, b.macro, b.modifiers, xyz);
+        (stature(xyz) < b.target_stature ? lo : hi) = b.macro.height;
+    }
+    b.macro.height = 0.5 * (lo + hi);
+    return b.macro.height;
+}
+
+}  // namespace
+
+std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationSpec& spec, const StatureStats& stats) {
+    std::mt19937_64 rng(spec.seed);
+    std::normal_distribution<double> N01;
+    std::uniform_real_distribution<double> U01;
+    std::gamma_distribution<double> gamma(0.7, 1.0);
+    std::vector<BodyParams> out(spec.count);
+    std::vector<float> xyz;
+    for (auto& b : out) {
+        b.male = U01(rng) < 0.5;
+        b.age_years = spec.min_age + (spec.max_age - spec.min_age) * U01(rng);
+        auto& m = b.macro;
+        m.gender = b.male ? clamp01(1 - std::abs(0.05 * N01(rng))) : clamp01(std::abs(0.05 * N01(rng)));
+        m.age = mh::age_slider(b.age_years);
+        // Ethnic mix: a Dirichlet(0.7, 0.7, 0.7) draw, mostly one dominant group.
+        const double e1 = gamma(rng), e2 = gamma(rng), e3 = gamma(rng);
+        m.african = e1 / (e1 + e2 + e3);
+        m.asian = e2 / (e1 + e2 + e3);
+        m.caucasian = e3 / (e1 + e2 + e3);
+        // Weight gains about 0.1 of the slider range over adult life; muscle declines.
+        const double decades = (b.age_years - 40) / 10;
+        m.weight = clamp01(0.5 + 0.025 * decades + 0.16 * N01(rng));
+        m.muscle = clamp01(0.5 - 0.02 * decades + 0.14 * N01(rng));
+        m.proportions = clamp01(0.5 + 0.15 * N01(rng));
+        m.breast_size = clamp01(0.5 + 0.15 * N01(rng));
+        m.breast_firmness = clamp01(0.5 - 0.03 * decades + 0.15 * N01(rng));
+        b.modifiers.assign(a.modifiers.size(), 0.0);
+        // Body-shape modifiers: small two-sided variations everywhere; one body-shape type,
+        // of the body's sex, for half of the bodies.
+        std::vector<std::size_t> shapes;
+        for (std::size_t i = 0; i < a.modifiers.size(); ++i) {
+            const auto& mod = a.modifiers[i];
+            if (mod.decr >= 0) b.modifiers[i] = std::max(-1.0, std::min(1.0, spec.modifier_sd * N01(rng)));
+            else if (mod.name.find(b.male ? "-man-" : "-fem-") != std::string::npos) shapes.push_back(i);
+        }
+        if (!shapes.empty() && U01(rng) < 0.5) b.modifiers[shapes[std::size_t(U01(rng) * shapes.size()) % shapes.size()]] = 0.5 * U01(rng);
+        // Stature: survey mean and spread for the sex, minus about 1 cm per decade after 50.
+        const double mean = b.male ? stats.male_mean : stats.female_mean, sd = b.male ? stats.male_sd : stats.female_sd;
+        b.target_stature = mean + sd * std::max(-3.0, std::min(3.0, N01(rng))) - 0.01 * std::max(0.0, (b.age_years - 50) / 10);
+    }
+    for (auto& b : out) calibrate_height(a, b, xyz);
+    return out;
+}
+
+void write_population_csv(const std::string& path, const mh::Assets& a, const std::vector<BodyParams>& bodies) {
+    std::ostringstream s;
+    s.precision(9);
+    s << "sex,age_years,target_stature_m,gender,age,muscle,weight,height,proportions,african,asian,caucasian,breast_size,breast_firmness";
+    for (const auto& m : a.modifiers) s << "," << m.name;
+    s << "\n";
+    for (const auto& b : bodies) {
+        const auto& m = b.macro;
+        s << (b.male ? "male" : "female") << "," << b.age_years << "," << b.target_stature << "," << m.gender << "," << m.age << ","
+          << m.muscle << "," << m.weight << "," << m.height << "," << m.proportions << "," << m.african << "," << m.asian << ","
+          << m.caucasian << "," << m.breast_size << "," << m.breast_firmness;
+        for (double v : b.modifiers) s << "," << v;
+        s << "\n";
+    }
+    const std::string text = s.str();
+    write_file_atomically(path, text.data(), text.size());
+}
+
+}  // namespace ssc::training

@@ -1,0 +1,43 @@
+// Sampling a synthetic adult population from the MakeHuman sliders. Stature is drawn from survey
+// statistics and reached by calibrating the height slider per body (the slider is not in
+// centimetres). The population is stored as its parameters (CSV); meshes are regenerated from them.
+#pragma once
+
+#include "makehuman/assets.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ssc::training {
+
+struct PopulationSpec {
+    uint32_t count = 4000;
+    uint32_t seed = 1;
+    double min_age = 18, max_age = 80;  // years, uniform
+    double modifier_sd = 0.2;           // standard deviation of two-sided body-shape sliders
+};
+
+// Survey figures the sampler draws stature from (metres).
+struct StatureStats {
+    double male_mean = 1.754, male_sd = 0.075;
+    double female_mean = 1.617, female_sd = 0.070;
+};
+
+struct BodyParams {
+    bool male = false;
+    double age_years = 0;
+    mh::MacroSliders macro;
+    std::vector<double> modifiers;  // one per Assets::modifiers
+    double target_stature = 0;      // metres
+};
+
+std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationSpec& spec, const StatureStats& stats = {});
+
+// Stature (highest minus lowest body vertex, rest posture) of a generated body.
+double stature(const std::vector<float>& xyz);
+
+// Writes/reads the population as CSV: one row per body, a header naming every column.
+void write_population_csv(const std::string& path, const mh::Assets& a, const std::vector<BodyParams>& bodies);
+
+}  // namespace ssc::training

@@ -1,0 +1,150 @@
+#include "train.hpp"
+
+#include "common/error.hpp"
+#include "pca.hpp"
+#include "skeleton_fit.hpp"
+
+#include <algorithm>
+#include <map>
+#include <cmath>
+#include <sstream>
+
+namespace ssc::training {
+namespace {
+
+// Vertex sets (body parts) by each vertex's dominant game bone.
+std::string part_of(const std::string& bone) {
+    auto has = [&](const char* s) { return bone.find(s) != std::string::npos; };
+    if (has("head") || has("neck")) return "head";
+    if (has("thumb") || has("index") || has("middle") || has("ring") || has("pinky") || has("hand")) return "hands";
+    if (has("upperarm") || has("lowerarm")) return "arms";
+    if (has("thigh") || has("calf")) return "legs";
+    if (has("foot") || has("ball")) return "feet";
+    return "torso";
+}
+
+}  // namespace
+
+format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const Progress& progress) {
+    auto say = [&](const std::string& s) { if (progress) progress(s); };
+    SSC_REQUIRE_ARG(spec.components >= 1, "components must be at least 1");
+    SSC_REQUIRE_ARG(spec.population.count > spec.heldout + spec.components, "population too small for the components and held-out bodies");
+    say("loading assets from " + spec.assets_root);
+    const mh::Assets a = mh::load_assets(spec.assets_root);
+
+    say("sampling " + std::to_string(spec.population.count) + " bodies (stature calibrated per body)");
+    const std::vector<BodyParams> people = sample_population(a, spec.population);
+    if (!spec.population_csv.empty()) write_population_csv(spec.population_csv, a, people);
+
+    const uint32_t N = spec.population.count, V = mh::kBodyVertices, J = uint32_t(a.game_rig.bones.size());
+    SampleMatrix X(N, 3 * V), joints(N, 3 * J);
+    std::vector<float> xyz;
+    report.statures.clear();
+    report.male.clear();
+    say("generating bodies");
+    for (uint32_t i = 0; i < N; ++i) {
+        mh::generate_body(a, people[i].macro, people[i].modifiers, xyz);
+        // Stand every body on the ground (y = 0) centred over the origin in x and z, so the
+        // model keeps the feet on the floor instead of learning where the asset put them.
+        double cx = 0, cz = 0;
+        float lo = 1e30f;
+        for (uint32_t v = 0; v < V; ++v) {
+            cx += xyz[3 * v];
+            cz += xyz[3 * v + 2];
+            lo = std::min(lo, xyz[3 * v + 1]);
+        }
+        const float shift[3] = {float(-cx / V), -lo, float(-cz / V)};
+        for (std::size_t k = 0; k < xyz.size(); ++k) xyz[k] += shift[k % 3];
+        std::copy(xyz.begin(), xyz.begin() + 3 * V, X.row(i).data());
+        const std::vector<float> jp = game_joint_positions(a, xyz);
+        std::copy(jp.begin(), jp.end(), joints.row(i).data());
+        report.statures.push_back(stature(xyz));
+        report.male.push_back(people[i].male);
+    }
+    if (spec.procrustes) procrustes_align(X);
+
+    say("learning the joint regressor");
+    const Regressor reg = learn_regressor(X, joints, 24, spec.heldout);
+    report.regressor_mean_error = reg.heldout_mean_error;
+    report.regressor_max_error = reg.heldout_max_error;
+
+    say("PCA of " + std::to_string(N) + " bodies x " + std::to_string(3 * V) + " coordinates");
+    const Pca p = pca(X, spec.components, spec.population.seed);
+    report.bodies = N;
+    report.total_variance = p.total_variance;
+    report.stddev.assign(p.stddev.data(), p.stddev.data() + p.stddev.size());
+    const uint32_t K = uint32_t(p.basis.cols());
+
+    format::ModelData m;
+    m.metadata.name = "sscape-default";
+    m.metadata.model_version = "0.1";
+    m.metadata.license = "CC0-1.0 (trained from the CC0 MakeHuman assets)";
+    std::ostringstream prov;
+    prov << "Trained by sscape train from the CC0 MakeHuman assets:\n" << a.manifest << "population: " << N
+         << " bodies, seed " << spec.population.seed << ", ages " << spec.population.min_age << "-" << spec.population.max_age
+         << ", modifier sd " << spec.population.modifier_sd << "; " << K << " components";
+    m.metadata.provenance = prov.str();
+    m.metadata.description = "Adult body shape space (S-SCAPE) with the 53-bone game-engine skeleton.";
+
+    m.mesh.vertex_count = V;
+    for (std::size_t q = 0; q < a.base.body_quads.size(); q += 4) {
+        const uint32_t* c = &a.base.body_quads[q];
+        const uint32_t* t = &a.base.body_quad_uvs[q];
+        for (int k = 0; k < 4; ++k) {
+            m.mesh.quads.push_back(c[k]);
+            m.mesh.quad_uvs.push_back(t[k]);
+        }
+        for (int k : {0, 1, 2, 0, 2, 3}) {
+            m.mesh.triangles.push_back(c[k]);
+            m.mesh.triangle_uvs.push_back(t[k]);
+        }
+    }
+    m.mesh.uvs.assign(a.base.uvs.begin(), a.base.uvs.end());
+
+    m.shape.mean.assign(p.mean.data(), p.mean.data() + p.mean.size());
+    m.shape.stddev.resize(K);
+    std::vector<float> scaled(std::size_t(K) * 3 * V);  // planar, metres per SD
+    for (uint32_t k = 0; k < K; ++k) {
+        m.shape.stddev[k] = float(p.stddev(k));
+        for (uint32_t v = 0; v < V; ++v)
+            for (int c = 0; c < 3; ++c) scaled[std::size_t(k) * 3 * V + std::size_t(c) * V + v] = float(p.stddev(k)) * p.basis(3 * v + c, k);
+    }
+    say("quantizing the basis");
+    m.shape.basis = format::quantize_basis(scaled.data(), V, K, spec.tolerance, &report.quantization);
+
+    auto& sk = m.skeleton;
+    std::vector<float> mean_body(a.base.xyz);
+    mh::generate_body(a, mh::MacroSliders{}, {}, mean_body);
+    const std::vector<float> rest = game_rest_orientations(a, mean_body);
+    for (uint32_t j = 0; j < J; ++j) {
+        const auto& b = a.game_rig.bones[j];
+        sk.joint_names.push_back(b.name);
+        int parent = -1;
+        for (uint32_t q = 0; q < j; ++q)
+            if (a.game_rig.bones[q].name == b.parent) parent = int(q);
+        sk.parents.push_back(parent);
+    }
+    sk.rest_orientations.assign(rest.begin(), rest.end());
+    sk.regressor_offsets.assign(reg.offsets.begin(), reg.offsets.end());
+    sk.regressor_vertices.assign(reg.vertices.begin(), reg.vertices.end());
+    sk.regressor_weights.assign(reg.weights.begin(), reg.weights.end());
+
+    std::vector<uint16_t> sj;
+    std::vector<float> sw;
+    game_skin_weights(a, sj, sw);
+    m.skin.joints.assign(sj.begin(), sj.end());
+    m.skin.weights.assign(sw.begin(), sw.end());
+
+    std::map<std::string, std::vector<uint32_t>> parts;
+    for (uint32_t v = 0; v < V; ++v) parts[part_of(a.game_rig.bones[sj[4 * v]].name)].push_back(v);
+    for (const char* name : {"head", "torso", "arms", "hands", "legs", "feet"}) {
+        format::VertexSet set;
+        set.name = name;
+        set.vertices.assign(parts[name].begin(), parts[name].end());
+        if (!set.vertices.empty()) m.vertex_sets.push_back(std::move(set));
+    }
+    format::validate_model(m);
+    return m;
+}
+
+}  // namespace ssc::training

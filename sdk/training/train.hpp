@@ -1,0 +1,38 @@
+// The training pipeline: MakeHuman assets -> population -> aligned bodies -> PCA -> skeleton,
+// skin, vertex sets -> a model ready for the .sscape writer.
+#pragma once
+
+#include "population.hpp"
+#include "sscape_format/model_data.hpp"
+#include "sscape_format/model_io.hpp"
+
+#include <functional>
+#include <string>
+
+namespace ssc::training {
+
+struct TrainSpec {
+    std::string assets_root;        // the shared/makehuman folder
+    PopulationSpec population;
+    uint32_t components = 50;
+    uint32_t heldout = 200;         // bodies kept out of the joint regressor fit, for its error
+    double tolerance = 1e-4;        // basis quantization bound, metres
+    bool procrustes = false;        // rigid GPA; off for MakeHuman, whose bodies share one frame
+    std::string population_csv;     // where to write the sampled parameters ("" = don't)
+};
+
+struct TrainReport {
+    uint32_t bodies = 0;
+    double total_variance = 0;
+    std::vector<double> stddev;                 // per component
+    double regressor_mean_error = 0, regressor_max_error = 0;  // held-out, metres
+    format::QuantizeReport quantization;
+    std::vector<double> statures;               // per body, metres (after calibration)
+    std::vector<int> male;                      // per body
+};
+
+using Progress = std::function<void(const std::string&)>;
+
+format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const Progress& progress = {});
+
+}  // namespace ssc::training

@@ -1,0 +1,86 @@
+// Retrains a small model from the MakeHuman assets (when ../shared/makehuman is there) so the
+// training pipeline cannot rot, and checks its quality numbers.
+#include "support.hpp"
+
+#include "training/makehuman/assets.hpp"
+#include "training/train.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+namespace {
+
+// CTest passes the configured path (SSCAPE_MAKEHUMAN); "" when the folder is not there.
+std::string assets_root() {
+    const char* env = std::getenv("SSCAPE_MAKEHUMAN");
+    return env && std::filesystem::is_directory(std::string(env) + "/makehuman") ? env : "";
+}
+
+}  // namespace
+
+TEST_CASE("MakeHuman macro rules follow the asset README", "[training]") {
+    using ssc::training::mh::macro_weight;
+    ssc::training::mh::MacroSliders s;
+    s.gender = 0.25;
+    s.weight = 0.75;
+    CHECK(macro_weight({"male"}, s) == Approx(0.25));
+    CHECK(macro_weight({"female"}, s) == Approx(0.75));
+    CHECK(macro_weight({"maxweight"}, s) == Approx(0.5));
+    CHECK(macro_weight({"averageweight"}, s) == Approx(0.5));
+    CHECK(macro_weight({"minweight"}, s) == Approx(0.0));
+    CHECK(macro_weight({"universal", "female", "maxweight"}, s) == Approx(0.375));
+    s.age = 1.0;
+    CHECK(macro_weight({"old"}, s) == Approx(1.0));
+    CHECK(macro_weight({"young"}, s) == Approx(0.0));
+    CHECK(ssc::training::mh::age_years(0.5) == Approx(25.0));
+    CHECK(ssc::training::mh::age_slider(90.0) == Approx(1.0));
+    CHECK(ssc::training::mh::age_slider(ssc::training::mh::age_years(0.3)) == Approx(0.3));
+}
+
+TEST_CASE("a small model retrained from the MakeHuman assets meets its quality numbers", "[training][makehuman]") {
+    const std::string root = assets_root();
+    if (root.empty()) {
+        WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");
+        return;
+    }
+    ssc::training::TrainSpec spec;
+    spec.assets_root = root;
+    spec.population.count = 160;
+    spec.population.seed = 3;
+    spec.components = 10;
+    spec.heldout = 30;
+    ssc::training::TrainReport report;
+    const auto model = ssc::training::train_model(spec, report);
+    REQUIRE(model.vertex_count() == 13380);
+    REQUIRE(model.joint_count() == 53);
+    REQUIRE(model.component_count() == 10);
+    // Compactness: a handful of components explain nearly all variation of this population.
+    double cum = 0;
+    for (double sd : report.stddev) cum += sd * sd;
+    CHECK(cum / report.total_variance > 0.97);
+    // Stature follows the survey figures it was calibrated to (men taller than women, plausible means).
+    double men = 0, women = 0;
+    int nm = 0, nw = 0;
+    for (std::size_t i = 0; i < report.statures.size(); ++i)
+        (report.male[i] ? (men += report.statures[i], ++nm) : (women += report.statures[i], ++nw));
+    REQUIRE(nm > 10);
+    REQUIRE(nw > 10);
+    CHECK(men / nm == Approx(1.75).margin(0.03));
+    CHECK(women / nw == Approx(1.61).margin(0.03));
+    // Joints follow the shape: held-out regressor error in millimetres, not centimetres.
+    CHECK(report.regressor_mean_error < 0.006);
+    CHECK(report.quantization.max_error <= 1e-4);
+
+    // The written model loads and synthesizes a body of plausible height.
+    auto m = test::load(ssc::format::write_model(model));
+    REQUIRE(m);
+    auto b = test::body(m.get());
+    const auto v = test::posed(m.get(), b.get());
+    float lo = 1e9f, hi = -1e9f;
+    for (std::size_t i = 1; i < v.size(); i += 3) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+    CHECK(hi - lo == Approx(1.68).margin(0.08));
+    CHECK(lo == Approx(0.0).margin(0.02));  // standing on the ground
+}
