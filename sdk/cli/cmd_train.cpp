@@ -3,6 +3,7 @@
 #include "sscape_format/model_io.hpp"
 #include "training/train.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,6 +27,7 @@ int cmd_train(const std::vector<std::string>& args) {
         else if (a == "--heldout") spec.heldout = parse_count(value(), a);
         else if (a == "--population-csv") spec.population_csv = value();
         else if (a == "--procrustes") spec.procrustes = true;
+        else if (a == "--regressor-support") spec.regressor_support = parse_count(value(), a);
         else throw UsageError("unknown option '" + a + "'");
     }
     if (out.empty()) throw UsageError("train needs -o OUT.sscape");
@@ -50,6 +52,11 @@ int cmd_train(const std::vector<std::string>& args) {
     std::printf("basis quantization: worst vertex error %.4f mm with every component at +-3 SD\n", report.quantization.max_error * 1e3);
     std::printf("joint regressor, %u held-out bodies: mean error %.2f mm, max %.2f mm\n", spec.heldout,
                 report.regressor_mean_error * 1e3, report.regressor_max_error * 1e3);
+    auto worst = report.joint_errors;
+    std::sort(worst.begin(), worst.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+    std::printf("worst joints (held-out mean):");
+    for (std::size_t i = 0; i < std::min<std::size_t>(5, worst.size()); ++i) std::printf(" %s %.2f mm", worst[i].first.c_str(), worst[i].second * 1e3);
+    std::printf("\n");
     double cum = 0;
     std::printf("compactness (cumulative explained variance):");
     for (std::size_t k = 0; k < report.stddev.size(); ++k) {

@@ -23,12 +23,27 @@ namespace {
 double clamp01(double x) { return std::min(1.0, std::max(0.0, x)); }
 
 // The height slider giving the target stature, by bisection (stature grows with the slider).
+// Only the height targets depend on the slider, and linearly on each side of 0.5
+// (weights max(0, 2h - 1) and max(0, 1 - 2h)), so three generated bodies give every height.
 double calibrate_height(const mh::Assets& a, BodyParams& b, std::vector<float>& xyz) {
+    std::vector<float> mid, tall, shrt;
+    b.macro.height = 0.5;
+    mh::generate_body(a, b.macro, b.modifiers, mid);
+    b.macro.height = 1.0;
+    mh::generate_body(a, b.macro, b.modifiers, tall);
+    b.macro.height = 0.0;
+    mh::generate_body(a, b.macro, b.modifiers, shrt);
+    const std::size_t n = 3ull * mh::kBodyVertices;
+    xyz.resize(n);
+    auto body_at = [&](double h) {
+        const float up = float(std::max(0.0, 2 * h - 1)), down = float(std::max(0.0, 1 - 2 * h));
+        for (std::size_t i = 0; i < n; ++i) xyz[i] = mid[i] + up * (tall[i] - mid[i]) + down * (shrt[i] - mid[i]);
+    };
     double lo = 0, hi = 1;
-    for (int it = 0; it < 18; ++it) {
-        b.macro.height = 0.5 * (lo + hi);
-        mh::generate_body(a, b.macro, b.modifiers, xyz);
-        (stature(xyz) < b.target_stature ? lo : hi) = b.macro.height;
+    for (int it = 0; it < 24; ++it) {
+        const double h = 0.5 * (lo + hi);
+        body_at(h);
+        (stature(xyz) < b.target_stature ? lo : hi) = h;
     }
     b.macro.height = 0.5 * (lo + hi);
     return b.macro.height;

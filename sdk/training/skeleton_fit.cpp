@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <map>
 #include <numeric>
+#include <utility>
 
 namespace ssc::training {
 namespace {
@@ -45,12 +46,26 @@ Regressor learn_regressor(const SampleMatrix& bodies, const SampleMatrix& joints
     std::vector<double> errors;
     for (Eigen::Index j = 0; j < J; ++j) {
         const Eigen::Vector3f mj = mean_joint.segment<3>(3 * j).transpose();
-        std::vector<uint32_t> idx(V);
-        std::iota(idx.begin(), idx.end(), 0u);
-        auto dist = [&](uint32_t v) { return (mean_body.segment<3>(3 * v).transpose() - mj).squaredNorm(); };
-        const uint32_t S = std::min<uint32_t>(support, uint32_t(V));
-        std::partial_sort(idx.begin(), idx.begin() + S, idx.end(), [&](uint32_t a, uint32_t b) { return dist(a) < dist(b); });
-        idx.resize(S);
+        // Support: the nearest vertices in each of the 6 axis directions (a 60-degree cone each),
+        // so the joint sits inside its support and is interpolated rather than extrapolated,
+        // which matters for joints deep in the torso. Duplicates are merged.
+        std::vector<uint32_t> idx;
+        const uint32_t per_side = std::max<uint32_t>(1, support / 6);
+        for (int axis = 0; axis < 3; ++axis)
+            for (float sign : {-1.f, 1.f}) {
+                std::vector<std::pair<float, uint32_t>> cone;
+                for (Eigen::Index v = 0; v < V; ++v) {
+                    const Eigen::Vector3f d = mean_body.segment<3>(3 * v).transpose() - mj;
+                    const float n = d.norm();
+                    if (n > 0 && sign * d[axis] > 0.5f * n) cone.emplace_back(n, uint32_t(v));
+                }
+                const std::size_t take = std::min<std::size_t>(per_side, cone.size());
+                std::partial_sort(cone.begin(), cone.begin() + take, cone.end());
+                for (std::size_t i = 0; i < take; ++i) idx.push_back(cone[i].second);
+            }
+        std::sort(idx.begin(), idx.end());
+        idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
+        const uint32_t S = uint32_t(idx.size());
         // w = 1/S + u with sum(u) = 0: u = P z, P an orthonormal basis of sum-zero vectors; ridge on u
         // keeps the weights near uniform unless the data ask otherwise.
         // The last S - 1 columns of a QR of the ones vector span exactly the sum-zero vectors.
@@ -82,11 +97,14 @@ Regressor learn_regressor(const SampleMatrix& bodies, const SampleMatrix& joints
         for (uint32_t s = 0; s < S; ++s) sum += r.weights[r.weights.size() - S + s];
         r.weights.back() += float(1.0 - sum);
         r.offsets.push_back(uint32_t(r.vertices.size()));
+        double joint_sum = 0;
         for (Eigen::Index b = fit; b < N; ++b) {
             Eigen::Vector3d p = Eigen::Vector3d::Zero();
             for (uint32_t s = 0; s < S; ++s) p += double(r.weights[r.offsets[j] + s]) * bodies.row(b).segment<3>(3 * idx[s]).transpose().cast<double>();
             errors.push_back((p - joints.row(b).segment<3>(3 * j).transpose().cast<double>()).norm());
+            joint_sum += errors.back();
         }
+        r.joint_mean_error.push_back(N > fit ? joint_sum / double(N - fit) : 0.0);
     }
     if (!errors.empty()) {
         r.heldout_mean_error = std::accumulate(errors.begin(), errors.end(), 0.0) / double(errors.size());

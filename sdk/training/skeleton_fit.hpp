@@ -19,10 +19,11 @@ struct Regressor {
     std::vector<uint32_t> offsets, vertices;
     std::vector<float> weights;
     double heldout_mean_error = 0, heldout_max_error = 0;  // metres, on bodies left out of the fit
+    std::vector<double> joint_mean_error;                  // per joint, metres, held out
 };
 
-// Learns, per joint, weights over its `support` nearest body vertices (of the mean body),
-// summing to 1, by ridge-regularised least squares over the bodies. bodies: N x 3V body vertices;
+// Learns, per joint, weights over about `support` body vertices around it (the nearest in each of
+// 6 directions, on the mean body), summing to 1, by ridge-regularised least squares over the bodies. bodies: N x 3V body vertices;
 // joints: N x 3J. The last `heldout` bodies are kept out of the fit and measured.
 Regressor learn_regressor(const SampleMatrix& bodies, const SampleMatrix& joints, uint32_t support = 24,
                           uint32_t heldout = 0);

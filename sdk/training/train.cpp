@@ -64,9 +64,11 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     if (spec.procrustes) procrustes_align(X);
 
     say("learning the joint regressor");
-    const Regressor reg = learn_regressor(X, joints, 24, spec.heldout);
+    const Regressor reg = learn_regressor(X, joints, spec.regressor_support, spec.heldout);
     report.regressor_mean_error = reg.heldout_mean_error;
     report.regressor_max_error = reg.heldout_max_error;
+    report.joint_errors.clear();
+    for (uint32_t j = 0; j < J; ++j) report.joint_errors.emplace_back(a.game_rig.bones[j].name, reg.joint_mean_error[j]);
 
     say("PCA of " + std::to_string(N) + " bodies x " + std::to_string(3 * V) + " coordinates");
     const Pca p = pca(X, spec.components, spec.population.seed);

@@ -17,6 +17,7 @@ struct TrainSpec {
     uint32_t components = 50;
     uint32_t heldout = 200;         // bodies kept out of the joint regressor fit, for its error
     double tolerance = 1e-4;        // basis quantization bound, metres
+    uint32_t regressor_support = 192; // body vertices per joint in the regressor (about)
     bool procrustes = false;        // rigid GPA; off for MakeHuman, whose bodies share one frame
     std::string population_csv;     // where to write the sampled parameters ("" = don't)
 };
@@ -26,6 +27,7 @@ struct TrainReport {
     double total_variance = 0;
     std::vector<double> stddev;                 // per component
     double regressor_mean_error = 0, regressor_max_error = 0;  // held-out, metres
+    std::vector<std::pair<std::string, double>> joint_errors;  // held-out mean per joint, metres
     format::QuantizeReport quantization;
     std::vector<double> statures;               // per body, metres (after calibration)
     std::vector<int> male;                      // per body
