@@ -27,6 +27,7 @@ int cmd_train(const std::vector<std::string>& args) {
         else if (a == "--heldout") spec.heldout = parse_count(value(), a);
         else if (a == "--population-csv") spec.population_csv = value();
         else if (a == "--procrustes") spec.procrustes = true;
+        else if (a == "--report") spec.report_prefix = value();
         else if (a == "--regressor-support") spec.regressor_support = parse_count(value(), a);
         else throw UsageError("unknown option '" + a + "'");
     }
@@ -57,14 +58,10 @@ int cmd_train(const std::vector<std::string>& args) {
     std::printf("worst joints (held-out mean):");
     for (std::size_t i = 0; i < std::min<std::size_t>(5, worst.size()); ++i) std::printf(" %s %.2f mm", worst[i].first.c_str(), worst[i].second * 1e3);
     std::printf("\n");
-    double cum = 0;
-    std::printf("compactness (cumulative explained variance):");
-    for (std::size_t k = 0; k < report.stddev.size(); ++k) {
-        cum += report.stddev[k] * report.stddev[k];
-        if (k + 1 == 1 || k + 1 == 5 || k + 1 == 10 || k + 1 == 20 || k + 1 == report.stddev.size())
-            std::printf(" %zu: %.2f%%", k + 1, 100 * cum / report.total_variance);
-    }
-    std::printf("\n");
+    std::printf("%10s %12s %18s %16s\n", "components", "compactness", "generalization_mm", "specificity_mm");
+    for (const auto& q : report.quality)
+        std::printf("%10u %11.3f%% %18.2f %16.2f\n", q.components, 100 * q.compactness, q.generalization * 1e3, q.specificity * 1e3);
+    for (const auto& png : report.plots) std::printf("plot: %s\n", png.c_str());
     for (int sex = 1; sex >= 0; --sex) {
         double s = 0, s2 = 0;
         int n = 0;

@@ -53,7 +53,7 @@ const char* kUsage =
     "  make-test-model -o OUT.sscape [--vertices N] [--components K] [--skeleton humanoid|mini] [--seed S]\n"
     "                             write a procedural test model\n"
     "  train --assets MAKEHUMAN_DIR -o OUT.sscape [--bodies N] [--components K] [--seed S]\n"
-    "        [--heldout N] [--population-csv FILE] [--procrustes]\n"
+    "        [--heldout N] [--population-csv FILE] [--report PREFIX] [--procrustes]\n"
     "                             train a model from the CC0 MakeHuman assets\n";
 
 }  // namespace

@@ -32,7 +32,8 @@ void procrustes_align(SampleMatrix& X, int iterations) {
     }
 }
 
-Pca pca(SampleMatrix& X, uint32_t K, uint32_t seed, int power) {
+Pca pca(SampleMatrix& all, Eigen::Index rows, uint32_t K, uint32_t seed, int power) {
+    auto X = all.topRows(rows);
     const Eigen::Index N = X.rows(), D = X.cols();
     Pca out;
     out.mean = X.colwise().mean().transpose();

@@ -21,8 +21,9 @@ struct Pca {
     double total_variance = 0;  // sum over all directions (per-sample variance, N - 1 normalised)
 };
 
-// Top-K principal components of the rows of X (which is centred in place) by randomized SVD
-// (Halko, Martinsson and Tropp 2011) with `power` power iterations and 10 extra directions.
-Pca pca(SampleMatrix& X, uint32_t K, uint32_t seed, int power = 3);
+// Top-K principal components of the first `rows` rows of X (centred in place; the rest untouched)
+// by randomized SVD (Halko, Martinsson and Tropp 2011) with `power` power iterations and 10 extra
+// directions.
+Pca pca(SampleMatrix& X, Eigen::Index rows, uint32_t K, uint32_t seed, int power = 3);
 
 }  // namespace ssc::training

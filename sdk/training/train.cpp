@@ -70,12 +70,24 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     report.joint_errors.clear();
     for (uint32_t j = 0; j < J; ++j) report.joint_errors.emplace_back(a.game_rig.bones[j].name, reg.joint_mean_error[j]);
 
-    say("PCA of " + std::to_string(N) + " bodies x " + std::to_string(3 * V) + " coordinates");
-    const Pca p = pca(X, spec.components, spec.population.seed);
-    report.bodies = N;
+    // The held-out bodies stay out of the PCA too: they measure generalization.
+    const uint32_t fit = N - spec.heldout;
+    say("PCA of " + std::to_string(fit) + " bodies x " + std::to_string(3 * V) + " coordinates");
+    const Pca p = pca(X, fit, spec.components, spec.population.seed);
+    report.bodies = fit;
     report.total_variance = p.total_variance;
     report.stddev.assign(p.stddev.data(), p.stddev.data() + p.stddev.size());
     const uint32_t K = uint32_t(p.basis.cols());
+    if (spec.heldout > 0) {
+        say("measuring compactness, generalization and specificity");
+        std::vector<uint32_t> ks;
+        for (uint32_t k : {1u, 2u, 3u, 5u, 10u, 15u, 20u, 30u, 40u, 50u, 75u, 100u})
+            if (k <= K) ks.push_back(k);
+        if (ks.empty() || ks.back() != K) ks.push_back(K);
+        const SampleMatrix training = X.topRows(fit), heldout = X.bottomRows(spec.heldout);
+        report.quality = evaluate_quality(p, training, heldout, ks, spec.specificity_samples, spec.population.seed + 1);
+        if (!spec.report_prefix.empty()) report.plots = write_quality_report(spec.report_prefix, report.quality);
+    }
 
     format::ModelData m;
     m.metadata.name = "sscape-default";

@@ -2,6 +2,7 @@
 // skin, vertex sets -> a model ready for the .sscape writer.
 #pragma once
 
+#include "evaluate.hpp"
 #include "population.hpp"
 #include "sscape_format/model_data.hpp"
 #include "sscape_format/model_io.hpp"
@@ -20,6 +21,8 @@ struct TrainSpec {
     uint32_t regressor_support = 192; // body vertices per joint in the regressor (about)
     bool procrustes = false;        // rigid GPA; off for MakeHuman, whose bodies share one frame
     std::string population_csv;     // where to write the sampled parameters ("" = don't)
+    std::string report_prefix;      // quality CSV and plots go to prefix + "quality.csv" etc. ("" = don't)
+    uint32_t specificity_samples = 200;
 };
 
 struct TrainReport {
@@ -31,6 +34,8 @@ struct TrainReport {
     format::QuantizeReport quantization;
     std::vector<double> statures;               // per body, metres (after calibration)
     std::vector<int> male;                      // per body
+    std::vector<QualityPoint> quality;          // compactness, generalization, specificity per k
+    std::vector<std::string> plots;             // PNG files written
 };
 
 using Progress = std::function<void(const std::string&)>;
