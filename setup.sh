@@ -33,6 +33,18 @@ build() {  # build DIR [cmake args...]
   cmake --build "$dir" -j "$jobs"
 }
 
+# The Khronos glTF validator, for the export test (npm registry; pinned).
+npm_tools() {  # npm_tools DIR
+  if [ -d "$1/npm/node_modules/gltf-validator" ]; then return; fi
+  if command -v npm > /dev/null 2>&1; then
+    echo "setup: installing npm package gltf-validator into $1/npm"
+    npm install --silent --no-audit --no-fund --prefix "$1/npm" gltf-validator@2.0.0-dev.3.10 > /dev/null 2>&1 \
+      || { echo "setup: npm install of gltf-validator failed" >&2; exit 1; }
+  else
+    echo "setup: npm not found; the glTF validation test will be skipped"
+  fi
+}
+
 if [ "$mode" = run ]; then
   build build -DCMAKE_BUILD_TYPE=Release
   mkdir -p out
@@ -43,7 +55,9 @@ if [ "$mode" = run ]; then
   echo "setup: bodies written to out/"
 else
   build build -DCMAKE_BUILD_TYPE=Release
+  npm_tools build
   (cd build && ctest -j "$jobs" --output-on-failure)
   build build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSSCAPE_SANITIZE=ON -DSSCAPE_BUILD_BENCHMARKS=OFF
+  npm_tools build-sanitize
   (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest -j "$jobs" --output-on-failure)
 fi

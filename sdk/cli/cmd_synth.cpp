@@ -1,5 +1,6 @@
 #include "cli.hpp"
 
+#include "export/gltf_writer.hpp"
 #include "export/mesh_writers.hpp"
 #include "render/raster.hpp"
 
@@ -18,6 +19,10 @@ struct Options {
     uint32_t random = 0, seed = 1;
     bool normals = false;
 };
+
+bool is_glb(const std::string& path) {
+    return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".glb") == 0 || path.compare(path.size() - 4, 4, ".GLB") == 0);
+}
 
 Options parse(const std::vector<std::string>& args) {
     Options o;
@@ -44,7 +49,7 @@ Options parse(const std::vector<std::string>& args) {
     if (!o.translation.empty() && o.translation.size() != 3) throw UsageError("--translation needs 3 numbers");
     if (o.random && !o.shape.empty()) throw UsageError("--random and --shape exclude each other");
     if (o.random > 10000) throw UsageError("--random is limited to 10000 bodies");
-    exporters::check_mesh_path(o.out);
+    if (!is_glb(o.out)) exporters::check_mesh_path(o.out);
     if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
         throw UsageError("--png needs a file name ending in .png");
     return o;
@@ -137,6 +142,27 @@ int cmd_synth(const std::vector<std::string>& args) {
         check(ssc_model_get_triangle_uvs(model, tri_uvs.data(), T), "triangle uvs");
     }
     check(ssc_body_create(model, nullptr, &guard.b), "body");
+    // For glTF: the skeleton, the skin, and a second body in the rest pose for bind-pose normals.
+    const bool glb = is_glb(o.out);
+    std::vector<int32_t> parents(J);
+    std::vector<std::string> names(J);
+    std::vector<uint16_t> skin_joints(glb ? 4ull * V : 0);
+    std::vector<float> skin_weights(glb ? 4ull * V : 0);
+    ssc_body* rest_body = nullptr;
+    if (glb) {
+        check(ssc_model_get_joint_parents(model, parents.data(), J), "parents");
+        for (uint32_t j = 0; j < J; ++j) {
+            const char* name = "";
+            check(ssc_model_get_joint_name(model, j, &name), "joint name");
+            names[j] = name;
+        }
+        check(ssc_model_get_skin(model, skin_joints.data(), skin_weights.data(), V), "skin");
+        check(ssc_body_create(model, nullptr, &rest_body), "body");
+    }
+    struct RestGuard {
+        ssc_body* b;
+        ~RestGuard() { ssc_body_destroy(b); }
+    } rest_guard{rest_body};
     const std::vector<float> pose = parse_pose(model, o.pose);
     check(ssc_body_set_pose_axis_angle(guard.b, pose.data(), J, o.translation.empty() ? nullptr : o.translation.data()), "pose");
 
@@ -166,7 +192,33 @@ int cmd_synth(const std::vector<std::string>& args) {
         mesh.uvs = U ? uvs.data() : nullptr;
         mesh.triangle_uvs = U ? tri_uvs.data() : nullptr;
         const std::string path = numbered(o.out, i, n);
-        exporters::write_mesh(path, mesh);
+        if (glb) {
+            std::vector<float> rest(3ull * V), rest_normals(3ull * V), world(16ull * J), inverse_bind(16ull * J);
+            check(ssc_body_set_shape(rest_body, shape.data(), uint32_t(shape.size())), "shape");
+            check(ssc_body_get_rest_vertices(guard.b, rest.data(), V, 0), "rest vertices");
+            check(ssc_body_get_normals(rest_body, rest_normals.data(), V, 0), "rest normals");
+            check(ssc_body_get_joint_transforms(guard.b, world.data(), J), "joint transforms");
+            check(ssc_body_get_inverse_bind_matrices(guard.b, inverse_bind.data(), J), "inverse binds");
+            exporters::RiggedBody rb;
+            rb.vertex_count = V;
+            rb.rest_positions = rest.data();
+            rb.rest_normals = rest_normals.data();
+            rb.triangle_count = T;
+            rb.triangles = tris.data();
+            rb.uv_count = U;
+            rb.uvs = U ? uvs.data() : nullptr;
+            rb.triangle_uvs = U ? tri_uvs.data() : nullptr;
+            rb.joint_count = J;
+            rb.parents = parents.data();
+            rb.joint_names = names;
+            rb.joint_world = world.data();
+            rb.inverse_bind = inverse_bind.data();
+            rb.skin_joints = skin_joints.data();
+            rb.skin_weights = skin_weights.data();
+            exporters::write_glb(path, rb);
+        } else {
+            exporters::write_mesh(path, mesh);
+        }
         if (!o.png.empty() && rendered.size() < 20) rendered.push_back(verts);
         float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
         for (uint32_t v = 0; v < V; ++v)

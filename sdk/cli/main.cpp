@@ -47,7 +47,7 @@ const char* kUsage =
     "usage: sscape <command> [options]\n"
     "commands:\n"
     "  info MODEL                 counts, metadata, component standard deviations, file size\n"
-    "  synth MODEL -o OUT.obj|.ply [--shape C1,C2,...] [--pose JOINT=AX,AY,AZ;...]\n"
+    "  synth MODEL -o OUT.obj|.ply|.glb [--shape C1,C2,...] [--pose JOINT=AX,AY,AZ;...]\n"
     "        [--translation X,Y,Z] [--random N [--seed S]] [--normals] [--png VIEW.png]\n"
     "                             write posed bodies; with --random N, N random shapes to OUT_000.obj ...\n"
     "  make-test-model -o OUT.sscape [--vertices N] [--components K] [--skeleton humanoid|mini] [--seed S]\n"

@@ -1,0 +1,153 @@
+#include "gltf_writer.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+
+namespace ssc::exporters {
+namespace {
+
+using nlohmann::json;
+
+struct Bin {
+    std::vector<unsigned char> bytes;
+    json views = json::array(), accessors = json::array();
+
+    // Appends data as a buffer view (4-byte aligned) and an accessor over it; returns the accessor.
+    int add(const void* data, std::size_t size, int component, std::size_t count, const char* type, int target,
+            const json& extra = json::object()) {
+        while (bytes.size() % 4) bytes.push_back(0);
+        json view = {{"buffer", 0}, {"byteOffset", bytes.size()}, {"byteLength", size}};
+        if (target) view["target"] = target;
+        views.push_back(view);
+        const auto* p = static_cast<const unsigned char*>(data);
+        bytes.insert(bytes.end(), p, p + size);
+        json acc = {{"bufferView", views.size() - 1}, {"componentType", component}, {"count", count}, {"type", type}};
+        acc.update(extra);
+        accessors.push_back(acc);
+        return int(accessors.size() - 1);
+    }
+};
+
+constexpr int kFloat = 5126, kUShort = 5123, kUInt = 5125;
+constexpr int kArrayBuffer = 34962, kElementBuffer = 34963;
+
+}  // namespace
+
+void write_glb(const std::string& path, const RiggedBody& b) {
+    SSC_REQUIRE_ARG(b.vertex_count > 0 && b.rest_positions && b.triangles && b.triangle_count > 0, "glTF export: no mesh");
+    SSC_REQUIRE_ARG(b.joint_count > 0 && b.parents && b.joint_world && b.inverse_bind && b.skin_joints && b.skin_weights &&
+                        b.joint_names.size() == b.joint_count,
+                    "glTF export: incomplete skeleton or skin");
+    const bool has_uv = b.uvs && b.triangle_uvs && b.uv_count > 0;
+
+    // glTF attributes are per vertex: one output vertex per distinct (vertex, uv) pair.
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> remap;
+    std::vector<uint32_t> source, indices(3ull * b.triangle_count);
+    std::vector<uint32_t> uv_of;
+    for (std::size_t c = 0; c < indices.size(); ++c) {
+        const uint32_t v = b.triangles[c], t = has_uv ? b.triangle_uvs[c] : 0;
+        SSC_REQUIRE_ARG(v < b.vertex_count && (!has_uv || t < b.uv_count), "glTF export: index out of range");
+        const auto [it, added] = remap.emplace(std::make_pair(v, t), uint32_t(source.size()));
+        if (added) {
+            source.push_back(v);
+            uv_of.push_back(t);
+        }
+        indices[c] = it->second;
+    }
+    const std::size_t n = source.size();
+    std::vector<float> pos(3 * n), nrm(3 * n), uv(2 * n), weights(4 * n);
+    std::vector<uint16_t> joints(4 * n);
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    for (std::size_t i = 0; i < n; ++i) {
+        const uint32_t v = source[i];
+        for (int a = 0; a < 3; ++a) {
+            pos[3 * i + a] = b.rest_positions[3 * v + a];
+            lo[a] = std::min(lo[a], pos[3 * i + a]);
+            hi[a] = std::max(hi[a], pos[3 * i + a]);
+            if (b.rest_normals) nrm[3 * i + a] = b.rest_normals[3 * v + a];
+        }
+        if (has_uv) {
+            uv[2 * i] = b.uvs[2 * uv_of[i]];
+            uv[2 * i + 1] = 1.f - b.uvs[2 * uv_of[i] + 1];  // glTF's v points down
+        }
+        for (int k = 0; k < 4; ++k) {
+            // glTF wants unused influences as joint 0 with weight 0.
+            joints[4 * i + k] = b.skin_weights[4 * v + k] > 0 ? b.skin_joints[4 * v + k] : 0;
+            weights[4 * i + k] = b.skin_weights[4 * v + k];
+        }
+    }
+
+    Bin bin;
+    json attributes;
+    attributes["POSITION"] = bin.add(pos.data(), pos.size() * 4, kFloat, n, "VEC3", kArrayBuffer,
+                                     {{"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}});
+    if (b.rest_normals) attributes["NORMAL"] = bin.add(nrm.data(), nrm.size() * 4, kFloat, n, "VEC3", kArrayBuffer);
+    if (has_uv) attributes["TEXCOORD_0"] = bin.add(uv.data(), uv.size() * 4, kFloat, n, "VEC2", kArrayBuffer);
+    attributes["JOINTS_0"] = bin.add(joints.data(), joints.size() * 2, kUShort, n, "VEC4", kArrayBuffer);
+    attributes["WEIGHTS_0"] = bin.add(weights.data(), weights.size() * 4, kFloat, n, "VEC4", kArrayBuffer);
+    const int index_acc = bin.add(indices.data(), indices.size() * 4, kUInt, indices.size(), "SCALAR", kElementBuffer);
+    const int ibm_acc = bin.add(b.inverse_bind, 64ull * b.joint_count, kFloat, b.joint_count, "MAT4", 0);
+
+    // Joint nodes carry the posed local transforms: local = world_parent^-1 * world.
+    json nodes = json::array();
+    std::vector<json> children(b.joint_count, json::array());
+    for (uint32_t j = 0; j < b.joint_count; ++j) {
+        const Eigen::Matrix4f G = Eigen::Map<const Eigen::Matrix4f>(b.joint_world + 16 * j);
+        Eigen::Matrix4f L = G;
+        if (b.parents[j] >= 0) {
+            SSC_REQUIRE_ARG(uint32_t(b.parents[j]) < j, "glTF export: parents must precede children");
+            L = Eigen::Map<const Eigen::Matrix4f>(b.joint_world + 16 * b.parents[j]).inverse() * G;
+            children[b.parents[j]].push_back(j);
+        }
+        const Eigen::Quaternionf q(Eigen::Matrix3f(L.topLeftCorner<3, 3>()));
+        const Eigen::Quaternionf qn = q.normalized();
+        json node = {{"name", b.joint_names[j]},
+                     {"translation", {L(0, 3), L(1, 3), L(2, 3)}},
+                     {"rotation", {qn.x(), qn.y(), qn.z(), qn.w()}}};
+        nodes.push_back(node);
+    }
+    for (uint32_t j = 0; j < b.joint_count; ++j)
+        if (!children[j].empty()) nodes[j]["children"] = children[j];
+    std::vector<uint32_t> joint_list(b.joint_count);
+    for (uint32_t j = 0; j < b.joint_count; ++j) joint_list[j] = j;
+    nodes.push_back({{"name", b.name}, {"mesh", 0}, {"skin", 0}});
+    json scene_nodes = json::array({b.joint_count});
+    for (uint32_t j = 0; j < b.joint_count; ++j)
+        if (b.parents[j] < 0) scene_nodes.push_back(j);
+
+    json doc = {{"asset", {{"version", "2.0"}, {"generator", "sscape"}}},
+                {"scene", 0},
+                {"scenes", {{{"nodes", scene_nodes}}}},
+                {"nodes", nodes},
+                {"meshes", {{{"name", b.name}, {"primitives", {{{"attributes", attributes}, {"indices", index_acc}, {"mode", 4}}}}}}},
+                {"skins", {{{"joints", joint_list}, {"inverseBindMatrices", ibm_acc}, {"skeleton", 0}}}},
+                {"buffers", {{{"byteLength", 0}}}},
+                {"bufferViews", bin.views},
+                {"accessors", bin.accessors}};
+    while (bin.bytes.size() % 4) bin.bytes.push_back(0);
+    doc["buffers"][0]["byteLength"] = bin.bytes.size();
+    std::string text = doc.dump();
+    while (text.size() % 4) text.push_back(' ');
+
+    std::vector<unsigned char> out;
+    auto u32 = [&](uint32_t v) { for (int i = 0; i < 4; ++i) out.push_back(static_cast<unsigned char>(v >> (8 * i))); };
+    u32(0x46546C67);  // "glTF"
+    u32(2);
+    u32(uint32_t(12 + 8 + text.size() + 8 + bin.bytes.size()));
+    u32(uint32_t(text.size()));
+    u32(0x4E4F534A);  // "JSON"
+    out.insert(out.end(), text.begin(), text.end());
+    u32(uint32_t(bin.bytes.size()));
+    u32(0x004E4942);  // "BIN\0"
+    out.insert(out.end(), bin.bytes.begin(), bin.bytes.end());
+    write_file_atomically(path, out.data(), out.size());
+}
+
+}  // namespace ssc::exporters
