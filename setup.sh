@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # sscape setup: installs the Debian packages the build needs, builds, and runs a job.
-#   ./setup.sh         install, build (Release), run the main job: synthesize random bodies
+#   ./setup.sh         install, build (Release), run the main job: random bodies of the default model
 #   ./setup.sh test    install, build, run the whole test suite, also under ASan + UBSan
 # Environment: JOBS (parallel build jobs, default: number of cores).
 set -euo pipefail
@@ -48,11 +48,11 @@ npm_tools() {  # npm_tools DIR
 if [ "$mode" = run ]; then
   build build -DCMAKE_BUILD_TYPE=Release
   mkdir -p out
-  # Until the trained default model exists, the main job runs on a procedural model of the same size.
-  ./build/bin/sscape make-test-model -o out/test-model.sscape
-  ./build/bin/sscape info out/test-model.sscape
-  ./build/bin/sscape synth out/test-model.sscape --random 5 --seed 1 --normals -o out/body.obj --png out/bodies.png
-  echo "setup: bodies written to out/"
+  # The main job: random bodies of the default model (built into the library) as OBJ, glTF and a picture.
+  ./build/bin/sscape info
+  ./build/bin/sscape synth --random 5 --seed 1 --normals -o out/body.obj --png out/bodies.png
+  ./build/bin/sscape synth --random 5 --seed 1 -o out/body.glb
+  echo "setup: bodies written to out/ (body_*.obj, body_*.glb, bodies.png)"
 else
   build build -DCMAKE_BUILD_TYPE=Release
   npm_tools build

@@ -120,3 +120,20 @@ TEST_CASE("a file written to disk loads through the C API", "[format][capi]") {
     std::remove(path.c_str());
     CHECK(ssc_model_load_file(nullptr, "no/such/file.sscape", &m) == SSC_ERROR_IO);
 }
+
+TEST_CASE("the default model is built in, verified, and what the README says", "[format][default]") {
+    ssc_model* m = nullptr;
+    REQUIRE(ssc_model_load_default(nullptr, &m) == SSC_OK);
+    CHECK(ssc_model_vertex_count(m) == 13380);
+    CHECK(ssc_model_joint_count(m) == 53);
+    CHECK(ssc_model_shape_count(m) == 50);
+    const char* licence = nullptr;
+    REQUIRE(ssc_model_get_metadata(m, SSC_METADATA_LICENSE, &licence) == SSC_OK);
+    CHECK(std::string(licence).find("CC0") != std::string::npos);
+    uint32_t j = 0;
+    CHECK(ssc_model_find_joint(m, "lowerarm_l", &j) == SSC_OK);
+    std::vector<float> sd(50);
+    REQUIRE(ssc_model_get_shape_stddevs(m, sd.data(), 50) == SSC_OK);
+    for (int k = 1; k < 50; ++k) CHECK(sd[k] <= sd[k - 1]);  // PCA order
+    ssc_model_release(m);
+}

@@ -185,6 +185,16 @@ SSC_API ssc_status ssc_model_load_file(ssc_context* ctx, const char* path, ssc_m
  */
 SSC_API ssc_status ssc_model_load_memory(ssc_context* ctx, const void* data, size_t size, ssc_model** out);
 
+/**
+ * Loads the default model compiled into the library: an adult body shape space with the 53-bone
+ * game-engine skeleton, trained from the CC0 MakeHuman assets (its metadata names the sources).
+ * No file is needed. As ssc_model_load_memory otherwise; it is verified like any file.
+ * @param ctx  context; NULL = a private default context.
+ * @param out  receives the model with one reference; set only on success.
+ * Ownership: the caller owns one reference to *out. Threads: any.
+ */
+SSC_API ssc_status ssc_model_load_default(ssc_context* ctx, ssc_model** out);
+
 /** Adds a reference. NULL is ignored. Threads: any. */
 SSC_API void ssc_model_retain(ssc_model* model);
 

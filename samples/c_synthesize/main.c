@@ -1,5 +1,5 @@
 /* Sample: load a model, make a body, shape and pose it, read its vertices. Plain C99.
- * usage: sample_c_synthesize MODEL.sscape */
+ * usage: sample_c_synthesize [MODEL.sscape]   (no argument: the default model built into the library) */
 #include <sscape/sscape.h>
 
 #include <stdio.h>
@@ -25,8 +25,8 @@ int main(int argc, char** argv) {
     float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
     int ok = 0;
 
-    if (argc != 2) {
-        fprintf(stderr, "usage: %s MODEL.sscape\n", argv[0]);
+    if (argc > 2) {
+        fprintf(stderr, "usage: %s [MODEL.sscape]\n", argv[0]);
         return 2;
     }
     if (ssc_version() != SSC_VERSION_NUMBER) {
@@ -36,7 +36,11 @@ int main(int argc, char** argv) {
     ssc_context_def_init(&def, sizeof def);
     def.worker_count = 1;
     if (!check(ssc_context_create(&def, &ctx), "ssc_context_create")) goto done;
-    if (!check(ssc_model_load_file(ctx, argv[1], &model), "ssc_model_load_file")) goto done;
+    if (argc == 2) {
+        if (!check(ssc_model_load_file(ctx, argv[1], &model), "ssc_model_load_file")) goto done;
+    } else {
+        if (!check(ssc_model_load_default(ctx, &model), "ssc_model_load_default")) goto done;
+    }
     if (!check(ssc_body_create(model, NULL, &body), "ssc_body_create")) goto done;
 
     V = ssc_model_vertex_count(model);

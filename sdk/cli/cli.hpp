@@ -22,6 +22,9 @@ void check(ssc_status status, const std::string& what);
 std::vector<float> parse_floats(const std::string& text, const std::string& option);
 uint32_t parse_count(const std::string& text, const std::string& option);
 
+// Loads MODEL, or the default model compiled into the library when path is empty.
+ssc_model* load_model(const std::string& path);
+
 int cmd_info(const std::vector<std::string>& args);
 int cmd_synth(const std::vector<std::string>& args);
 int cmd_make_test_model(const std::vector<std::string>& args);

@@ -6,19 +6,22 @@
 namespace ssc::cli {
 
 int cmd_info(const std::vector<std::string>& args) {
-    if (args.size() != 1) throw UsageError("info takes exactly one MODEL");
-    const std::string& path = args[0];
-    ssc_model* model = nullptr;
-    check(ssc_model_load_file(nullptr, path.c_str(), &model), "cannot load '" + path + "'");
-    std::ifstream f(path, std::ios::binary | std::ios::ate);
-    const long long size = static_cast<long long>(f.tellg());
+    if (args.size() > 1) throw UsageError("info takes at most one MODEL");
+    const std::string path = args.empty() ? "" : args[0];
+    ssc_model* model = load_model(path);
+    long long size = -1;
+    if (!path.empty()) {
+        std::ifstream f(path, std::ios::binary | std::ios::ate);
+        size = static_cast<long long>(f.tellg());
+    }
 
     auto meta = [&](ssc_metadata_key k) {
         const char* s = "";
         ssc_model_get_metadata(model, k, &s);
         return s;
     };
-    std::printf("file:        %s (%lld bytes, %.2f MB)\n", path.c_str(), size, size / 1e6);
+    if (path.empty()) std::printf("file:        (default model, built into the library)\n");
+    else std::printf("file:        %s (%lld bytes, %.2f MB)\n", path.c_str(), size, size / 1e6);
     std::printf("name:        %s\n", meta(SSC_METADATA_NAME));
     std::printf("version:     %s\n", meta(SSC_METADATA_VERSION));
     std::printf("license:     %s\n", meta(SSC_METADATA_LICENSE));

@@ -44,7 +44,6 @@ Options parse(const std::vector<std::string>& args) {
         else if (o.model.empty()) o.model = a;
         else throw UsageError("unexpected argument '" + a + "'");
     }
-    if (o.model.empty()) throw UsageError("synth needs a MODEL");
     if (o.out.empty()) throw UsageError("synth needs -o OUT.obj or OUT.ply");
     if (!o.translation.empty() && o.translation.size() != 3) throw UsageError("--translation needs 3 numbers");
     if (o.random && !o.shape.empty()) throw UsageError("--random and --shape exclude each other");
@@ -123,8 +122,7 @@ std::string numbered(const std::string& out, uint32_t i, uint32_t n) {
 
 int cmd_synth(const std::vector<std::string>& args) {
     const Options o = parse(args);
-    ssc_model* model = nullptr;
-    check(ssc_model_load_file(nullptr, o.model.c_str(), &model), "cannot load '" + o.model + "'");
+    ssc_model* model = load_model(o.model);
     struct Release {
         ssc_model* m;
         ssc_body* b = nullptr;

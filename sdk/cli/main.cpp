@@ -39,15 +39,23 @@ uint32_t parse_count(const std::string& text, const std::string& option) {
     return static_cast<uint32_t>(v);
 }
 
+ssc_model* load_model(const std::string& path) {
+    ssc_model* model = nullptr;
+    if (path.empty()) check(ssc_model_load_default(nullptr, &model), "cannot load the default model");
+    else check(ssc_model_load_file(nullptr, path.c_str(), &model), "cannot load '" + path + "'");
+    return model;
+}
+
 }  // namespace ssc::cli
 
 namespace {
 
 const char* kUsage =
     "usage: sscape <command> [options]\n"
+    "MODEL is a .sscape file; without one, the default model built into the library is used.\n"
     "commands:\n"
-    "  info MODEL                 counts, metadata, component standard deviations, file size\n"
-    "  synth MODEL -o OUT.obj|.ply|.glb [--shape C1,C2,...] [--pose JOINT=AX,AY,AZ;...]\n"
+    "  info [MODEL]               counts, metadata, component standard deviations, file size\n"
+    "  synth [MODEL] -o OUT.obj|.ply|.glb [--shape C1,C2,...] [--pose JOINT=AX,AY,AZ;...]\n"
     "        [--translation X,Y,Z] [--random N [--seed S]] [--normals] [--png VIEW.png]\n"
     "                             write posed bodies; with --random N, N random shapes to OUT_000.obj ...\n"
     "  make-test-model -o OUT.sscape [--vertices N] [--components K] [--skeleton humanoid|mini] [--seed S]\n"
