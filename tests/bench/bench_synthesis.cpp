@@ -47,14 +47,22 @@ struct Params {
     }
 };
 
-// One body on the benchmark model, with a pool of parameters and an output buffer.
+ssc_model* load_default() {
+    ssc_model* m = nullptr;
+    if (ssc_model_load_default(nullptr, &m) != SSC_OK) throw std::runtime_error(ssc_last_error());
+    return m;
+}
+
+// One body on the benchmark model (or the shipped default model), with a pool of parameters and
+// an output buffer.
 struct OneBody {
-    ssc_model* m = load();
+    ssc_model* m;
     ssc_body* b = nullptr;
     uint32_t V = ssc_model_vertex_count(m), J = ssc_model_joint_count(m), K = ssc_model_shape_count(m);
     Params p{K, J};
     std::vector<float> out = std::vector<float>(3ull * V);
-    OneBody() { ssc_body_create(m, nullptr, &b); }
+    OneBody(const OneBody&) = delete;
+    explicit OneBody(bool shipped = false) : m(shipped ? load_default() : load()) { ssc_body_create(m, nullptr, &b); }
     ~OneBody() {
         ssc_body_destroy(b);
         ssc_model_release(m);
@@ -72,7 +80,7 @@ void BM_Load(benchmark::State& state) {
 }
 
 void BM_PoseOnly(benchmark::State& state) {
-    OneBody f;
+    OneBody f(state.range(0) != 0);
     ssc_body_set_shape(f.b, f.p.shapes[0].data(), f.K);
     ssc_body_get_vertices(f.b, f.out.data(), f.V, 0);  // shape stage done once, outside the loop
     std::size_t i = 0;
@@ -84,7 +92,7 @@ void BM_PoseOnly(benchmark::State& state) {
 }
 
 void BM_ShapeAndPose(benchmark::State& state) {
-    OneBody f;
+    OneBody f(state.range(0) != 0);
     std::size_t i = 0;
     for (auto _ : state) {
         ssc_body_set_shape(f.b, f.p.shapes[i % f.p.shapes.size()].data(), f.K);
@@ -153,9 +161,19 @@ void BM_BasisReadFloor(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_BasisReadFloor)->Unit(benchmark::kMicrosecond);
+void BM_LoadDefaultModel(benchmark::State& state) {
+    for (auto _ : state) {
+        ssc_model* m = load_default();
+        benchmark::DoNotOptimize(m);
+        ssc_model_release(m);
+    }
+}
+
 BENCHMARK(BM_Load)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_PoseOnly)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_ShapeAndPose)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LoadDefaultModel)->Unit(benchmark::kMillisecond);
+// Arg 0: the procedural benchmark model; arg 1: the shipped default model (real skin weights).
+BENCHMARK(BM_PoseOnly)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ShapeAndPose)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Normals)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Batch)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
