@@ -127,6 +127,9 @@ TEST_CASE("the default model is built in, verified, and what the README says", "
     CHECK(ssc_model_vertex_count(m) == 13380);
     CHECK(ssc_model_joint_count(m) == 53);
     CHECK(ssc_model_shape_count(m) == 50);
+    CHECK(ssc_model_landmark_count(m) == 73);
+    uint32_t li = 0;
+    CHECK(ssc_model_find_landmark(m, "Rt. Acromion", &li) == SSC_OK);
     const char* licence = nullptr;
     REQUIRE(ssc_model_get_metadata(m, SSC_METADATA_LICENSE, &licence) == SSC_OK);
     CHECK(std::string(licence).find("CC0") != std::string::npos);

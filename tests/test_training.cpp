@@ -2,11 +2,13 @@
 // training pipeline cannot rot, and checks its quality numbers.
 #include "support.hpp"
 
+#include "training/landmarks.hpp"
 #include "training/makehuman/assets.hpp"
 #include "training/train.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -74,6 +76,11 @@ TEST_CASE("a small model retrained from the MakeHuman assets meets its quality n
     CHECK(report.regressor_mean_error < 0.006);
     CHECK(report.quantization.max_error <= 1e-4);
 
+    // The 73 CAESAR landmarks, in CAESAR order, placed where anatomy puts them.
+    REQUIRE(model.landmarks.size() == 73);
+    const auto& names = ssc::training::caesar_names();
+    for (std::size_t i = 0; i < 73; ++i) CHECK(model.landmarks[i].name == names[i]);
+
     // The written model loads and synthesizes a body of plausible height.
     auto m = test::load(ssc::format::write_model(model));
     REQUIRE(m);
@@ -83,4 +90,32 @@ TEST_CASE("a small model retrained from the MakeHuman assets meets its quality n
     for (std::size_t i = 1; i < v.size(); i += 3) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
     CHECK(hi - lo == Approx(1.68).margin(0.08));
     CHECK(lo == Approx(0.0).margin(0.02));  // standing on the ground
+
+    std::vector<float> lm(3 * 73);
+    REQUIRE(ssc_model_get_landmark_positions(m.get(), lm.data(), 73, 0) == SSC_OK);
+    auto at = [&](const char* name) {
+        uint32_t i = 0;
+        REQUIRE(ssc_model_find_landmark(m.get(), name, &i) == SSC_OK);
+        return std::array<float, 3>{lm[3 * i], lm[3 * i + 1], lm[3 * i + 2]};
+    };
+    // Left/right pairs mirror each other (the asset is symmetric); the subject's left is +X.
+    for (std::size_t i = 0; i < 73; ++i) {
+        const std::string& n = names[i];
+        if (n.rfind("Lt. ", 0) != 0) continue;
+        std::string rt = "Rt. " + n.substr(4);
+        if (rt == "Rt. Metacarpal-Phal. II") rt = "Rt. Metacarpal Phal. II";  // CAESAR's own spelling
+        const auto l = at(n.c_str()), r = at(rt.c_str());
+        CHECK(l[0] > 0.02f);
+        CHECK(l[0] == Approx(-r[0]).margin(0.01));
+        CHECK(l[1] == Approx(r[1]).margin(0.01));
+        CHECK(l[2] == Approx(r[2]).margin(0.01));
+    }
+    // Top-to-bottom order along the body.
+    const char* column[] = {"Sellion", "Supramenton", "Suprasternale", "Substernale", "Crotch", "Lt. Knee Crease",
+                            "Lt. Lateral Malleolus"};
+    for (int i = 0; i + 1 < 7; ++i) CHECK(at(column[i])[1] > at(column[i + 1])[1]);
+    // Front and back: the bust point is in front of the suprasternale, cervicale behind it.
+    CHECK(at("Lt. Thelion/Bustpoint")[2] > at("Suprasternale")[2]);
+    CHECK(at("Cervicale")[2] < at("Suprasternale")[2] - 0.05f);
+    CHECK(at("Lt. Calcaneous, Post.")[2] < at("Lt. Digit II")[2] - 0.15f);
 }

@@ -13,8 +13,8 @@ namespace {
 
 // Screen position (pixels) and depth (larger = nearer the viewer) of a world point.
 void project(const Viewport& vp, View view, const float* p, float& sx, float& sy, float& depth) {
-    const float h = view == View::Front ? p[0] : -p[2];
-    depth = view == View::Front ? p[2] : p[0];
+    const float h = view == View::Front ? p[0] : view == View::Back ? -p[0] : -p[2];
+    depth = view == View::Front ? p[2] : view == View::Back ? -p[2] : p[0];
     sx = vp.x0 + 0.5f * vp.width + (h - vp.centre_x) * vp.scale;
     sy = vp.y0 + 0.5f * vp.height - (p[1] - vp.centre_y) * vp.scale;
 }
@@ -52,6 +52,9 @@ void draw_mesh(Image& img, std::vector<float>& depth, const Viewport& vp, View v
             const float nx = -n[2], nz = n[0];
             n[0] = nx;
             n[2] = nz;
+        } else if (view == View::Back) {  // right = -X, towards viewer = -Z
+            n[0] = -n[0];
+            n[2] = -n[2];
         }
         const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         if (len <= 0) continue;
@@ -79,12 +82,31 @@ void draw_mesh(Image& img, std::vector<float>& depth, const Viewport& vp, View v
     }
 }
 
+void view_direction(View view, float out[3]) {
+    out[0] = view == View::Side ? 1.f : 0.f;
+    out[1] = 0.f;
+    out[2] = view == View::Front ? 1.f : view == View::Back ? -1.f : 0.f;
+}
+
 void draw_point(Image& img, const Viewport& vp, View view, const float* p, int radius, const uint8_t colour[3]) {
     float sx, sy, sz;
     project(vp, view, p, sx, sy, sz);
     for (int dy = -radius; dy <= radius; ++dy)
         for (int dx = -radius; dx <= radius; ++dx)
             if (dx * dx + dy * dy <= radius * radius) img.set(int(sx) + dx, int(sy) + dy, colour[0], colour[1], colour[2]);
+}
+
+bool draw_visible_point(Image& img, const std::vector<float>& depth, const Viewport& vp, View view, const float* p,
+                        int radius, const uint8_t colour[3], float tolerance) {
+    float sx, sy, sz;
+    project(vp, view, p, sx, sy, sz);
+    const int x = int(sx), y = int(sy);
+    if (x < vp.x0 || y < vp.y0 || x >= vp.x0 + vp.width || y >= vp.y0 + vp.height) return false;
+    if (x >= img.width || y >= img.height || depth.empty()) return false;
+    const float d = depth[std::size_t(y) * img.width + x];
+    if (d < -1e29f || sz + tolerance < d) return false;  // off the mesh, or behind it
+    draw_point(img, vp, view, p, radius, colour);
+    return true;
 }
 
 namespace {

@@ -15,7 +15,7 @@ struct Image {
     void set(int x, int y, uint8_t r, uint8_t g, uint8_t b);
 };
 
-enum class View { Front, Side };  // Front: looking along -Z; Side: looking along -X (the body's left)
+enum class View { Front, Side, Back };  // Front: looking along -Z; Side: along -X (the body's left); Back: along +Z
 
 struct Viewport {
     int x0, y0, width, height;  // pixel rectangle in the image
@@ -26,8 +26,17 @@ struct Viewport {
 void draw_mesh(Image& img, std::vector<float>& depth, const Viewport& vp, View view, const float* xyz,
                const uint32_t* triangles, uint32_t triangle_count, const uint8_t colour[3]);
 
+// The direction from the body towards the viewer of a view (for culling marks on the far side).
+void view_direction(View view, float out[3]);
+
 // Marks a point (e.g. a landmark) with a filled disc drawn over everything.
 void draw_point(Image& img, const Viewport& vp, View view, const float* p, int radius, const uint8_t colour[3]);
+
+// As draw_point, but only inside the viewport and where the point lies on the mesh already drawn
+// there, not hidden behind it (depth buffer of draw_mesh, tolerance in metres). Returns whether
+// it was drawn.
+bool draw_visible_point(Image& img, const std::vector<float>& depth, const Viewport& vp, View view, const float* p,
+                        int radius, const uint8_t colour[3], float tolerance = 0.01f);
 
 // Writes the image as an 8-bit RGB PNG (temporary file + rename). Throws ssc::Error(SSC_ERROR_IO).
 void write_png(const std::string& path, const Image& img);
