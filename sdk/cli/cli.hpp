@@ -22,6 +22,9 @@ void check(ssc_status status, const std::string& what);
 std::vector<float> parse_floats(const std::string& text, const std::string& option);
 uint32_t parse_count(const std::string& text, const std::string& option);
 
+// The value after option args[i] (advancing i); UsageError when there is none.
+const std::string& option_value(const std::vector<std::string>& args, std::size_t& i);
+
 // Loads MODEL, or the default model compiled into the library when path is empty.
 ssc_model* load_model(const std::string& path);
 

@@ -28,10 +28,7 @@ Options parse(const std::vector<std::string>& args) {
     Options o;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-            return args[++i];
-        };
+        auto value = [&]() -> const std::string& { return option_value(args, i); };
         if (a == "-o" || a == "--output") o.out = value();
         else if (a == "--shape") o.shape = parse_floats(value(), a);
         else if (a == "--pose") o.pose = value();

@@ -15,10 +15,7 @@ int cmd_train(const std::vector<std::string>& args) {
     std::string out;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-            return args[++i];
-        };
+        auto value = [&]() -> const std::string& { return option_value(args, i); };
         if (a == "-o" || a == "--output") out = value();
         else if (a == "--assets") spec.assets_root = value();
         else if (a == "--bodies") spec.population.count = parse_count(value(), a);

@@ -39,6 +39,11 @@ uint32_t parse_count(const std::string& text, const std::string& option) {
     return static_cast<uint32_t>(v);
 }
 
+const std::string& option_value(const std::vector<std::string>& args, std::size_t& i) {
+    if (i + 1 >= args.size()) throw UsageError(args[i] + " needs a value");
+    return args[++i];
+}
+
 ssc_model* load_model(const std::string& path) {
     ssc_model* model = nullptr;
     if (path.empty()) check(ssc_model_load_default(nullptr, &model), "cannot load the default model");
