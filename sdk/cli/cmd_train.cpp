@@ -59,14 +59,31 @@ int cmd_train(const std::vector<std::string>& args) {
     for (const auto& q : report.quality)
         std::printf("%10u %11.3f%% %18.2f %16.2f\n", q.components, 100 * q.compactness, q.generalization * 1e3, q.specificity * 1e3);
     for (const auto& png : report.plots) std::printf("plot: %s\n", png.c_str());
-    for (int sex = 1; sex >= 0; --sex) {
+    // Population measurements by sex, in centimetres.
+    auto stats = [&](const std::vector<double>& v, int sex, double& mean, double& sd) {
         double s = 0, s2 = 0;
         int n = 0;
-        for (std::size_t i = 0; i < report.statures.size(); ++i)
-            if (report.male[i] == sex) s += report.statures[i], s2 += report.statures[i] * report.statures[i], ++n;
-        if (n > 1)
-            std::printf("stature, %s (n=%d): mean %.1f cm, sd %.1f cm\n", sex ? "men" : "women", n, 100 * s / n,
-                        100 * std::sqrt(std::max(0.0, (s2 - s * s / n) / (n - 1))));
+        for (std::size_t i = 0; i < v.size() && i < report.male.size(); ++i)
+            if (report.male[i] == sex) s += v[i], s2 += v[i] * v[i], ++n;
+        mean = n ? 100 * s / n : 0;
+        sd = n > 1 ? 100 * std::sqrt(std::max(0.0, (s2 - s * s / n) / (n - 1))) : 0;
+        return n;
+    };
+    const std::pair<const char*, const std::vector<double>*> rows[] = {
+        {"stature", &report.statures}, {"chest girth (bust points)", &report.chest},
+        {"waist girth (iliac crest, NHANES)", &report.waist_iliac}, {"waist girth (natural)", &report.waist_natural},
+        {"hip girth (max near trochanters)", &report.hip}};
+    std::printf("%-36s %22s %22s\n", "population (cm)", "men mean (sd)", "women mean (sd)");
+    for (const auto& [name, values] : rows) {
+        double mm, ms, wm, ws;
+        const int nm = stats(*values, 1, mm, ms), nw = stats(*values, 0, wm, ws);
+        std::printf("%-36s %10.1f (%4.1f) n=%-4d %10.1f (%4.1f) n=%-4d\n", name, mm, ms, nm, wm, ws, nw);
+    }
+    {
+        double mm, ms, wm, ws;  // stats() reports x100 (centimetres); BMI is kg/m^2
+        stats(report.bmi, 1, mm, ms);
+        stats(report.bmi, 0, wm, ws);
+        std::printf("%-36s %10.1f (%4.1f)        %10.1f (%4.1f)\n", "BMI (kg/m2, density 1010 kg/m3)", mm / 100, ms / 100, wm / 100, ws / 100);
     }
     return 0;
 }

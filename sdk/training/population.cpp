@@ -18,6 +18,21 @@ double stature(const std::vector<float>& xyz) {
     return double(hi) - lo;
 }
 
+double body_volume(const mh::Assets& a, const std::vector<float>& xyz) {
+    double six_v = 0;
+    const auto& q = a.base.body_quads;
+    auto tet = [&](uint32_t i, uint32_t j, uint32_t k) {
+        const float *A = &xyz[3 * i], *B = &xyz[3 * j], *C = &xyz[3 * k];
+        six_v += double(A[0]) * (double(B[1]) * C[2] - double(B[2]) * C[1]) - double(A[1]) * (double(B[0]) * C[2] - double(B[2]) * C[0]) +
+                 double(A[2]) * (double(B[0]) * C[1] - double(B[1]) * C[0]);
+    };
+    for (std::size_t f = 0; f + 4 <= q.size(); f += 4) {
+        tet(q[f], q[f + 1], q[f + 2]);
+        tet(q[f], q[f + 2], q[f + 3]);
+    }
+    return std::abs(six_v) / 6.0;
+}
+
 namespace {
 
 double clamp01(double x) { return std::min(1.0, std::max(0.0, x)); }
@@ -49,6 +64,33 @@ double calibrate_height(const mh::Assets& a, BodyParams& b, std::vector<float>& 
     return b.macro.height;
 }
 
+// The weight slider giving the target BMI (mass from volume x density over stature squared), by
+// bisection: like height, the weight tokens make the body linear on each side of 0.5.
+double calibrate_weight(const mh::Assets& a, BodyParams& b, std::vector<float>& xyz) {
+    std::vector<float> mid, heavy, light;
+    b.macro.weight = 0.5;
+    mh::generate_body(a, b.macro, b.modifiers, mid);
+    b.macro.weight = 1.0;
+    mh::generate_body(a, b.macro, b.modifiers, heavy);
+    b.macro.weight = 0.0;
+    mh::generate_body(a, b.macro, b.modifiers, light);
+    const std::size_t n = mid.size();
+    xyz.resize(n);
+    auto bmi_at = [&](double w) {
+        const float up = float(std::max(0.0, 2 * w - 1)), down = float(std::max(0.0, 1 - 2 * w));
+        for (std::size_t i = 0; i < n; ++i) xyz[i] = mid[i] + up * (heavy[i] - mid[i]) + down * (light[i] - mid[i]);
+        const double h = stature(xyz);
+        return body_volume(a, xyz) * kBodyDensity / (h * h);
+    };
+    double lo = 0, hi = 1;
+    for (int it = 0; it < 20; ++it) {
+        const double w = 0.5 * (lo + hi);
+        (bmi_at(w) < b.target_bmi ? lo : hi) = w;
+    }
+    b.macro.weight = 0.5 * (lo + hi);
+    return b.macro.weight;
+}
+
 }  // namespace
 
 std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationSpec& spec, const StatureStats& stats) {
@@ -69,9 +111,9 @@ std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationS
         m.african = e1 / (e1 + e2 + e3);
         m.asian = e2 / (e1 + e2 + e3);
         m.caucasian = e3 / (e1 + e2 + e3);
-        // Weight gains about 0.1 of the slider range over adult life; muscle declines.
+        // Weight is calibrated to a BMI below; muscle declines with age.
         const double decades = (b.age_years - 40) / 10;
-        m.weight = clamp01(0.5 + 0.025 * decades + 0.16 * N01(rng));
+        m.weight = 0.5;
         m.muscle = clamp01(0.5 - 0.02 * decades + 0.14 * N01(rng));
         m.proportions = clamp01(0.5 + 0.15 * N01(rng));
         m.breast_size = clamp01(0.5 + 0.15 * N01(rng));
@@ -89,20 +131,29 @@ std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationS
         // Stature: survey mean and spread for the sex, minus about 1 cm per decade after 50.
         const double mean = b.male ? stats.male_mean : stats.female_mean, sd = b.male ? stats.male_sd : stats.female_sd;
         b.target_stature = mean + sd * std::max(-3.0, std::min(3.0, N01(rng))) - 0.01 * std::max(0.0, (b.age_years - 50) / 10);
+        // BMI: log-normal with the survey mean and spread for the sex (BMI is right-skewed).
+        const double bm = b.male ? stats.male_bmi_mean : stats.female_bmi_mean, bs = b.male ? stats.male_bmi_sd : stats.female_bmi_sd;
+        const double s2 = std::log(1 + bs * bs / (bm * bm));
+        b.target_bmi = std::exp(std::log(bm) - 0.5 * s2 + std::sqrt(s2) * std::max(-3.0, std::min(3.0, N01(rng))));
     }
-    for (auto& b : out) calibrate_height(a, b, xyz);
+    // Stature first, then weight at that stature, then stature again (weight moves it a little).
+    for (auto& b : out) {
+        calibrate_height(a, b, xyz);
+        calibrate_weight(a, b, xyz);
+        calibrate_height(a, b, xyz);
+    }
     return out;
 }
 
 void write_population_csv(const std::string& path, const mh::Assets& a, const std::vector<BodyParams>& bodies) {
     std::ostringstream s;
     s.precision(9);
-    s << "sex,age_years,target_stature_m,gender,age,muscle,weight,height,proportions,african,asian,caucasian,breast_size,breast_firmness";
+    s << "sex,age_years,target_stature_m,target_bmi,gender,age,muscle,weight,height,proportions,african,asian,caucasian,breast_size,breast_firmness";
     for (const auto& m : a.modifiers) s << "," << m.name;
     s << "\n";
     for (const auto& b : bodies) {
         const auto& m = b.macro;
-        s << (b.male ? "male" : "female") << "," << b.age_years << "," << b.target_stature << "," << m.gender << "," << m.age << ","
+        s << (b.male ? "male" : "female") << "," << b.age_years << "," << b.target_stature << "," << b.target_bmi << "," << m.gender << "," << m.age << ","
           << m.muscle << "," << m.weight << "," << m.height << "," << m.proportions << "," << m.african << "," << m.asian << ","
           << m.caucasian << "," << m.breast_size << "," << m.breast_firmness;
         for (double v : b.modifiers) s << "," << v;

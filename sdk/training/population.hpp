@@ -18,11 +18,16 @@ struct PopulationSpec {
     double modifier_sd = 0.2;           // standard deviation of two-sided body-shape sliders
 };
 
-// Survey figures the sampler draws stature from (metres).
+// Survey figures the sampler draws stature (metres) and body-mass index (kg/m^2, log-normal) from.
 struct StatureStats {
     double male_mean = 1.754, male_sd = 0.075;
     double female_mean = 1.617, female_sd = 0.070;
+    double male_bmi_mean = 29.1, male_bmi_sd = 6.0;
+    double female_bmi_mean = 29.6, female_bmi_sd = 7.5;
 };
+
+// Whole-body density used for mass from volume (kg/m^3): lungs' air included, close to water.
+inline constexpr double kBodyDensity = 1010.0;
 
 struct BodyParams {
     bool male = false;
@@ -30,12 +35,16 @@ struct BodyParams {
     mh::MacroSliders macro;
     std::vector<double> modifiers;  // one per Assets::modifiers
     double target_stature = 0;      // metres
+    double target_bmi = 0;          // kg/m^2
 };
 
 std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationSpec& spec, const StatureStats& stats = {});
 
 // Stature (highest minus lowest body vertex, rest posture) of a generated body.
 double stature(const std::vector<float>& xyz);
+
+// Volume (m^3) enclosed by the body surface of a generated body (divergence theorem).
+double body_volume(const mh::Assets& a, const std::vector<float>& xyz);
 
 // Writes/reads the population as CSV: one row per body, a header naming every column.
 void write_population_csv(const std::string& path, const mh::Assets& a, const std::vector<BodyParams>& bodies);

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "landmarks.hpp"
+#include "measure/girth.hpp"
 #include "render/raster.hpp"
 #include "pca.hpp"
 #include "skeleton_fit.hpp"
@@ -42,6 +43,7 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     SampleMatrix X(N, 3 * V), joints(N, 3 * J);
     std::vector<float> xyz;
     report.statures.clear();
+    report.bmi.clear();
     report.male.clear();
     say("generating bodies");
     for (uint32_t i = 0; i < N; ++i) {
@@ -61,6 +63,7 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
         const std::vector<float> jp = game_joint_positions(a, xyz);
         std::copy(jp.begin(), jp.end(), joints.row(i).data());
         report.statures.push_back(stature(xyz));
+        report.bmi.push_back(body_volume(a, xyz) * kBodyDensity / (report.statures.back() * report.statures.back()));
         report.male.push_back(people[i].male);
     }
     if (spec.procrustes) procrustes_align(X);
@@ -171,6 +174,45 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
         lt.joints[a.game_rig.bones[j].name] = q;
     }
     m.landmarks = place_caesar_landmarks(lt);
+
+    say("measuring girths of every body");
+    {
+        std::vector<uint8_t> torso(V, 0), trunk_legs(V, 0);
+        for (uint32_t v = 0; v < V; ++v) {
+            const std::string part = part_of(a.game_rig.bones[sj[4 * v]].name);
+            torso[v] = part == "torso";
+            trunk_legs[v] = part == "torso" || part == "legs";
+        }
+        auto landmark_y = [&](const float* body, const std::string& name) {
+            for (const auto& l : m.landmarks) {
+                if (l.name != name) continue;
+                if (l.vertex != format::kNone) return double(body[3 * l.vertex + 1]);
+                const uint32_t* c = &m.mesh.triangles[3 * l.triangle];
+                return double(l.barycentric[0] * body[3 * c[0] + 1] + l.barycentric[1] * body[3 * c[1] + 1] +
+                              l.barycentric[2] * body[3 * c[2] + 1]);
+            }
+            fail(SSC_ERROR_INTERNAL, "no landmark " + name);
+        };
+        const uint32_t* tris = m.mesh.triangles.data();
+        const std::size_t T = m.mesh.triangles.size() / 3;
+        std::vector<float> body(3ull * V);
+        report.chest.clear();
+        report.waist_iliac.clear();
+        report.waist_natural.clear();
+        report.hip.clear();
+        for (uint32_t b = 0; b < N; ++b) {
+            for (std::size_t k = 0; k < body.size(); ++k) body[k] = X(b, Eigen::Index(k)) + (b < fit ? p.mean(Eigen::Index(k)) : 0.f);
+            const double bust = 0.5 * (landmark_y(body.data(), "Rt. Thelion/Bustpoint") + landmark_y(body.data(), "Lt. Thelion/Bustpoint"));
+            const double crest = 0.5 * (landmark_y(body.data(), "Rt. Iliocristale") + landmark_y(body.data(), "Lt. Iliocristale"));
+            const double troch = 0.5 * (landmark_y(body.data(), "Rt. Trochanterion") + landmark_y(body.data(), "Lt. Trochanterion"));
+            report.chest.push_back(measure::girth_at(body.data(), tris, T, torso, bust));
+            report.waist_iliac.push_back(measure::girth_at(body.data(), tris, T, torso, crest));
+            report.waist_natural.push_back(measure::girth_at(body.data(), tris, T, torso, landmark_y(body.data(), "Waist, Preferred, Post.")));
+            double hip = 0;
+            for (double y = troch - 0.06; y <= troch + 0.06; y += 0.005) hip = std::max(hip, measure::girth_at(body.data(), tris, T, trunk_legs, y));
+            report.hip.push_back(hip);
+        }
+    }
     if (!spec.report_prefix.empty()) {
         const std::string png = spec.report_prefix + "landmarks.png";
         write_landmark_picture(png, lt.xyz, lt.triangles, m.landmarks);

@@ -35,6 +35,11 @@ struct TrainReport {
     std::vector<double> statures;               // per body, metres (after calibration)
     std::vector<int> male;                      // per body
     std::vector<QualityPoint> quality;          // compactness, generalization, specificity per k
+    // Tape girths of every body (metres): chest at the bust points, waist at the iliac crest (the
+    // NHANES protocol), natural waist (narrowest, at the CAESAR waist landmark), hip (largest
+    // horizontal girth within 6 cm of the trochanters).
+    std::vector<double> chest, waist_iliac, waist_natural, hip;
+    std::vector<double> bmi;                    // per body: volume x density / stature^2
     std::vector<std::string> plots;             // PNG files written
 };
 
