@@ -22,9 +22,13 @@ Model::Model(format::ModelData data, const Allocator* alloc)
         for (int a = 0; a < 3; ++a) mean_planar_[a * V_ + v] = data_.shape.mean[3 * v + a];
     const std::size_t rows = 3ull * V_;
     basis_panels_.assign(padded_rows_ * K_, 0);
-    for (uint32_t k = 0; k < K_; ++k)
-        for (std::size_t r = 0; r < rows; ++r)
-            basis_panels_[(r / kChunk * K_ + k) * kChunk + r % kChunk] = data_.shape.basis.q[k * rows + r];
+    // Written in panel order (sequential stores, 16-value reads per component).
+    int16_t* out = basis_panels_.data();
+    for (std::size_t r0 = 0; r0 < padded_rows_; r0 += kChunk)
+        for (uint32_t k = 0; k < K_; ++k, out += kChunk) {
+            const int16_t* in = data_.shape.basis.q.data() + k * rows;
+            for (std::size_t i = 0; i < kChunk && r0 + i < rows; ++i) out[i] = in[r0 + i];
+        }
 
     // Joints are linear in the vertices, so regressing the mean and each basis vector once lets a
     // body get its joints from the coefficients alone (J x K instead of touching the vertices).
@@ -37,9 +41,11 @@ Model::Model(format::ModelData data, const Allocator* alloc)
             const uint32_t v = sk.regressor_vertices[e];
             const float w = sk.regressor_weights[e];
             for (int a = 0; a < 3; ++a) {
-                joint_mean_[3 * j + a] += w * mean_planar_[a * V_ + v];
-                for (uint32_t k = 0; k < K_; ++k)
-                    joint_basis_[(std::size_t(k) * J_ + j) * 3 + a] += w * float(data_.shape.basis.q[k * rows + a * V_ + v]);
+                const std::size_t r = std::size_t(a) * V_ + v;
+                joint_mean_[3 * j + a] += w * mean_planar_[r];
+                // The row's K values sit 16 apart in the panel layout: one cache-friendly sweep.
+                const int16_t* q = basis_panels_.data() + (r / kChunk) * K_ * kChunk + r % kChunk;
+                for (uint32_t k = 0; k < K_; ++k) joint_basis_[(std::size_t(k) * J_ + j) * 3 + a] += w * float(q[k * kChunk]);
             }
         }
     }
