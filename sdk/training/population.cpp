@@ -37,58 +37,43 @@ namespace {
 
 double clamp01(double x) { return std::min(1.0, std::max(0.0, x)); }
 
-// The height slider giving the target stature, by bisection (stature grows with the slider).
-// Only the height targets depend on the slider, and linearly on each side of 0.5
-// (weights max(0, 2h - 1) and max(0, 1 - 2h)), so three generated bodies give every height.
-double calibrate_height(const mh::Assets& a, BodyParams& b, std::vector<float>& xyz) {
-    std::vector<float> mid, tall, shrt;
-    b.macro.height = 0.5;
+// Sets one macro slider so that measure(body) reaches target, by bisection (the measure grows with
+// the slider). Height and weight tokens weight their targets by max(0, 2x - 1) and max(0, 1 - 2x),
+// so the body is linear in the slider on each side of 0.5: three generated bodies give every value.
+// Only the body vertices are blended (the measures read nothing else).
+template <class Measure>
+void calibrate(const mh::Assets& a, BodyParams& b, double mh::MacroSliders::*slider, int iterations, double target,
+               Measure&& measure, std::vector<float>& xyz) {
+    std::vector<float> mid, up_body, down_body;
+    b.macro.*slider = 0.5;
     mh::generate_body(a, b.macro, b.modifiers, mid);
-    b.macro.height = 1.0;
-    mh::generate_body(a, b.macro, b.modifiers, tall);
-    b.macro.height = 0.0;
-    mh::generate_body(a, b.macro, b.modifiers, shrt);
+    b.macro.*slider = 1.0;
+    mh::generate_body(a, b.macro, b.modifiers, up_body);
+    b.macro.*slider = 0.0;
+    mh::generate_body(a, b.macro, b.modifiers, down_body);
     const std::size_t n = 3ull * mh::kBodyVertices;
     xyz.resize(n);
-    auto body_at = [&](double h) {
-        const float up = float(std::max(0.0, 2 * h - 1)), down = float(std::max(0.0, 1 - 2 * h));
-        for (std::size_t i = 0; i < n; ++i) xyz[i] = mid[i] + up * (tall[i] - mid[i]) + down * (shrt[i] - mid[i]);
-    };
     double lo = 0, hi = 1;
-    for (int it = 0; it < 24; ++it) {
-        const double h = 0.5 * (lo + hi);
-        body_at(h);
-        (stature(xyz) < b.target_stature ? lo : hi) = h;
+    for (int it = 0; it < iterations; ++it) {
+        const double x = 0.5 * (lo + hi);
+        const float up = float(std::max(0.0, 2 * x - 1)), down = float(std::max(0.0, 1 - 2 * x));
+        for (std::size_t i = 0; i < n; ++i) xyz[i] = mid[i] + up * (up_body[i] - mid[i]) + down * (down_body[i] - mid[i]);
+        (measure(xyz) < target ? lo : hi) = x;
     }
-    b.macro.height = 0.5 * (lo + hi);
-    return b.macro.height;
+    b.macro.*slider = 0.5 * (lo + hi);
 }
 
-// The weight slider giving the target BMI (mass from volume x density over stature squared), by
-// bisection: like height, the weight tokens make the body linear on each side of 0.5.
-double calibrate_weight(const mh::Assets& a, BodyParams& b, std::vector<float>& xyz) {
-    std::vector<float> mid, heavy, light;
-    b.macro.weight = 0.5;
-    mh::generate_body(a, b.macro, b.modifiers, mid);
-    b.macro.weight = 1.0;
-    mh::generate_body(a, b.macro, b.modifiers, heavy);
-    b.macro.weight = 0.0;
-    mh::generate_body(a, b.macro, b.modifiers, light);
-    const std::size_t n = mid.size();
-    xyz.resize(n);
-    auto bmi_at = [&](double w) {
-        const float up = float(std::max(0.0, 2 * w - 1)), down = float(std::max(0.0, 1 - 2 * w));
-        for (std::size_t i = 0; i < n; ++i) xyz[i] = mid[i] + up * (heavy[i] - mid[i]) + down * (light[i] - mid[i]);
-        const double h = stature(xyz);
-        return body_volume(a, xyz) * kBodyDensity / (h * h);
-    };
-    double lo = 0, hi = 1;
-    for (int it = 0; it < 20; ++it) {
-        const double w = 0.5 * (lo + hi);
-        (bmi_at(w) < b.target_bmi ? lo : hi) = w;
-    }
-    b.macro.weight = 0.5 * (lo + hi);
-    return b.macro.weight;
+// Height slider -> target stature.
+void calibrate_height(const mh::Assets& a, BodyParams& b, std::vector<float>& xyz) {
+    calibrate(a, b, &mh::MacroSliders::height, 24, b.target_stature, [](const std::vector<float>& v) { return stature(v); }, xyz);
+}
+
+// Weight slider -> target BMI (mass from volume x density over stature squared).
+void calibrate_weight(const mh::Assets& a, BodyParams& b, std::vector<float>& xyz) {
+    calibrate(a, b, &mh::MacroSliders::weight, 20, b.target_bmi, [&](const std::vector<float>& v) {
+        const double h = stature(v);
+        return body_volume(a, v) * kBodyDensity / (h * h);
+    }, xyz);
 }
 
 }  // namespace
