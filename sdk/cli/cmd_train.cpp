@@ -69,22 +69,38 @@ int cmd_train(const std::vector<std::string>& args) {
         sd = n > 1 ? 100 * std::sqrt(std::max(0.0, (s2 - s * s / n) / (n - 1))) : 0;
         return n;
     };
-    const std::pair<const char*, const std::vector<double>*> rows[] = {
-        {"stature", &report.statures}, {"chest girth (bust points)", &report.chest},
-        {"waist girth (iliac crest, NHANES)", &report.waist_iliac}, {"waist girth (natural)", &report.waist_natural},
-        {"hip girth (max near trochanters)", &report.hip}};
-    std::printf("%-36s %22s %22s\n", "population (cm)", "men mean (sd)", "women mean (sd)");
-    for (const auto& [name, values] : rows) {
+    // Published survey figures beside each row (men | women), sources printed below the table.
+    struct Row {
+        const char* name;
+        const std::vector<double>* values;
+        const char* survey;
+    };
+    const Row rows[] = {
+        {"stature", &report.statures, "175.4 | 161.7 [1]"},
+        {"chest girth (bust points)", &report.chest, "no source [3]"},
+        {"waist girth (iliac crest, NHANES)", &report.waist_iliac, "102.1 | 98.0 [1]"},
+        {"waist girth (natural)", &report.waist_natural, "83-98 | 78-91 [2]"},
+        {"hip girth (max near trochanters)", &report.hip, "94-105 | 97-108 [2]"}};
+    std::printf("%-36s %22s %22s   %s\n", "population (cm)", "men mean (sd)", "women mean (sd)", "survey men | women");
+    for (const auto& row : rows) {
         double mm, ms, wm, ws;
-        const int nm = stats(*values, 1, mm, ms), nw = stats(*values, 0, wm, ws);
-        std::printf("%-36s %10.1f (%4.1f) n=%-4d %10.1f (%4.1f) n=%-4d\n", name, mm, ms, nm, wm, ws, nw);
+        const int nm = stats(*row.values, 1, mm, ms), nw = stats(*row.values, 0, wm, ws);
+        std::printf("%-36s %10.1f (%4.1f) n=%-4d %10.1f (%4.1f) n=%-4d   %s\n", row.name, mm, ms, nm, wm, ws, nw, row.survey);
     }
     {
         double mm, ms, wm, ws;  // stats() reports x100 (centimetres); BMI is kg/m^2
         stats(report.bmi, 1, mm, ms);
         stats(report.bmi, 0, wm, ws);
-        std::printf("%-36s %10.1f (%4.1f)        %10.1f (%4.1f)\n", "BMI (kg/m2, density 1010 kg/m3)", mm / 100, ms / 100, wm / 100, ws / 100);
+        std::printf("%-36s %10.1f (%4.1f)        %10.1f (%4.1f)          %s\n", "BMI (kg/m2, density 1010 kg/m3)", mm / 100, ms / 100, wm / 100,
+                    ws / 100, "29.1 | 29.6 [1]");
     }
+    std::printf("[1] US adults 20+, NHANES 2015-2016 means: Fryar et al., Mean body weight, height, waist circumference and BMI\n"
+                "    among adults: United States, 1999-2000 through 2015-2016, National Health Statistics Reports 122 (2018).\n"
+                "[2] Range of the age-standardised means of 19 populations aged 25-64 (waist midway between lowest rib and iliac\n"
+                "    crest; hip at the widest point over the buttocks): Molarius et al., Waist and hip circumferences, and\n"
+                "    waist-hip ratio in 19 populations of the WHO MONICA Project, Int J Obes 23:116-125 (1999).\n"
+                "[3] No chest-girth survey table was reachable when this report was written; compare with ANSUR II\n"
+                "    (Gordon et al. 2014, NATICK/TR-15/007) or SizeUSA where available.\n");
     return 0;
 }
 
