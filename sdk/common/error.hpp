@@ -4,6 +4,7 @@
 
 #include <sscape/sscape.h>
 
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +34,12 @@ private:
         if (!(ok)) ::ssc::fail(SSC_ERROR_INVALID_ARGUMENT, (message));            \
     } while (0)
 
-namespace ssc {
-
-}  // namespace ssc
+// The same with a message streamed from parts: SSC_REQUIRE_ARG_S(n > 0, "got " << n << " points").
+#define SSC_REQUIRE_ARG_S(ok, parts)                                              \
+    do {                                                                          \
+        if (!(ok)) {                                                              \
+            std::ostringstream ssc_message_;                                      \
+            ssc_message_ << parts;                                                \
+            ::ssc::fail(SSC_ERROR_INVALID_ARGUMENT, ssc_message_.str());          \
+        }                                                                         \
+    } while (0)

@@ -1,5 +1,7 @@
 #include "pca.hpp"
 
+#include "common/rigid.hpp"
+
 #include <Eigen/Dense>
 #include <Eigen/SVD>
 
@@ -19,12 +21,9 @@ void procrustes_align(SampleMatrix& X, int iterations) {
             auto b = body(i);
             const Eigen::RowVector3d c = b.cast<double>().colwise().mean();
             const Eigen::MatrixX3d p = b.cast<double>().rowwise() - c;
-            // Kabsch: rotation R minimising ||p R - centred_mean||.
-            Eigen::JacobiSVD<Eigen::Matrix3d> svd(p.transpose() * centred_mean, Eigen::ComputeFullU | Eigen::ComputeFullV);
-            Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
-            D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1 : 1;
-            const Eigen::Matrix3d R = svd.matrixU() * D * svd.matrixV().transpose();
-            const Eigen::MatrixX3d aligned = (p * R).rowwise() + mc;
+            // Kabsch: the rotation taking the centred body onto the centred mean.
+            const Eigen::Matrix3d R = align_points(p.transpose(), centred_mean.transpose(), false).R;
+            const Eigen::MatrixX3d aligned = (p * R.transpose()).rowwise() + mc;
             b = aligned.cast<float>();
             next += aligned;
         }

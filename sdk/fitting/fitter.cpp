@@ -1,0 +1,689 @@
+// The fitter: see fitter.hpp for the method. Parameters of all frames form one vector: the shared
+// shape first, then each frame's rotations, translation and log scale (kinematics.hpp layout).
+#include "fitting/fitter.hpp"
+
+#include "common/error.hpp"
+#include "common/rigid.hpp"
+#include "fitting/nearest.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+
+namespace ssc::fitting {
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::Quaterniond;
+using Eigen::VectorXd;
+
+// Landmarks beyond this many sigmas count linearly (Huber): a misplaced landmark pulls, but boundedly.
+constexpr double kHuber = 2.0;
+// Weight of the point-to-point part next to point-to-plane: enough to stop sliding along flat
+// regions, small enough that the vertex spacing (about 1 cm) does not bias the fit.
+constexpr double kTangential = 0.1;
+
+struct Robust {
+    double cost, weight;  // rho(r) and rho'(r)/r (IRLS weight)
+};
+
+Robust huber(double r) {
+    const double a = std::abs(r);
+    if (a <= kHuber) return {0.5 * r * r, 1.0};
+    return {kHuber * a - 0.5 * kHuber * kHuber, kHuber / a};
+}
+
+// Geman-McClure with scale c: bounded influence, so gross outliers stop mattering.
+Robust geman_mcclure(double r, double c) {
+    const double c2 = c * c, d = c2 + r * r;
+    return {0.5 * c2 * r * r / d, (c2 / d) * (c2 / d)};
+}
+
+Matrix3d skew(const Vector3d& a) {
+    Matrix3d m;
+    m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+    return m;
+}
+
+Vector3d log_rotation(const Quaterniond& q) {
+    const Eigen::AngleAxisd aa(q);
+    return aa.angle() * aa.axis();
+}
+
+// Inverse of the left Jacobian of SO(3): d log(exp(d) exp(r)) / d d at d = 0.
+Matrix3d inverse_left_jacobian(const Vector3d& r) {
+    const double t = r.norm();
+    const Matrix3d K = skew(r);
+    if (t < 1e-6) return Matrix3d::Identity() - 0.5 * K + K * K / 12.0;
+    return Matrix3d::Identity() - 0.5 * K + (1.0 / (t * t) - (1.0 + std::cos(t)) / (2.0 * t * std::sin(t))) * K * K;
+}
+
+bool finite(const Vector3d& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+SurfacePoint landmark_point(const format::ModelData& d, uint32_t l) {
+    const auto& lm = d.landmarks[l];
+    SurfacePoint p;
+    if (lm.vertex != format::kNone) {
+        p.vertex[0] = lm.vertex;
+        return p;
+    }
+    for (int i = 0; i < 3; ++i) {
+        p.vertex[i] = d.mesh.triangles[3 * std::size_t(lm.triangle) + i];
+        p.weight[i] = lm.barycentric[i];
+    }
+    return p;
+}
+
+// One correspondence between the model surface and a measured point.
+struct Pair {
+    SurfacePoint model;
+    Vector3d target, normal;  // normal: unit, or zero for point-to-point only
+    double weight;            // confidence
+};
+
+// Coarse-to-fine stages: what moves, how far correspondences may reach, how robust the loss is.
+struct Stage {
+    uint32_t iterations;
+    bool body_joints, all_joints;  // rigid only when both are false
+    uint32_t components;
+    double max_distance;  // metres, correspondence gate
+    double gm_scale;      // Geman-McClure scale in sigmas
+    double min_normal_dot;
+    double point_fraction;  // of max_points
+};
+
+struct FrameData {
+    std::vector<SurfacePoint> landmark_points;
+    std::vector<Vector3d> landmark_targets;
+    std::vector<double> landmark_weights;
+    std::vector<Vector3d> points, normals;  // all clouds merged; normals zero where unknown
+    std::vector<double> confidence;
+    bool oriented = true;  // normals known with their sign
+    std::unique_ptr<PointIndex> scan_index;
+    std::vector<uint32_t> scan_sample;  // random order of scan points; a prefix is used
+    std::vector<Pair> pairs;
+};
+
+class Solver {
+public:
+    Solver(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& o)
+        : lin_(lin), o_(o), F_(uint32_t(frames.size())), K_(lin.K), B_(3 * lin.J + 4) {
+        const auto& d = lin.model.data();
+        std::mt19937 rng(o.seed);
+        frames_.resize(F_);
+        for (uint32_t f = 0; f < F_; ++f) {
+            auto& fd = frames_[f];
+            for (const auto& l : frames[f].landmarks) {
+                fd.landmark_points.push_back(landmark_point(d, l.landmark));
+                fd.landmark_targets.push_back(l.position);
+                fd.landmark_weights.push_back(l.weight);
+            }
+            for (const auto& c : frames[f].clouds) {
+                for (std::size_t i = 0; i < c.points.size(); ++i) {
+                    fd.points.push_back(c.points[i]);
+                    fd.normals.push_back(c.normals.empty() ? Vector3d::Zero() : c.normals[i]);
+                    fd.confidence.push_back(c.confidence.empty() ? 1.0 : c.confidence[i]);
+                }
+                if (c.normals.empty() && !c.points.empty()) fd.oriented = false;
+            }
+            if (!fd.points.empty()) {
+                fd.scan_index = std::make_unique<PointIndex>(fd.points);
+                if (!fd.oriented) estimate_normals(fd);
+                fd.scan_sample.resize(fd.points.size());
+                for (uint32_t i = 0; i < fd.scan_sample.size(); ++i) fd.scan_sample[i] = i;
+                std::shuffle(fd.scan_sample.begin(), fd.scan_sample.end(), rng);
+            }
+            kin_.emplace_back(lin);
+        }
+        // Model vertices for the model-to-scan direction, drawn by surface area (uniform over the
+        // surface, as scans are), so the finely meshed hands and face are not oversampled.
+        std::vector<double> area(lin.V, 0.0);
+        const auto& tri = d.mesh.triangles;
+        auto mean = [&](uint32_t v) { return Vector3d(d.shape.mean[3 * v], d.shape.mean[3 * v + 1], d.shape.mean[3 * v + 2]); };
+        for (std::size_t t = 0; t + 2 < tri.size(); t += 3) {
+            const double a = 0.5 * (mean(tri[t + 1]) - mean(tri[t])).cross(mean(tri[t + 2]) - mean(tri[t])).norm();
+            for (int i = 0; i < 3; ++i) area[tri[t + i]] += a / 3;
+        }
+        std::discrete_distribution<uint32_t> pick(area.begin(), area.end());
+        std::vector<uint8_t> taken(lin.V, 0);
+        for (uint32_t n = 0; n < 4 * o.max_points && vertex_sample_.size() < o.max_points; ++n) {
+            const uint32_t v = pick(rng);
+            if (!taken[v]) taken[v] = 1, vertex_sample_.push_back(v);
+        }
+        posed_.resize(lin.V);
+        posed_normals_.resize(lin.V);
+    }
+
+    uint32_t parameters() const { return K_ + F_ * B_; }
+
+    FitSolution run(const std::vector<FitState>* start, const FitProgress& progress) {
+        const auto t0 = std::chrono::steady_clock::now();
+        FitSolution sol;
+        shape_.assign(K_, 0.0);
+        states_.assign(F_, kin_[0].zero_state());
+        if (start && !o_.auto_start) {
+            for (uint32_t f = 0; f < F_; ++f) states_[f] = (*start)[f];
+            for (uint32_t k = 0; k < K_ && k < (*start)[0].shape.size(); ++k) shape_[k] = (*start)[0].shape[k];
+            for (auto& s : states_) s.shape.resize(K_, 0.0);
+        } else {
+            for (uint32_t f = 0; f < F_; ++f) states_[f] = initial_state(f);
+        }
+        const uint32_t total = std::max<uint32_t>(o_.max_iterations, 3);
+        // Stage budgets: a fifth rigid, a third coarse, the rest fine.
+        const uint32_t n0 = std::max<uint32_t>(1, total / 5), n1 = std::max<uint32_t>(1, total / 3);
+        const Stage stages[3] = {
+            {n0, false, false, 0, 0.30, 10.0, 0.0, 0.25},
+            {n1, true, false, std::min<uint32_t>(K_, 10), 0.10, 6.0, 0.3, 0.5},
+            {total - n0 - n1, true, true, K_, 0.04, 4.0, 0.5, 1.0},
+        };
+        bool cancelled = false, converged = false;
+        uint32_t iteration = 0;
+        for (int si = 0; si < 3 && !cancelled; ++si)
+            converged = run_stage(stages[si], 0xFFFFFFFFu, &progress, iteration, cancelled, &sol.report.initial_cost);
+        update_kinematics();
+        // Report on the final state with the final stage's rules.
+        const Stage& last = stages[2];
+        find_pairs(last);
+        sol.report.final_cost = evaluate(last, nullptr, nullptr);
+        double lm2 = 0, pd = 0;
+        std::size_t nl = 0, np = 0, accepted = 0, tried = 0;
+        for (uint32_t f = 0; f < F_; ++f) {
+            const auto& fd = frames_[f];
+            for (std::size_t i = 0; i < fd.landmark_points.size(); ++i, ++nl)
+                lm2 += (kin_[f].point(fd.landmark_points[i]) - fd.landmark_targets[i]).squaredNorm();
+            for (const auto& p : fd.pairs) {
+                if (!p.model.weight[1]) {
+                    pd += (kin_[f].point(p.model) - p.target).norm();
+                    ++np;
+                }
+            }
+            accepted += fd.pairs.size();
+            tried += pair_candidates_[f];
+        }
+        sol.report.iterations = iteration;
+        sol.report.converged = converged;
+        sol.report.cancelled = cancelled;
+        sol.report.landmark_rms = nl ? std::sqrt(lm2 / double(nl)) : 0;
+        sol.report.point_mean = np ? pd / double(np) : 0;
+        sol.report.inlier_fraction = tried ? double(accepted) / double(tried) : 0;
+        sol.shape = shape_;
+        sol.frames = states_;
+        for (auto& s : sol.frames) s.shape = shape_;
+        sol.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return sol;
+    }
+
+private:
+    // Levenberg-Marquardt iterations of one stage (all frames, or one). Returns whether it converged.
+    bool run_stage(const Stage& st, uint32_t frame_only, const FitProgress* progress, uint32_t& iteration, bool& cancelled,
+                   double* first_cost = nullptr) {
+        double mu = 1e-3;
+        for (uint32_t it = 0; it < st.iterations; ++it, ++iteration) {
+            update_kinematics();
+            find_pairs(st, frame_only);
+            MatrixXd H;
+            VectorXd g;
+            const double cost = evaluate(st, &H, &g, frame_only);
+            if (first_cost && iteration == 0) *first_cost = cost;
+            if (progress && *progress && !(*progress)(iteration, cost)) {
+                cancelled = true;
+                return false;
+            }
+            freeze_inactive(st, H, g);
+            // Damp until the cost (same correspondences) goes down.
+            const std::vector<double> shape0 = shape_;
+            const std::vector<FitState> states0 = states_;
+            bool improved = false;
+            double new_cost = cost;
+            for (int attempt = 0; attempt < 6 && !improved; ++attempt) {
+                MatrixXd A = H;
+                for (Eigen::Index i = 0; i < A.rows(); ++i) A(i, i) += mu * std::max(A(i, i), 1e-9) + 1e-12;
+                const VectorXd delta = A.ldlt().solve(-g);
+                if (!delta.allFinite()) {
+                    mu *= 10;
+                    continue;
+                }
+                apply(delta);
+                update_kinematics();
+                new_cost = evaluate(st, nullptr, nullptr, frame_only);
+                if (new_cost < cost) {
+                    improved = true;
+                    mu = std::max(mu / 3, 1e-7);
+                } else {
+                    shape_ = shape0;
+                    states_ = states0;
+                    mu *= 4;
+                }
+            }
+            if (!improved || cost - new_cost < 1e-6 * std::max(cost, 1e-12)) {
+                ++iteration;
+                return true;
+            }
+        }
+        return false;
+    }
+
+    // Scan normals from the 12 nearest neighbours (plane fit); their sign is unknown.
+    void estimate_normals(FrameData& fd) {
+        uint32_t idx[12];
+        double d2[12];
+        for (std::size_t i = 0; i < fd.points.size(); ++i) {
+            const std::size_t n = fd.scan_index->nearest_k(fd.points[i], 12, idx, d2);
+            if (n < 3) continue;
+            Vector3d c = Vector3d::Zero();
+            for (std::size_t k = 0; k < n; ++k) c += fd.points[idx[k]];
+            c /= double(n);
+            Matrix3d cov = Matrix3d::Zero();
+            for (std::size_t k = 0; k < n; ++k) cov += (fd.points[idx[k]] - c) * (fd.points[idx[k]] - c).transpose();
+            Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
+            fd.normals[i] = es.eigenvectors().col(0);
+        }
+    }
+
+    // The start: rigid alignment (with scale when fitted) of the mean body.
+    FitState initial_state(uint32_t f) {
+        FitState s = kin_[f].zero_state();
+        kin_[f].update(s);
+        const auto& fd = frames_[f];
+        const Vector3d root = kin_[f].joint_position(0);
+        auto place = [&](const Matrix3d& R, double scale, const Vector3d& t) {
+            // y = scale * R * u + t for model points u, realised as a root rotation about the root
+            // joint (so the pose carries it) plus translation.
+            FitState out = s;
+            const Matrix3d R0 = lin_.rest_orient[0];
+            out.pose[0] = Quaterniond(R0.transpose() * R * R0).normalized();
+            out.scale = scale;
+            out.translation = t + scale * R * root - scale * root;
+            return out;
+        };
+        if (fd.landmark_points.size() >= 3) {
+            Eigen::Matrix3Xd src(3, fd.landmark_points.size()), dst(3, fd.landmark_points.size());
+            for (std::size_t i = 0; i < fd.landmark_points.size(); ++i) {
+                src.col(Eigen::Index(i)) = kin_[f].point(fd.landmark_points[i]);
+                dst.col(Eigen::Index(i)) = fd.landmark_targets[i];
+            }
+            const Similarity T = align_points(src, dst, o_.fit_scale);
+            return place(T.R, T.scale, T.t);
+        }
+        // No landmarks: principal axes of the cloud. The longest is the body's up axis; its sign and
+        // the facing direction are unknown, so 8 candidates (2 up signs x 4 headings) are each given a
+        // short rigid fit and the cheapest wins.
+        Vector3d c = Vector3d::Zero();
+        for (const auto& p : fd.points) c += p;
+        c /= double(fd.points.size());
+        Matrix3d cov = Matrix3d::Zero();
+        for (const auto& p : fd.points) cov += (p - c) * (p - c).transpose();
+        Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
+        const Vector3d e1 = es.eigenvectors().col(2), e2 = es.eigenvectors().col(1), e3 = es.eigenvectors().col(0);
+        // Model centre and height (mean body, zero pose).
+        Vector3d mc = Vector3d::Zero();
+        double lo = 1e9, hi = -1e9;
+        for (uint32_t v = 0; v < lin_.V; v += 7) {
+            const Vector3d u = kin_[f].rest_vertex(v);
+            mc += u;
+            lo = std::min(lo, u.y()), hi = std::max(hi, u.y());
+        }
+        mc /= double((lin_.V + 6) / 7);
+        double scale = 1;
+        if (o_.fit_scale) {
+            double plo = 1e9, phi = -1e9;
+            for (const auto& p : fd.points) plo = std::min(plo, (p - c).dot(e1)), phi = std::max(phi, (p - c).dot(e1));
+            scale = (phi - plo) / std::max(hi - lo, 1e-6);
+        }
+        // Each candidate gets a short rigid fit; the three cheapest a short coarse fit (pose and the
+        // main shape components), which tells front from back far better than the rigid cost does.
+        const Stage probe{6, false, false, 0, 0.5, 10.0, 0.0, 0.15};
+        const Stage coarse{8, true, false, std::min<uint32_t>(K_, 10), 0.15, 8.0, 0.0, 0.25};
+        std::vector<std::pair<double, FitState>> candidates;
+        for (int sign = 1; sign >= -1; sign -= 2)
+            for (int h = 0; h < 4; ++h) {
+                const double a = h * M_PI / 2;
+                Matrix3d R;
+                const Vector3d y = double(sign) * e1;
+                const Vector3d z = (std::cos(a) * e2 + std::sin(a) * e3).normalized();
+                R.col(0) = y.cross(z);
+                R.col(1) = y;
+                R.col(2) = z;
+                states_[f] = place(R, scale, c - scale * R * mc);
+                double cost = 0;
+                for (uint32_t it = 0; it < probe.iterations; ++it) cost = rigid_step(f, probe);
+                candidates.emplace_back(cost, states_[f]);
+            }
+        std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        FitState best = candidates[0].second;
+        double best_cost = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < 3 && i < candidates.size(); ++i) {
+            std::fill(shape_.begin(), shape_.end(), 0.0);
+            states_[f] = candidates[i].second;
+            uint32_t iterations = 0;
+            bool cancelled = false;
+            run_stage(coarse, f, nullptr, iterations, cancelled);
+            update_kinematics();
+            find_pairs(coarse, f);
+            const double cost = evaluate(coarse, nullptr, nullptr, f);
+            if (cost < best_cost) best_cost = cost, best = states_[f];
+        }
+        std::fill(shape_.begin(), shape_.end(), 0.0);
+        return best;
+    }
+
+    // One Gauss-Newton step of a single frame's rigid parameters (start search).
+    double rigid_step(uint32_t f, const Stage& st) {
+        kin_[f].update(states_[f]);
+        pose_frame(f);
+        find_frame_pairs(f, st);
+        MatrixXd H;
+        VectorXd g;
+        const double cost = evaluate(st, &H, &g, f);
+        freeze_inactive(st, H, g);
+        for (Eigen::Index i = 0; i < H.rows(); ++i) H(i, i) *= 1.0 + 1e-3;
+        apply(H.ldlt().solve(-g));
+        return cost;
+    }
+
+    void update_kinematics() {
+        for (uint32_t f = 0; f < F_; ++f) {
+            states_[f].shape = shape_;
+            kin_[f].update(states_[f]);
+        }
+    }
+
+    // Posed vertices and normals of frame f (for correspondences).
+    void pose_frame(uint32_t f) {
+        SurfacePoint p;
+        for (uint32_t v = 0; v < lin_.V; ++v) {
+            p.vertex[0] = v;
+            posed_[v] = kin_[f].point(p);
+        }
+        std::fill(posed_normals_.begin(), posed_normals_.end(), Vector3d::Zero());
+        const auto& tri = lin_.model.data().mesh.triangles;
+        for (std::size_t t = 0; t + 2 < tri.size(); t += 3) {
+            const Vector3d n = (posed_[tri[t + 1]] - posed_[tri[t]]).cross(posed_[tri[t + 2]] - posed_[tri[t]]);
+            for (int i = 0; i < 3; ++i) posed_normals_[tri[t + i]] += n;
+        }
+        for (auto& n : posed_normals_) {
+            const double len = n.norm();
+            if (len > 0) n /= len;
+        }
+    }
+
+    void find_pairs(const Stage& st, uint32_t frame_only = 0xFFFFFFFFu) {
+        pair_candidates_.assign(F_, 0);
+        for (uint32_t f = 0; f < F_; ++f) {
+            if (frames_[f].points.empty() || (frame_only < F_ && f != frame_only)) continue;
+            pose_frame(f);
+            find_frame_pairs(f, st);
+        }
+    }
+
+    // Correspondences both ways with compatibility tests and trimming (posed_ must be frame f's).
+    void find_frame_pairs(uint32_t f, const Stage& st) {
+        auto& fd = frames_[f];
+        fd.pairs.clear();
+        if (fd.points.empty()) return;
+        if (pair_candidates_.size() < F_) pair_candidates_.assign(F_, 0);
+        const PointIndex model_index(posed_);
+        const std::size_t n_scan = std::max<std::size_t>(
+            16, std::min<std::size_t>(fd.scan_sample.size(), std::size_t(st.point_fraction * o_.max_points)));
+        const std::size_t n_model = std::max<std::size_t>(16, std::min<std::size_t>(vertex_sample_.size(), n_scan));
+        const double max2 = st.max_distance * st.max_distance;
+        auto compatible = [&](const Vector3d& scan_n, const Vector3d& model_n) {
+            if (scan_n.squaredNorm() == 0) return true;
+            const double dot = scan_n.dot(model_n);
+            return (fd.oriented ? dot : std::abs(dot)) >= st.min_normal_dot;
+        };
+        std::vector<std::pair<double, Pair>> found;
+        auto trim_into = [&](std::vector<std::pair<double, Pair>>& list) {
+            // Trimming: the farthest 10 % are dropped whatever the loss says (holes, clutter).
+            std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+            const std::size_t keep = list.size() - list.size() / 10;
+            for (std::size_t i = 0; i < keep; ++i) fd.pairs.push_back(list[i].second);
+        };
+        for (std::size_t s = 0; s < n_scan; ++s) {
+            const uint32_t i = fd.scan_sample[s];
+            double d2;
+            const uint32_t v = model_index.nearest(fd.points[i], &d2);
+            ++pair_candidates_[f];
+            if (d2 > max2 || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) continue;
+            Pair p;
+            p.model.vertex[0] = v;
+            p.target = fd.points[i];
+            p.normal = posed_normals_[v];  // the model's normal: always known and oriented
+            p.weight = fd.confidence[i];
+            found.emplace_back(d2, p);
+        }
+        trim_into(found);
+        found.clear();
+        for (std::size_t s = 0; s < n_model; ++s) {
+            const uint32_t v = vertex_sample_[s];
+            double d2;
+            const uint32_t i = fd.scan_index->nearest(posed_[v], &d2);
+            ++pair_candidates_[f];
+            if (d2 > max2 || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) continue;
+            Pair p;
+            p.model.vertex[0] = v;
+            p.target = fd.points[i];
+            p.normal = fd.normals[i].squaredNorm() > 0 ? fd.normals[i] : posed_normals_[v];
+            p.weight = 0.5 * fd.confidence[i];  // the two directions share one budget
+            found.emplace_back(d2, p);
+        }
+        trim_into(found);
+    }
+
+    // Global column of a frame-local parameter.
+    uint32_t column(uint32_t f, uint32_t local) const { return local < K_ ? local : K_ + f * B_ + (local - K_); }
+
+    bool active(const Stage& st, uint32_t local) const {
+        if (local < K_) return local < st.components;
+        const uint32_t r = local - K_;
+        if (r >= 3 * lin_.J) return r < 3 * lin_.J + 3 || o_.fit_scale;  // translation, scale
+        const uint32_t j = r / 3;
+        if (j == 0) return true;  // the root carries the global rotation
+        if (st.all_joints) return true;
+        return st.body_joints && joint_sigma_[j] >= 0.3;
+    }
+
+    void freeze_inactive(const Stage& st, MatrixXd& H, VectorXd& g) const {
+        // Parameters no data touches (another frame during the start search) stay put too.
+        for (Eigen::Index c = 0; c < H.rows(); ++c)
+            if (H(c, c) == 0) H(c, c) = 1, g[c] = 0;
+        for (uint32_t f = 0; f < F_; ++f)
+            for (uint32_t local = 0; local < K_ + B_; ++local) {
+                if (f > 0 && local < K_) continue;
+                if (active(st, local)) continue;
+                const uint32_t c = column(f, local);
+                H.row(c).setZero();
+                H.col(c).setZero();
+                H(c, c) = 1;
+                g[c] = 0;
+            }
+    }
+
+    void apply(const VectorXd& delta) {
+        for (uint32_t k = 0; k < K_; ++k) shape_[k] += delta[k];
+        std::vector<double> local(K_ + B_, 0.0);
+        for (uint32_t f = 0; f < F_; ++f) {
+            for (uint32_t i = 0; i < B_; ++i) local[K_ + i] = delta[K_ + f * B_ + i];
+            kin_[f].apply(local.data(), states_[f]);
+        }
+    }
+
+    // Cost of the current state with the current correspondences; with H and g, the normal
+    // equations of its linearisation. frame_only < F_ restricts the data to one frame.
+    double evaluate(const Stage& st, MatrixXd* H, VectorXd* g, uint32_t frame_only = 0xFFFFFFFFu) {
+        const uint32_t P = parameters();
+        if (H) {
+            H->setZero(P, P);
+            g->setZero(P);
+        }
+        double cost = 0;
+        const uint32_t PL = K_ + B_;
+        std::vector<double> J3(3 * std::size_t(PL), 0.0);
+        std::vector<uint32_t> nz;
+        // Only active parameters get rows: the rigid and coarse stages cost a fraction of the full one.
+        std::vector<uint8_t> on(PL);
+        for (uint32_t i = 0; i < PL; ++i) on[i] = active(st, i);
+        auto nonzeros = [&](const Kinematics& kin, const SurfacePoint& sp) {
+            kin.nonzeros(sp, nz);
+            nz.erase(std::remove_if(nz.begin(), nz.end(), [&](uint32_t c) { return !on[c]; }), nz.end());
+        };
+        // Adds w * (row . delta + r)^2 / 2 to the normal equations, row given on local columns nz.
+        auto add_row = [&](uint32_t f, const double* row, double r, double w) {
+            for (std::size_t a = 0; a < nz.size(); ++a) {
+                const double va = row[nz[a]];
+                if (va == 0) continue;
+                const uint32_t ca = column(f, nz[a]);
+                (*g)[ca] += w * va * r;
+                for (std::size_t b = a; b < nz.size(); ++b) (*H)(ca, column(f, nz[b])) += w * va * row[nz[b]];
+            }
+        };
+        auto clear_rows = [&]() { std::fill(J3.begin(), J3.end(), 0.0); };
+        for (uint32_t f = 0; f < F_; ++f) {
+            if (frame_only < F_ && f != frame_only) continue;
+            const auto& fd = frames_[f];
+            const Kinematics& kin = kin_[f];
+            for (std::size_t i = 0; i < fd.landmark_points.size(); ++i) {
+                const double s = std::sqrt(fd.landmark_weights[i]) / o_.landmark_sigma;
+                const Vector3d e = s * (kin.point(fd.landmark_points[i]) - fd.landmark_targets[i]);
+                const Robust rb = huber(e.norm());
+                cost += rb.cost;
+                if (!H) continue;
+                nonzeros(kin, fd.landmark_points[i]);
+                kin.point_jacobian(fd.landmark_points[i], J3.data(), s);
+                for (int a = 0; a < 3; ++a) add_row(f, &J3[std::size_t(a) * PL], e[a], rb.weight);
+                clear_rows();
+            }
+            for (const auto& p : fd.pairs) {
+                const double s = std::sqrt(p.weight) / o_.point_sigma;
+                const Vector3d e = s * (kin.point(p.model) - p.target);
+                const double rn = p.normal.dot(e);
+                const Robust rb = geman_mcclure(rn, st.gm_scale);
+                const double wt = kTangential * kTangential;
+                cost += rb.cost + wt * rb.weight * 0.5 * e.squaredNorm();
+                if (!H) continue;
+                nonzeros(kin, p.model);
+                kin.point_jacobian(p.model, J3.data(), s);
+                // Point-to-plane row n^T J, then the weak point-to-point rows.
+                std::vector<double>& row = plane_row_;
+                row.assign(PL, 0.0);
+                for (uint32_t c : nz)
+                    row[c] = p.normal.x() * J3[c] + p.normal.y() * J3[PL + c] + p.normal.z() * J3[2 * std::size_t(PL) + c];
+                add_row(f, row.data(), rn, rb.weight);
+                for (int a = 0; a < 3; ++a) add_row(f, &J3[std::size_t(a) * PL], e[a], wt * rb.weight);
+                clear_rows();
+            }
+            // Pose prior: each joint's local rotation vector, over its sigma (not the root: free).
+            for (uint32_t j = 1; j < lin_.J; ++j) {
+                const double s = std::sqrt(o_.pose_prior) / joint_sigma(j);
+                if (s == 0) continue;
+                const Vector3d r = log_rotation(states_[f].pose[j]);
+                cost += 0.5 * s * s * r.squaredNorm();
+                if (!H) continue;
+                const Matrix3d Jr = s * inverse_left_jacobian(r) * kin.local_from_world(j);
+                const uint32_t c0 = column(f, kin.rotation_offset(j));
+                const Matrix3d JtJ = Jr.transpose() * Jr;
+                const Vector3d Jtr = Jr.transpose() * (s * r);
+                for (int a = 0; a < 3; ++a) {
+                    (*g)[c0 + a] += Jtr[a];
+                    for (int b = a; b < 3; ++b) (*H)(c0 + a, c0 + b) += JtJ(a, b);
+                }
+            }
+        }
+        // Shape prior: the coefficients are standard deviations of the training population.
+        for (uint32_t k = 0; k < K_; ++k) {
+            cost += 0.5 * o_.shape_prior * shape_[k] * shape_[k];
+            if (!H) continue;
+            (*H)(k, k) += o_.shape_prior;
+            (*g)[k] += o_.shape_prior * shape_[k];
+        }
+        if (H) *H = H->selfadjointView<Eigen::Upper>();
+        return cost;
+    }
+
+    double joint_sigma(uint32_t j) {
+        if (joint_sigma_.empty()) {
+            const auto& names = lin_.model.data().skeleton.joint_names;
+            for (const auto& n : names) joint_sigma_.push_back(joint_rotation_sigma(n));
+        }
+        return joint_sigma_[j];
+    }
+
+    const LinearModel& lin_;
+    FitOptions o_;
+    uint32_t F_, K_, B_;
+    std::vector<FrameData> frames_;
+    std::vector<Kinematics> kin_;
+    std::vector<double> shape_;
+    std::vector<FitState> states_;
+    std::vector<uint32_t> vertex_sample_;
+    std::vector<Vector3d> posed_, posed_normals_;
+    std::vector<std::size_t> pair_candidates_;
+    std::vector<double> joint_sigma_, plane_row_;
+
+public:
+    void init_sigmas() {
+        for (uint32_t j = 0; j < lin_.J; ++j) joint_sigma(j);
+    }
+};
+
+void validate(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& o) {
+    const auto& d = lin.model.data();
+    SSC_REQUIRE_ARG(!frames.empty(), "fit: no frames");
+    SSC_REQUIRE_ARG(o.landmark_sigma > 0 && std::isfinite(o.landmark_sigma), "fit: landmark_sigma must be positive");
+    SSC_REQUIRE_ARG(o.point_sigma > 0 && std::isfinite(o.point_sigma), "fit: point_sigma must be positive");
+    SSC_REQUIRE_ARG(o.shape_prior >= 0 && std::isfinite(o.shape_prior), "fit: shape_prior must be >= 0");
+    SSC_REQUIRE_ARG(o.pose_prior >= 0 && std::isfinite(o.pose_prior), "fit: pose_prior must be >= 0");
+    SSC_REQUIRE_ARG(o.max_points >= 16, "fit: max_points must be at least 16");
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+        const auto& fr = frames[f];
+        std::size_t points = 0;
+        for (const auto& l : fr.landmarks) {
+            SSC_REQUIRE_ARG_S(l.landmark < d.landmarks.size(), "fit: frame " << f << ": landmark index " << l.landmark << " out of range");
+            SSC_REQUIRE_ARG_S(finite(l.position), "fit: frame " << f << ": landmark " << d.landmarks[l.landmark].name << " is not finite");
+            SSC_REQUIRE_ARG_S(l.weight > 0 && std::isfinite(l.weight), "fit: frame " << f << ": landmark weights must be positive");
+        }
+        for (const auto& c : fr.clouds) {
+            SSC_REQUIRE_ARG_S(c.normals.empty() || c.normals.size() == c.points.size(),
+                            "fit: frame " << f << ": " << c.normals.size() << " normals for " << c.points.size() << " points");
+            SSC_REQUIRE_ARG_S(c.confidence.empty() || c.confidence.size() == c.points.size(),
+                            "fit: frame " << f << ": " << c.confidence.size() << " confidences for " << c.points.size() << " points");
+            for (std::size_t i = 0; i < c.points.size(); ++i) {
+                SSC_REQUIRE_ARG_S(finite(c.points[i]), "fit: frame " << f << ": point " << i << " is not finite");
+                if (!c.normals.empty())
+                    SSC_REQUIRE_ARG_S(finite(c.normals[i]) && std::abs(c.normals[i].norm() - 1) < 1e-3,
+                                    "fit: frame " << f << ": normal " << i << " is not a unit vector");
+                if (!c.confidence.empty())
+                    SSC_REQUIRE_ARG_S(c.confidence[i] >= 0 && c.confidence[i] <= 1, "fit: frame " << f << ": confidence " << i << " is not in [0, 1]");
+            }
+            points += c.points.size();
+        }
+        SSC_REQUIRE_ARG_S(fr.landmarks.size() >= 3 || points >= 16,
+                        "fit: frame " << f << " has too little data (at least 3 landmarks or 16 points)");
+    }
+}
+
+}  // namespace
+
+double joint_rotation_sigma(const std::string& name) {
+    for (const char* small : {"thumb", "index", "middle", "ring", "pinky", "ball"})
+        if (name.find(small) != std::string::npos) return 0.15;
+    return 0.6;
+}
+
+FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,
+                const std::vector<FitState>* start, const FitProgress& progress) {
+    validate(lin, frames, options);
+    if (start && !options.auto_start)
+        SSC_REQUIRE_ARG_S(start->size() == frames.size(), "fit: " << start->size() << " start states for " << frames.size() << " frames");
+    Solver solver(lin, frames, options);
+    solver.init_sigmas();
+    return solver.run(start, progress);
+}
+
+}  // namespace ssc::fitting

@@ -1,0 +1,84 @@
+// Fitting the model to measurements of one person: landmarks and point clouds (scans, depth
+// images turned into points), in one or several frames that share a shape and have a pose each.
+//
+// Method (each choice is explained where it is made in fitter.cpp):
+//   start   rigid alignment with scale from landmarks (Umeyama) when a frame has any; otherwise
+//           from the cloud's principal axes, trying the plausible facing directions;
+//   solve   Levenberg-Marquardt over shape, per-joint rotations, translation and optional scale, with
+//           the analytic Jacobians of kinematics.hpp;
+//   data    landmarks (robust Huber loss), clouds with correspondences both ways (nanoflann k-d
+//           trees), point-to-plane where normals exist, normal-compatibility and distance tests,
+//           Geman-McClure loss and trimming;
+//   priors  Gaussian on shape (the model's own: coefficients are standard deviations) and on each
+//           joint's rotation; coarse-to-fine stages (rigid, then main joints and few components,
+//           then everything).
+#pragma once
+
+#include "fitting/kinematics.hpp"
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace ssc::fitting {
+
+struct LandmarkTarget {
+    uint32_t landmark = 0;  // model landmark index
+    Vector3d position;      // metres
+    double weight = 1;      // relative confidence, > 0
+};
+
+struct PointCloud {
+    std::vector<Vector3d> points;      // metres
+    std::vector<Vector3d> normals;     // empty or one unit normal per point
+    std::vector<double> confidence;    // empty or one weight in [0, 1] per point
+};
+
+// One observation of the person in one pose.
+struct Frame {
+    std::vector<LandmarkTarget> landmarks;
+    std::vector<PointCloud> clouds;
+};
+
+struct FitOptions {
+    uint32_t components = 0xFFFFFFFFu;  // shape components used (clamped to the model's)
+    bool fit_scale = false;             // solve a global scale too (data in unknown units)
+    double landmark_sigma = 0.01;       // metres: expected landmark placement error
+    double point_sigma = 0.004;         // metres: expected scan noise plus model error
+    double shape_prior = 1;             // multiplies the Gaussian shape prior (0 = none)
+    double pose_prior = 1;              // multiplies the joint rotation prior (0 = none)
+    uint32_t max_iterations = 60;       // Levenberg-Marquardt iterations, all stages together
+    uint32_t max_points = 3000;         // scan points used per iteration (a fixed random subset)
+    uint32_t seed = 1;                  // for that subset
+    bool auto_start = true;             // false: start from the given state instead
+};
+
+struct FitReport {
+    uint32_t iterations = 0;
+    bool converged = false, cancelled = false;
+    double initial_cost = 0, final_cost = 0;
+    double landmark_rms = 0;   // metres, over all landmarks of all frames
+    double point_mean = 0;     // metres, mean distance of accepted scan points to the model surface
+    double inlier_fraction = 0;
+    double seconds = 0;
+};
+
+// Called once per iteration; return false to cancel (the best state so far is kept).
+using FitProgress = std::function<bool(uint32_t iteration, double cost)>;
+
+struct FitSolution {
+    std::vector<double> shape;      // components() values; the rest of the model's are zero
+    std::vector<FitState> frames;   // per frame: pose, translation, scale (shape copied in)
+    FitReport report;
+};
+
+// Fits frames to the model. `start` (optional, one per frame) is used when auto_start is false.
+// Throws ssc::Error on invalid input (no data, NaN, bad indices).
+FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,
+                const std::vector<FitState>* start = nullptr, const FitProgress& progress = {});
+
+// Per-joint prior standard deviation of the rotation (radians): loose for the trunk and limbs,
+// tight for fingers and the toes, which sparse data rarely constrain.
+double joint_rotation_sigma(const std::string& joint_name);
+
+}  // namespace ssc::fitting

@@ -1,0 +1,228 @@
+// Forward kinematics and analytic Jacobians of the skinned model (see kinematics.hpp).
+//
+// The skeleton follows kernels_pose.cpp: rest world rotation W_j = W_parent R_j, posed world
+// rotation G_j = G_parent R_j P_j, posed joint position q_j = S_parent (p_j - p_parent) + q_parent
+// (root: q = p), skinning rotation S_j = G_j W_j^T and translation c_j = q_j - S_j p_j, so a vertex
+// is v = sum_a w_a (S_a u + c_a) for rest position u = mean + basis * shape.
+//
+// Shape derivatives: dq_j = S_parent (dp_j - dp_parent) + dq_parent, dc_j = dq_j - S_j dp_j, with
+// dp the joint regressor applied to the basis. Rotation derivatives: turning joint k by w about q_k
+// moves every part skinned by k or a descendant: dv = w x a_k with
+// a_k = sum over those influences of w_a (S_a u + c_a - q_k).
+#include "fitting/kinematics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ssc::fitting {
+
+namespace {
+
+Matrix3d skew(const Vector3d& a) {
+    Matrix3d m;
+    m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+    return m;
+}
+
+Eigen::Quaterniond exp_rotation(const Vector3d& w) {
+    const double angle = w.norm();
+    if (angle < 1e-12) return Eigen::Quaterniond(1, 0.5 * w.x(), 0.5 * w.y(), 0.5 * w.z()).normalized();
+    return Eigen::Quaterniond(Eigen::AngleAxisd(angle, w / angle));
+}
+
+}  // namespace
+
+LinearModel::LinearModel(const Model& m, uint32_t components)
+    : model(m), K(std::min(components, m.component_count())), J(m.joint_count()), V(m.vertex_count()) {
+    const auto& d = m.data();
+    const float* step = m.basis_step();
+    basis.resize(std::size_t(V) * 3 * K);
+    for (uint32_t k = 0; k < K; ++k)
+        for (uint32_t a = 0; a < 3; ++a)
+            for (uint32_t v = 0; v < V; ++v)
+                basis[(std::size_t(v) * 3 + a) * K + k] = double(step[k]) * d.shape.basis.q[(std::size_t(k) * 3 + a) * V + v];
+    joint_basis.resize(std::size_t(J) * 3 * K);
+    joint_mean.resize(J);
+    for (uint32_t j = 0; j < J; ++j)
+        for (uint32_t a = 0; a < 3; ++a) {
+            joint_mean[j][a] = m.joint_mean()[3 * j + a];
+            for (uint32_t k = 0; k < K; ++k)
+                joint_basis[(std::size_t(j) * 3 + a) * K + k] = double(step[k]) * m.joint_basis()[(std::size_t(k) * J + j) * 3 + a];
+        }
+    rest_orient.resize(J);
+    chains.resize(J);
+    for (uint32_t j = 0; j < J; ++j) {
+        const float* q = &d.skeleton.rest_orientations[4 * j];
+        rest_orient[j] = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
+        for (int32_t a = int32_t(j); a >= 0; a = d.skeleton.parents[uint32_t(a)]) chains[j].push_back(uint32_t(a));
+    }
+}
+
+Kinematics::Kinematics(const LinearModel& lin) : lin_(lin), model_(lin.model), K_(lin.K), J_(lin.J), V_(lin.V) {
+    rest_joint_.resize(J_);
+    posed_joint_.resize(J_);
+    world_.resize(J_);
+    pre_pose_.resize(J_);
+    skin_rot_.resize(J_);
+    skin_trans_.resize(J_);
+    dpos_.assign(std::size_t(J_) * 3 * K_, 0.0);
+    dskin_.assign(std::size_t(J_) * 3 * K_, 0.0);
+    shape_.assign(K_, 0.0);
+}
+
+void Kinematics::nonzeros(const SurfacePoint& p, std::vector<uint32_t>& out) const {
+    out.clear();
+    for (uint32_t k = 0; k < K_; ++k) out.push_back(k);
+    const auto& skin = model_.data().skin;
+    auto& seen = seen_;
+    seen.assign(J_, 0);
+    for (int b = 0; b < 3; ++b) {
+        if (p.weight[b] == 0) continue;
+        for (int i = 0; i < 4; ++i) {
+            if (skin.weights[4 * std::size_t(p.vertex[b]) + i] == 0) continue;
+            for (uint32_t k : lin_.chains[skin.joints[4 * std::size_t(p.vertex[b]) + i]]) seen[k] = 1;
+        }
+    }
+    for (uint32_t j = 0; j < J_; ++j)
+        if (seen[j])
+            for (uint32_t c = 0; c < 3; ++c) out.push_back(rotation_offset(j) + c);
+    for (uint32_t c = 0; c < 4; ++c) out.push_back(translation_offset() + c);
+}
+
+FitState Kinematics::zero_state() const {
+    FitState s;
+    s.shape.assign(K_, 0.0);
+    s.pose.assign(J_, Eigen::Quaterniond::Identity());
+    return s;
+}
+
+void Kinematics::update(const FitState& s) {
+    const auto& parents = model_.data().skeleton.parents;
+    std::copy(s.shape.begin(), s.shape.begin() + K_, shape_.begin());
+    scale_ = s.scale;
+    translation_ = s.translation;
+    std::vector<Matrix3d> rest_world(J_);
+    for (uint32_t j = 0; j < J_; ++j) {
+        Vector3d p = lin_.joint_mean[j];
+        for (uint32_t a = 0; a < 3; ++a) {
+            const double* b = &lin_.joint_basis[(std::size_t(j) * 3 + a) * K_];
+            for (uint32_t k = 0; k < K_; ++k) p[a] += b[k] * shape_[k];
+        }
+        rest_joint_[j] = p;
+        const Matrix3d P = s.pose[j].normalized().toRotationMatrix();
+        const int32_t parent = parents[j];
+        double* dq = &dpos_[std::size_t(j) * 3 * K_];
+        const double* dp = &lin_.joint_basis[std::size_t(j) * 3 * K_];
+        if (parent < 0) {
+            rest_world[j] = lin_.rest_orient[j];
+            pre_pose_[j] = lin_.rest_orient[j];
+            posed_joint_[j] = p;
+            std::copy(dp, dp + 3 * K_, dq);
+        } else {
+            const auto up = uint32_t(parent);
+            rest_world[j] = rest_world[up] * lin_.rest_orient[j];
+            pre_pose_[j] = world_[up] * lin_.rest_orient[j];
+            posed_joint_[j] = skin_rot_[up] * (p - rest_joint_[up]) + posed_joint_[up];
+            const double* dpp = &lin_.joint_basis[std::size_t(up) * 3 * K_];
+            const double* dqp = &dpos_[std::size_t(up) * 3 * K_];
+            for (uint32_t k = 0; k < K_; ++k) {
+                const Vector3d diff(dp[k] - dpp[k], dp[K_ + k] - dpp[K_ + k], dp[2 * K_ + k] - dpp[2 * K_ + k]);
+                const Vector3d r = skin_rot_[up] * diff;
+                for (uint32_t a = 0; a < 3; ++a) dq[a * K_ + k] = r[a] + dqp[a * K_ + k];
+            }
+        }
+        world_[j] = pre_pose_[j] * P;
+        skin_rot_[j] = world_[j] * rest_world[j].transpose();
+        skin_trans_[j] = posed_joint_[j] - skin_rot_[j] * p;
+        double* dc = &dskin_[std::size_t(j) * 3 * K_];
+        for (uint32_t k = 0; k < K_; ++k) {
+            const Vector3d r = skin_rot_[j] * Vector3d(dp[k], dp[K_ + k], dp[2 * K_ + k]);
+            for (uint32_t a = 0; a < 3; ++a) dc[a * K_ + k] = dq[a * K_ + k] - r[a];
+        }
+    }
+}
+
+Vector3d Kinematics::rest_vertex(uint32_t v) const {
+    const float* mean = &model_.data().shape.mean[3 * std::size_t(v)];
+    Vector3d u(mean[0], mean[1], mean[2]);
+    for (uint32_t a = 0; a < 3; ++a) {
+        const double* b = &lin_.basis[(std::size_t(v) * 3 + a) * K_];
+        double acc = 0;
+        for (uint32_t k = 0; k < K_; ++k) acc += b[k] * shape_[k];
+        u[a] += acc;
+    }
+    return u;
+}
+
+Vector3d Kinematics::point(const SurfacePoint& p) const {
+    const auto& skin = model_.data().skin;
+    Vector3d out = Vector3d::Zero();
+    for (int b = 0; b < 3; ++b) {
+        if (p.weight[b] == 0) continue;
+        const uint32_t v = p.vertex[b];
+        const Vector3d u = rest_vertex(v);
+        Vector3d x = Vector3d::Zero();
+        for (int i = 0; i < 4; ++i) {
+            const float w = skin.weights[4 * std::size_t(v) + i];
+            if (w == 0) continue;
+            const uint16_t j = skin.joints[4 * std::size_t(v) + i];
+            x += double(w) * (skin_rot_[j] * u + skin_trans_[j]);
+        }
+        out += p.weight[b] * x;
+    }
+    return scale_ * out + translation_;
+}
+
+void Kinematics::point_jacobian(const SurfacePoint& p, double* J3, double factor) const {
+    for (int b = 0; b < 3; ++b)
+        if (p.weight[b] != 0) vertex_jacobian(p.vertex[b], J3, factor * p.weight[b]);
+}
+
+void Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor) const {
+    const auto& skin = model_.data().skin;
+    const uint32_t P = parameter_count();
+    const Vector3d u = rest_vertex(v);
+    const double f = factor * scale_;
+    Vector3d blended = Vector3d::Zero();
+    for (int i = 0; i < 4; ++i) {
+        const double w = skin.weights[4 * std::size_t(v) + i];
+        if (w == 0) continue;
+        const uint16_t j = skin.joints[4 * std::size_t(v) + i];
+        const Vector3d x = skin_rot_[j] * u + skin_trans_[j];
+        blended += w * x;
+        // Shape: w S_j B_v + w dc_j.
+        const double* B = &lin_.basis[std::size_t(v) * 3 * K_];
+        const double* dc = &dskin_[std::size_t(j) * 3 * K_];
+        const Matrix3d& S = skin_rot_[j];
+        for (uint32_t a = 0; a < 3; ++a) {
+            double* row = J3 + std::size_t(a) * P;
+            for (uint32_t k = 0; k < K_; ++k)
+                row[k] += f * w * (S(a, 0) * B[k] + S(a, 1) * B[K_ + k] + S(a, 2) * B[2 * K_ + k] + dc[a * K_ + k]);
+        }
+        // Rotations of the joint and its ancestors: -w [x - q_k]_x.
+        for (uint32_t k : lin_.chains[j]) {
+            const Matrix3d m = -(f * w) * skew(x - posed_joint_[k]);
+            const uint32_t off = rotation_offset(k);
+            for (uint32_t a = 0; a < 3; ++a)
+                for (uint32_t c = 0; c < 3; ++c) J3[std::size_t(a) * P + off + c] += m(a, c);
+        }
+    }
+    const uint32_t t = translation_offset();
+    for (uint32_t a = 0; a < 3; ++a) {
+        J3[std::size_t(a) * P + t + a] += factor;
+        J3[std::size_t(a) * P + scale_offset()] += factor * scale_ * blended[a];
+    }
+}
+
+void Kinematics::apply(const double* delta, FitState& s) const {
+    for (uint32_t k = 0; k < K_; ++k) s.shape[k] += delta[k];
+    for (uint32_t j = 0; j < J_; ++j) {
+        const Vector3d w(delta + rotation_offset(j));
+        if (w.squaredNorm() == 0) continue;
+        s.pose[j] = (exp_rotation(pre_pose_[j].transpose() * w) * s.pose[j]).normalized();
+    }
+    s.translation += Vector3d(delta + translation_offset());
+    s.scale *= std::exp(delta[scale_offset()]);
+}
+
+}  // namespace ssc::fitting

@@ -1,0 +1,107 @@
+// The model as a differentiable function for fitting: posed surface points and their analytic
+// Jacobians with respect to every fit parameter, in double precision.
+//
+// Parameters, in this order in every Jacobian row:
+//   shape     K coefficients (standard deviations)
+//   rotation  3 per joint: a small rotation w (radians, world frame) applied to the joint's posed
+//             world rotation, about the joint's posed position; children follow. The update of the
+//             stored local pose is P <- exp(A^T w) P with A = parent world rotation * rest orientation.
+//   translation 3 (metres), then log scale 1.
+// A surface point is final = scale * v + translation, v the linear-blend-skinned model point.
+#pragma once
+
+#include "synthesis/model.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <vector>
+
+namespace ssc::fitting {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+// What the fitter solves for.
+struct FitState {
+    std::vector<double> shape;                // K (used components; the rest stay zero)
+    std::vector<Eigen::Quaterniond> pose;     // J local pose rotations (each joint's rest frame)
+    Vector3d translation = Vector3d::Zero();  // metres
+    double scale = 1;
+};
+
+// A point on the template: up to 3 vertices with barycentric weights (a vertex is one weight of 1).
+struct SurfacePoint {
+    uint32_t vertex[3] = {0, 0, 0};
+    double weight[3] = {1, 0, 0};
+};
+
+// The model's linear parts in double precision for the used components: built once, shared by every
+// frame's Kinematics.
+struct LinearModel {
+    LinearModel(const Model& model, uint32_t components);
+    const Model& model;
+    uint32_t K, J, V;
+    std::vector<double> basis;        // metres per standard deviation: [v][axis][k]
+    std::vector<double> joint_basis;  // [j][axis][k]
+    std::vector<Vector3d> joint_mean;
+    std::vector<Matrix3d> rest_orient;  // R_j (local rest orientation)
+    std::vector<std::vector<uint32_t>> chains;  // ancestors of each joint, itself first
+};
+
+class Kinematics {
+public:
+    explicit Kinematics(const LinearModel& lin);
+
+    const Model& model() const { return model_; }
+    uint32_t components() const { return K_; }
+    uint32_t joints() const { return J_; }
+    // Parameter layout.
+    uint32_t parameter_count() const { return K_ + 3 * J_ + 4; }
+    uint32_t rotation_offset(uint32_t joint) const { return K_ + 3 * joint; }
+    uint32_t translation_offset() const { return K_ + 3 * J_; }
+    uint32_t scale_offset() const { return K_ + 3 * J_ + 3; }
+
+    FitState zero_state() const;
+
+    // Recomputes the skeleton for a state (cheap: joints only). Must precede the queries below.
+    void update(const FitState& s);
+
+    Vector3d rest_vertex(uint32_t v) const;                  // unposed, current shape
+    Vector3d point(const SurfacePoint& p) const;             // final (scaled, translated)
+    // Adds d(final point)/d(parameters) (3 x parameter_count) times `factor` into J (3 rows,
+    // leading dimension = parameter_count, row-major) for the given point.
+    void point_jacobian(const SurfacePoint& p, double* J3, double factor = 1) const;
+
+    // Posed joint positions (final frame) and world rotations.
+    Vector3d joint_position(uint32_t j) const { return scale_ * posed_joint_[j] + translation_; }
+    const Matrix3d& joint_world(uint32_t j) const { return world_[j]; }
+    // Rotation that maps a world-frame increment to the joint's local pose increment (A^T above).
+    Matrix3d local_from_world(uint32_t j) const { return pre_pose_[j].transpose(); }
+
+    // Applies an increment (parameter_count values) to a state: the retraction matching the Jacobians.
+    void apply(const double* delta, FitState& s) const;
+
+    // Ancestors of a joint, itself first.
+    const std::vector<uint32_t>& chain(uint32_t j) const { return lin_.chains[j]; }
+    // The parameters a point's Jacobian can touch (sorted): shape, its joints' chains, translation, scale.
+    void nonzeros(const SurfacePoint& p, std::vector<uint32_t>& out) const;
+
+private:
+    void vertex_jacobian(uint32_t v, double* J3, double factor) const;
+
+    const LinearModel& lin_;
+    const Model& model_;
+    uint32_t K_, J_, V_;
+    // Current state.
+    std::vector<double> shape_;
+    double scale_ = 1;
+    Vector3d translation_ = Vector3d::Zero();
+    std::vector<Vector3d> rest_joint_, posed_joint_;
+    std::vector<Matrix3d> world_, pre_pose_, skin_rot_;  // G_j, G_parent R_j, S_j = G_j W_j^T
+    std::vector<Vector3d> skin_trans_;                   // c_j
+    std::vector<double> dpos_, dskin_;
+    mutable std::vector<uint8_t> seen_;  // nonzeros() scratch                   // d posed joint / d shape, d c_j / d shape: [j][axis][k]
+};
+
+}  // namespace ssc::fitting

@@ -1,0 +1,210 @@
+#include "simulation/simulate.hpp"
+
+#include "synthesis/body.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ssc::simulation {
+
+using Eigen::Matrix3d;
+using Eigen::Quaterniond;
+using Eigen::Vector3d;
+
+std::vector<float> random_shape(const Model& m, std::mt19937& rng) {
+    std::normal_distribution<float> n(0.f, 1.f);
+    std::vector<float> c(m.component_count());
+    for (auto& x : c) x = std::clamp(n(rng), -2.5f, 2.5f);
+    return c;
+}
+
+namespace {
+
+struct JointRange {
+    const char* name;
+    // Rotation ranges (radians) about the body's x (left), y (up) and z (forward) axes, at rest.
+    double x_lo, x_hi, y_lo, y_hi, z_lo, z_hi;
+};
+
+// Everyday ranges, well inside the anatomical limits. Signs: +x bends the trunk forward, -x swings a
+// thigh or upper arm forward, +x bends a knee, -x an elbow; +z raises the left arm sideways.
+const JointRange kRanges[] = {
+    {"spine_01", -0.05, 0.20, -0.10, 0.10, -0.06, 0.06},
+    {"spine_02", -0.05, 0.20, -0.10, 0.10, -0.06, 0.06},
+    {"spine_03", -0.05, 0.15, -0.10, 0.10, -0.06, 0.06},
+    {"neck_01", -0.15, 0.25, -0.30, 0.30, -0.10, 0.10},
+    {"head", -0.10, 0.15, -0.20, 0.20, -0.10, 0.10},
+    {"upperarm_l", -0.90, 0.40, -0.30, 0.30, -0.40, 0.80},
+    {"upperarm_r", -0.90, 0.40, -0.30, 0.30, -0.80, 0.40},
+    {"lowerarm_l", -1.60, -0.05, -0.20, 0.20, 0, 0},
+    {"lowerarm_r", -1.60, -0.05, -0.20, 0.20, 0, 0},
+    {"hand_l", -0.30, 0.30, -0.20, 0.20, -0.20, 0.20},
+    {"hand_r", -0.30, 0.30, -0.20, 0.20, -0.20, 0.20},
+    {"thigh_l", -0.80, 0.25, -0.20, 0.20, -0.05, 0.35},
+    {"thigh_r", -0.80, 0.25, -0.20, 0.20, -0.35, 0.05},
+    {"calf_l", 0.05, 1.30, 0, 0, 0, 0},
+    {"calf_r", 0.05, 1.30, 0, 0, 0, 0},
+    {"foot_l", -0.30, 0.30, -0.10, 0.10, -0.10, 0.10},
+    {"foot_r", -0.30, 0.30, -0.10, 0.10, -0.10, 0.10},
+};
+
+}  // namespace
+
+std::vector<float> random_pose(const Model& m, std::mt19937& rng, double amount) {
+    const auto& sk = m.data().skeleton;
+    const uint32_t J = m.joint_count();
+    std::vector<float> q(4 * std::size_t(J), 0.f);
+    for (uint32_t j = 0; j < J; ++j) q[4 * j + 3] = 1.f;
+    // Rest world rotations W (zero pose): the local pose P with W P W^T = R_body.
+    std::vector<Matrix3d> W(J);
+    for (uint32_t j = 0; j < J; ++j) {
+        const float* r = &sk.rest_orientations[4 * j];
+        const Matrix3d R = Quaterniond(r[3], r[0], r[1], r[2]).normalized().toRotationMatrix();
+        W[j] = sk.parents[j] < 0 ? R : W[uint32_t(sk.parents[j])] * R;
+    }
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (const auto& range : kRanges) {
+        const int64_t j = m.find_joint(range.name);
+        if (j < 0) continue;
+        auto draw = [&](double lo, double hi) { return amount * (lo + (hi - lo) * u(rng)); };
+        const Vector3d w(draw(range.x_lo, range.x_hi), draw(range.y_lo, range.y_hi), draw(range.z_lo, range.z_hi));
+        const double angle = w.norm();
+        const Matrix3d Rb = angle > 0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix() : Matrix3d::Identity();
+        const Quaterniond P(W[std::size_t(j)].transpose() * Rb * W[std::size_t(j)]);
+        q[4 * j] = float(P.x()), q[4 * j + 1] = float(P.y()), q[4 * j + 2] = float(P.z()), q[4 * j + 3] = float(P.w());
+    }
+    return q;
+}
+
+TrueBody make_body(const Model& m, std::vector<float> shape, std::vector<float> pose, const Vector3d& translation) {
+    TrueBody b;
+    b.shape = std::move(shape);
+    b.pose = std::move(pose);
+    b.translation = translation;
+    Body body(m, nullptr);
+    body.set_shape(b.shape.data(), uint32_t(b.shape.size()));
+    const float t[3] = {float(translation.x()), float(translation.y()), float(translation.z())};
+    body.set_pose(b.pose.data(), t);
+    const uint32_t V = m.vertex_count();
+    const float* p = body.posed();
+    b.vertices.resize(V);
+    for (uint32_t v = 0; v < V; ++v) b.vertices[v] = Vector3d(p[v], p[V + v], p[2 * std::size_t(V) + v]);
+    const float* n = body.normals();
+    b.normals.resize(V);
+    for (uint32_t v = 0; v < V; ++v) b.normals[v] = Vector3d(n[3 * v], n[3 * v + 1], n[3 * v + 2]).normalized();
+    const auto& d = m.data();
+    for (const auto& l : d.landmarks) {
+        if (l.vertex != format::kNone) {
+            b.landmarks.push_back(b.vertices[l.vertex]);
+            continue;
+        }
+        Vector3d x = Vector3d::Zero();
+        for (int i = 0; i < 3; ++i) x += double(l.barycentric[i]) * b.vertices[d.mesh.triangles[3 * std::size_t(l.triangle) + i]];
+        b.landmarks.push_back(x);
+    }
+    return b;
+}
+
+void transform_body(TrueBody& b, const Matrix3d& R, const Vector3d& t) {
+    for (auto& v : b.vertices) v = R * v + t;
+    for (auto& n : b.normals) n = R * n;
+    for (auto& l : b.landmarks) l = R * l + t;
+}
+
+std::vector<fitting::LandmarkTarget> simulate_landmarks(const Model& m, const TrueBody& b, double sd, bool skip_hands,
+                                                        std::mt19937& rng) {
+    std::normal_distribution<double> n(0.0, sd);
+    std::vector<fitting::LandmarkTarget> out;
+    const auto& d = m.data();
+    for (uint32_t l = 0; l < d.landmarks.size(); ++l) {
+        const std::string& name = d.landmarks[l].name;
+        const bool hand = name.find("Metacarpal") != std::string::npos || name.find("Dactylion") != std::string::npos;
+        if (skip_hands && hand) continue;
+        fitting::LandmarkTarget t;
+        t.landmark = l;
+        t.position = b.landmarks[l] + Vector3d(n(rng), n(rng), n(rng));
+        out.push_back(t);
+    }
+    return out;
+}
+
+fitting::PointCloud simulate_cloud(const Model& m, const TrueBody& b, const CloudSpec& spec, std::mt19937& rng) {
+    const auto& tri = m.data().mesh.triangles;
+    const std::size_t T = tri.size() / 3;
+    std::vector<double> area(T);
+    for (std::size_t t = 0; t < T; ++t)
+        area[t] = 0.5 * (b.vertices[tri[3 * t + 1]] - b.vertices[tri[3 * t]]).cross(b.vertices[tri[3 * t + 2]] - b.vertices[tri[3 * t]]).norm();
+    // Holes: round patches around random surface points, grown until they cover the missing fraction.
+    std::vector<uint8_t> removed(T, 0);
+    double total = 0;
+    for (double a : area) total += a;
+    std::discrete_distribution<std::size_t> pick(area.begin(), area.end());
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    auto centroid = [&](std::size_t t) { return (b.vertices[tri[3 * t]] + b.vertices[tri[3 * t + 1]] + b.vertices[tri[3 * t + 2]]) / 3.0; };
+    if (spec.missing > 0) {
+        const int holes = 20;  // patches of about 1 % each: occlusions, armpits, soles, hair
+        double covered = 0;
+        for (int h = 0; h < holes && covered < spec.missing * total; ++h) {
+            const Vector3d c = centroid(pick(rng));
+            // Triangles by distance from the centre; take the nearest until this hole has its share.
+            std::vector<std::pair<double, std::size_t>> byd;
+            byd.reserve(T);
+            for (std::size_t t = 0; t < T; ++t)
+                if (!removed[t]) byd.emplace_back((centroid(t) - c).squaredNorm(), t);
+            std::sort(byd.begin(), byd.end());
+            const double target = spec.missing * total * double(h + 1) / holes;
+            for (const auto& [d2, t] : byd) {
+                if (covered >= target) break;
+                removed[t] = 1;
+                covered += area[t];
+            }
+        }
+    }
+    std::vector<double> kept(area);
+    for (std::size_t t = 0; t < T; ++t)
+        if (removed[t]) kept[t] = 0;
+    std::discrete_distribution<std::size_t> sample(kept.begin(), kept.end());
+    std::normal_distribution<double> noise(0.0, spec.noise);
+    fitting::PointCloud c;
+    Vector3d lo = b.vertices[0], hi = b.vertices[0];
+    for (const auto& v : b.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const Vector3d pad = 0.1 * (hi - lo);
+    lo -= pad, hi += pad;
+    for (uint32_t i = 0; i < spec.points; ++i) {
+        if (u(rng) < spec.outliers) {
+            const Vector3d p(lo.x() + u(rng) * (hi.x() - lo.x()), lo.y() + u(rng) * (hi.y() - lo.y()), lo.z() + u(rng) * (hi.z() - lo.z()));
+            c.points.push_back(p);
+            if (spec.normals) c.normals.push_back(Vector3d(noise(rng) + 1e-3, noise(rng), noise(rng)).normalized());
+            continue;
+        }
+        const std::size_t t = sample(rng);
+        double r1 = u(rng), r2 = u(rng);
+        if (r1 + r2 > 1) r1 = 1 - r1, r2 = 1 - r2;
+        const Vector3d& a = b.vertices[tri[3 * t]];
+        const Vector3d p = a + r1 * (b.vertices[tri[3 * t + 1]] - a) + r2 * (b.vertices[tri[3 * t + 2]] - a);
+        c.points.push_back(p + Vector3d(noise(rng), noise(rng), noise(rng)));
+        if (spec.normals) c.normals.push_back((b.vertices[tri[3 * t + 1]] - a).cross(b.vertices[tri[3 * t + 2]] - a).normalized());
+    }
+    return c;
+}
+
+double mean_vertex_error(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b) {
+    double s = 0;
+    for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) s += (a[i] - b[i]).norm();
+    return a.empty() ? 0 : s / double(a.size());
+}
+
+std::vector<Vector3d> fitted_vertices(const Model& m, const fitting::FitState& s) {
+    std::vector<float> shape(m.component_count(), 0.f);
+    for (std::size_t k = 0; k < s.shape.size() && k < shape.size(); ++k) shape[k] = float(s.shape[k]);
+    std::vector<float> pose(4 * std::size_t(m.joint_count()));
+    for (uint32_t j = 0; j < m.joint_count(); ++j) {
+        const Quaterniond q = s.pose[j].normalized();
+        pose[4 * j] = float(q.x()), pose[4 * j + 1] = float(q.y()), pose[4 * j + 2] = float(q.z()), pose[4 * j + 3] = float(q.w());
+    }
+    TrueBody b = make_body(m, shape, pose, Vector3d::Zero());
+    for (auto& v : b.vertices) v = s.scale * v + s.translation;
+    return b.vertices;
+}
+
+}  // namespace ssc::simulation

@@ -1,0 +1,58 @@
+// Synthetic measurements of model bodies with known ground truth: random plausible bodies and
+// poses, landmarks with placement noise, scan point clouds with noise, holes and outliers. Tests
+// and benchmarks measure the fitter's accuracy with them.
+#pragma once
+
+#include "fitting/fitter.hpp"
+
+#include <random>
+#include <vector>
+
+namespace ssc::simulation {
+
+struct TrueBody {
+    std::vector<float> shape;                      // model's K coefficients
+    std::vector<float> pose;                       // 4J quaternions xyzw (local)
+    Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3d> vertices;         // posed
+    std::vector<Eigen::Vector3d> normals;          // posed, unit
+    std::vector<Eigen::Vector3d> landmarks;        // posed
+};
+
+// Shape coefficients drawn from the model's own distribution (standard normal), clipped at 2.5 SD.
+std::vector<float> random_shape(const Model& m, std::mt19937& rng);
+
+// A plausible pose: trunk bent and twisted, head turned, arms raised or swung with the elbows bent,
+// hips flexed or spread with the knees bent, within everyday ranges. Angles are drawn in the body's
+// frame (x left, y up, z forward) and converted to each joint's rest frame. amount scales them.
+std::vector<float> random_pose(const Model& m, std::mt19937& rng, double amount = 1.0);
+
+// Poses the body (Body, the runtime's synthesis) and fills vertices, normals and landmarks.
+TrueBody make_body(const Model& m, std::vector<float> shape, std::vector<float> pose, const Eigen::Vector3d& translation);
+
+// Rotates and translates a body as a whole (a different facing direction or camera frame).
+void transform_body(TrueBody& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& t);
+
+// The model's landmarks with isotropic Gaussian noise (sd metres), optionally without the six hand
+// landmarks of ../shared/docs/landmarks.md (37, 38, 40, 49, 50, 52).
+std::vector<fitting::LandmarkTarget> simulate_landmarks(const Model& m, const TrueBody& b, double sd, bool skip_hands,
+                                                        std::mt19937& rng);
+
+struct CloudSpec {
+    uint32_t points = 20000;
+    double noise = 0.002;           // metres, along the normal and tangentially (isotropic)
+    double missing = 0.2;           // fraction of the surface removed, as 20 round holes
+    double outliers = 0.01;         // fraction of points replaced by uniform clutter around the body
+    bool normals = true;            // give each surface point its surface normal (outliers random)
+};
+
+// Points drawn uniformly over the posed surface (by triangle area).
+fitting::PointCloud simulate_cloud(const Model& m, const TrueBody& b, const CloudSpec& spec, std::mt19937& rng);
+
+// Mean distance between corresponding vertices of two posed meshes.
+double mean_vertex_error(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b);
+
+// The posed vertices of a fit result (through Body, independent of the fitter's own kinematics).
+std::vector<Eigen::Vector3d> fitted_vertices(const Model& m, const fitting::FitState& s);
+
+}  // namespace ssc::simulation

@@ -1,0 +1,176 @@
+// The fitter: analytic Jacobians against finite differences, the fitter's kinematics against the
+// runtime's synthesis, accuracy on simulated measurements of the default model, and bad input.
+#include "capi/handles.hpp"
+#include "common/error.hpp"
+#include "fitting/fitter.hpp"
+#include "simulation/simulate.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <memory>
+
+using namespace ssc;
+
+namespace {
+
+struct DefaultModel {
+    ssc_model* handle = nullptr;
+    DefaultModel() { REQUIRE(ssc_model_load_default(nullptr, &handle) == SSC_OK); }
+    ~DefaultModel() { ssc_model_release(handle); }
+    const Model& model() const { return handle->model; }
+};
+
+const DefaultModel& default_model() {
+    static DefaultModel m;  // loaded once for the whole file (read-only)
+    return m;
+}
+
+fitting::FitState random_state(const fitting::Kinematics& kin, const Model& m, std::mt19937& rng) {
+    fitting::FitState s = kin.zero_state();
+    const auto shape = simulation::random_shape(m, rng);
+    for (uint32_t k = 0; k < kin.components(); ++k) s.shape[k] = shape[k];
+    const auto pose = simulation::random_pose(m, rng);
+    for (uint32_t j = 0; j < m.joint_count(); ++j) s.pose[j] = Eigen::Quaterniond(pose[4 * j + 3], pose[4 * j], pose[4 * j + 1], pose[4 * j + 2]);
+    s.pose[0] = Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.2, 1, 0.1).normalized()));
+    s.translation = Eigen::Vector3d(0.1, -0.2, 0.3);
+    s.scale = 1.1;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("fitter Jacobians match finite differences", "[fitting]") {
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, 12);
+    fitting::Kinematics kin(lin);
+    std::mt19937 rng(3);
+    const fitting::FitState s = random_state(kin, m, rng);
+    kin.update(s);
+    const uint32_t P = kin.parameter_count();
+    // A vertex on the left hand (long chain), one on the head, and a barycentric landmark.
+    std::vector<fitting::SurfacePoint> points(3);
+    points[0].vertex[0] = m.data().vertex_sets[3].vertices[10];  // hands
+    points[1].vertex[0] = m.data().vertex_sets[0].vertices[5];   // head
+    points[2].vertex[0] = 100, points[2].vertex[1] = 101, points[2].vertex[2] = 102;
+    points[2].weight[0] = 0.2, points[2].weight[1] = 0.5, points[2].weight[2] = 0.3;
+    for (const auto& p : points) {
+        std::vector<double> J(3 * std::size_t(P), 0.0);
+        kin.point_jacobian(p, J.data());
+        const double h = 1e-6;
+        double worst = 0, largest = 0;
+        for (uint32_t i = 0; i < P; ++i) {
+            std::vector<double> d(P, 0.0);
+            fitting::FitState a = s, b = s;
+            d[i] = h;
+            kin.apply(d.data(), a);
+            d[i] = -h;
+            kin.apply(d.data(), b);
+            fitting::Kinematics ka(lin), kb(lin);
+            ka.update(a);
+            kb.update(b);
+            const Eigen::Vector3d num = (ka.point(p) - kb.point(p)) / (2 * h);
+            for (int r = 0; r < 3; ++r) {
+                worst = std::max(worst, std::abs(num[r] - J[std::size_t(r) * P + i]));
+                largest = std::max(largest, std::abs(num[r]));
+            }
+        }
+        INFO("worst difference " << worst << " of largest entry " << largest);
+        CHECK(largest > 0.1);
+        CHECK(worst < 1e-5 * largest);
+    }
+}
+
+TEST_CASE("fitter kinematics reproduce the runtime's synthesis", "[fitting]") {
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    fitting::Kinematics kin(lin);
+    std::mt19937 rng(5);
+    const fitting::FitState s = random_state(kin, m, rng);
+    kin.update(s);
+    const auto body = simulation::fitted_vertices(m, s);
+    double worst = 0;
+    for (uint32_t v = 0; v < m.vertex_count(); v += 13) {
+        fitting::SurfacePoint p;
+        p.vertex[0] = v;
+        worst = std::max(worst, (kin.point(p) - body[v]).norm());
+    }
+    CHECK(worst < 1e-5);  // float synthesis vs double kinematics
+}
+
+TEST_CASE("landmark fits recover held-out bodies in any heading", "[fitting]") {
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    std::mt19937 rng(11);
+    double total = 0;
+    const int trials = 3;
+    for (int t = 0; t < trials; ++t) {
+        auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng), Eigen::Vector3d(0.5, 0, 0));
+        simulation::transform_body(truth, Eigen::AngleAxisd(2.0 * t + 0.5, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d(0, 0, 2));
+        fitting::Frame frame;
+        frame.landmarks = simulation::simulate_landmarks(m, truth, 0.01, true, rng);
+        REQUIRE(frame.landmarks.size() == 67);
+        const auto sol = fitting::fit(lin, {frame}, fitting::FitOptions{});
+        const double err = simulation::mean_vertex_error(simulation::fitted_vertices(m, sol.frames[0]), truth.vertices);
+        INFO("trial " << t << ": mean vertex error " << err * 1e3 << " mm, landmark rms " << sol.report.landmark_rms * 1e3 << " mm");
+        CHECK(err < 0.025);
+        CHECK(sol.report.landmark_rms < 0.02);
+        total += err;
+    }
+    CHECK(total / trials < 0.018);
+}
+
+TEST_CASE("scan fits of a mildly posed body are accurate", "[fitting]") {
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    std::mt19937 rng(21);
+    auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, 0.4), Eigen::Vector3d::Zero());
+    simulation::transform_body(truth, Eigen::AngleAxisd(2.5, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d(0.2, 0.1, 1.5));
+    fitting::Frame frame;
+    simulation::CloudSpec spec;
+    spec.points = 8000;
+    frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
+    const auto sol = fitting::fit(lin, {frame}, fitting::FitOptions{});
+    const double err = simulation::mean_vertex_error(simulation::fitted_vertices(m, sol.frames[0]), truth.vertices);
+    INFO("mean vertex error " << err * 1e3 << " mm, point mean " << sol.report.point_mean * 1e3 << " mm");
+    CHECK(err < 0.012);
+    CHECK(sol.report.inlier_fraction > 0.6);
+}
+
+TEST_CASE("the fitter rejects bad input with a message", "[fitting]") {
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, 10);
+    auto status_of = [&](const std::vector<fitting::Frame>& frames, fitting::FitOptions o = {}) {
+        try {
+            fitting::fit(lin, frames, o);
+        } catch (const Error& e) {
+            CHECK(std::string(e.what()).find("fit") != std::string::npos);
+            return e.status();
+        }
+        return SSC_OK;
+    };
+    CHECK(status_of({}) == SSC_ERROR_INVALID_ARGUMENT);
+    fitting::Frame empty;
+    CHECK(status_of({empty}) == SSC_ERROR_INVALID_ARGUMENT);
+    fitting::Frame cloud;
+    cloud.clouds.resize(1);
+    CHECK(status_of({cloud}) == SSC_ERROR_INVALID_ARGUMENT);  // an empty cloud
+    for (int i = 0; i < 20; ++i) cloud.clouds[0].points.emplace_back(0.01 * i, 0.1 * i, 0);
+    cloud.clouds[0].points[3].x() = std::nan("");
+    CHECK(status_of({cloud}) == SSC_ERROR_INVALID_ARGUMENT);
+    cloud.clouds[0].points[3].x() = 0;
+    cloud.clouds[0].normals.resize(3, Eigen::Vector3d::UnitZ());
+    CHECK(status_of({cloud}) == SSC_ERROR_INVALID_ARGUMENT);  // counts differ
+    fitting::Frame lm;
+    for (uint32_t l = 0; l < 3; ++l) lm.landmarks.push_back({l, Eigen::Vector3d(l, 0, 0), 1});
+    lm.landmarks[1].landmark = 9999;
+    CHECK(status_of({lm}) == SSC_ERROR_INVALID_ARGUMENT);
+    lm.landmarks[1].landmark = 1;
+    lm.landmarks[2].weight = -1;
+    CHECK(status_of({lm}) == SSC_ERROR_INVALID_ARGUMENT);
+    lm.landmarks[2].weight = 1;
+    fitting::FitOptions bad;
+    bad.landmark_sigma = 0;
+    CHECK(status_of({lm}, bad) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(status_of({lm}) == SSC_OK);  // three landmarks are enough to run
+}
