@@ -174,3 +174,98 @@ TEST_CASE("the fitter rejects bad input with a message", "[fitting]") {
     CHECK(status_of({lm}, bad) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(status_of({lm}) == SSC_OK);  // three landmarks are enough to run
 }
+
+TEST_CASE("the C API fits landmarks by name and reports through ssc_fitter", "[fitting][capi]") {
+    ssc_model* model = nullptr;
+    REQUIRE(ssc_model_load_default(nullptr, &model) == SSC_OK);
+    const uint32_t V = ssc_model_vertex_count(model), J = ssc_model_joint_count(model), K = ssc_model_shape_count(model);
+    const uint32_t L = ssc_model_landmark_count(model);
+    // A known body made through the public API.
+    ssc_body* body = nullptr;
+    REQUIRE(ssc_body_create(model, nullptr, &body) == SSC_OK);
+    std::vector<float> shape(K, 0.f);
+    shape[0] = 1.2f, shape[1] = -0.8f, shape[3] = 0.5f;
+    REQUIRE(ssc_body_set_shape(body, shape.data(), K) == SSC_OK);
+    std::vector<float> axis_angle(3 * J, 0.f);
+    uint32_t elbow = 0;
+    REQUIRE(ssc_model_find_joint(model, "lowerarm_l", &elbow) == SSC_OK);
+    axis_angle[3 * elbow + 2] = 0.8f;
+    const float translation[3] = {0.2f, 0.f, 1.f};
+    REQUIRE(ssc_body_set_pose_axis_angle(body, axis_angle.data(), J, translation) == SSC_OK);
+    std::vector<float> truth(3 * V), landmarks(3 * L);
+    REQUIRE(ssc_body_get_vertices(body, truth.data(), V, 0) == SSC_OK);
+    REQUIRE(ssc_body_get_landmarks(body, landmarks.data(), L, 0) == SSC_OK);
+    std::vector<const char*> names(L);
+    for (uint32_t l = 0; l < L; ++l) REQUIRE(ssc_model_get_landmark_name(model, l, &names[l]) == SSC_OK);
+
+    ssc_fitter_def def;
+    ssc_fitter_def_init(&def, sizeof def);
+    def.landmark_sigma = 0.005f;
+    ssc_fitter* fitter = nullptr;
+    REQUIRE(ssc_fitter_create(model, &def, &fitter) == SSC_OK);
+    float out[3];
+    CHECK(ssc_fitter_get_shape(fitter, out, 3) == SSC_ERROR_INVALID_ARGUMENT);  // not solved yet
+    CHECK(ssc_fitter_solve(fitter, nullptr, nullptr, nullptr) == SSC_ERROR_INVALID_ARGUMENT);  // no frames
+    const char* unknown[1] = {"Left Elbow Tip"};
+    CHECK(ssc_fitter_add_landmarks_by_name(fitter, 0, unknown, landmarks.data(), nullptr, 1) == SSC_ERROR_NOT_FOUND);
+    CHECK(std::string(ssc_last_error()).find("Left Elbow Tip") != std::string::npos);
+    CHECK(ssc_fitter_add_landmarks_by_name(fitter, 1, names.data(), landmarks.data(), nullptr, L) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_fitter_frame_count(fitter) == 0);  // nothing added by the failures
+    REQUIRE(ssc_fitter_add_landmarks_by_name(fitter, 0, names.data(), landmarks.data(), nullptr, L) == SSC_OK);
+    CHECK(ssc_fitter_frame_count(fitter) == 1);
+
+    // Cancelling from the progress callback.
+    auto cancel = [](void*, uint32_t iteration, float) { return iteration >= 2 ? 1 : 0; };
+    CHECK(ssc_fitter_solve(fitter, cancel, nullptr, nullptr) == SSC_ERROR_CANCELLED);
+
+    ssc_fit_report report;
+    report.struct_size = sizeof report;
+    REQUIRE(ssc_fitter_solve(fitter, nullptr, nullptr, &report) == SSC_OK);
+    CHECK(report.iterations > 0);
+    CHECK(report.landmark_rms < 0.01f);
+    std::vector<float> fitted(3 * V), fitted_shape(K);
+    CHECK(ssc_fitter_get_vertices(fitter, 0, fitted.data(), V - 1, 0) == SSC_ERROR_BUFFER_TOO_SMALL);
+    REQUIRE(ssc_fitter_get_vertices(fitter, 0, fitted.data(), V, 0) == SSC_OK);
+    REQUIRE(ssc_fitter_get_shape(fitter, fitted_shape.data(), K) == SSC_OK);
+    CHECK(ssc_fitter_get_pose(fitter, 1, nullptr, 0, nullptr, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+    std::vector<float> rotations(4 * J);
+    float t[3], scale = 0;
+    REQUIRE(ssc_fitter_get_pose(fitter, 0, rotations.data(), J, t, &scale) == SSC_OK);
+    CHECK(scale == 1.f);
+    double err = 0;
+    for (uint32_t v = 0; v < V; ++v)
+        err += std::sqrt(std::pow(fitted[3 * v] - truth[3 * v], 2) + std::pow(fitted[3 * v + 1] - truth[3 * v + 1], 2) +
+                         std::pow(fitted[3 * v + 2] - truth[3 * v + 2], 2));
+    err /= V;
+    INFO("mean vertex error " << err * 1e3 << " mm; shape[0] " << fitted_shape[0]);
+    CHECK(err < 0.01);
+    // The fitted parameters reproduce the fitted surface through a body.
+    REQUIRE(ssc_body_set_shape(body, fitted_shape.data(), K) == SSC_OK);
+    REQUIRE(ssc_body_set_pose(body, rotations.data(), J, t) == SSC_OK);
+    std::vector<float> again(3 * V);
+    REQUIRE(ssc_body_get_vertices(body, again.data(), V, 0) == SSC_OK);
+    double worst = 0;
+    for (std::size_t i = 0; i < again.size(); ++i) worst = std::max(worst, double(std::abs(again[i] - fitted[i])));
+    CHECK(worst < 1e-4);
+
+    // Points: bad input is refused whole.
+    std::vector<float> pts(3 * 20, 0.f);
+    for (int i = 0; i < 20; ++i) pts[3 * i] = 0.01f * i;
+    CHECK(ssc_fitter_add_points(fitter, 0, pts.data(), nullptr, nullptr, 10, 0) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_fitter_add_points(fitter, 0, pts.data(), nullptr, nullptr, 20, 6) == SSC_ERROR_INVALID_ARGUMENT);
+    pts[7] = std::nanf("");
+    CHECK(ssc_fitter_add_points(fitter, 0, pts.data(), nullptr, nullptr, 20, 0) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_fitter_point_count(fitter, 0) == 0);
+    pts[7] = 0;
+    REQUIRE(ssc_fitter_add_points(fitter, 0, pts.data(), nullptr, nullptr, 20, 0) == SSC_OK);
+    CHECK(ssc_fitter_point_count(fitter, 0) == 20);
+    CHECK(ssc_fitter_get_shape(fitter, fitted_shape.data(), K) == SSC_ERROR_INVALID_ARGUMENT);  // results dropped
+    CHECK(ssc_fitter_clear(fitter) == SSC_OK);
+    CHECK(ssc_fitter_frame_count(fitter) == 0);
+
+    CHECK(ssc_fitter_create(nullptr, nullptr, &fitter) == SSC_ERROR_INVALID_ARGUMENT);
+    ssc_fitter_destroy(fitter);
+    ssc_fitter_destroy(nullptr);
+    ssc_body_destroy(body);
+    ssc_model_release(model);
+}

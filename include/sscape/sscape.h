@@ -447,6 +447,150 @@ SSC_API void ssc_batch_desc_init(ssc_batch_desc* desc, size_t size);
  */
 SSC_API ssc_status ssc_model_synthesize_batch(const ssc_model* model, const ssc_batch_desc* desc);
 
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Fitting                                                                                         */
+
+/**
+ * A fitter finds the shape, pose (per-joint rotations), translation and optionally a global scale
+ * that best explain measurements of one person: landmarks, point clouds or scans, in one or more
+ * frames. All frames share one shape; each has its own pose. Observations are added, then
+ * ssc_fitter_solve runs; results are read per frame. Many fitters may share one model.
+ */
+typedef struct ssc_fitter ssc_fitter;
+
+/** Options of ssc_fitter_create. Fill with ssc_fitter_def_init; append-only. */
+typedef struct ssc_fitter_def {
+    uint32_t struct_size;     /**< sizeof(ssc_fitter_def), set by ssc_fitter_def_init. */
+    uint32_t shape_count;     /**< Shape components solved for; 0 (default) = all of the model's. */
+    uint32_t fit_scale;       /**< Non-zero: solve a global scale too (data in unknown units). Default 0. */
+    uint32_t max_iterations;  /**< Levenberg-Marquardt iterations over all stages. Default 60. */
+    float landmark_sigma;     /**< Expected landmark placement error, metres (> 0). Default 0.01. */
+    float point_sigma;        /**< Expected scan noise plus model error, metres (> 0). Default 0.004. */
+    float shape_prior;        /**< Weight of the Gaussian shape prior (>= 0; 1 = the model's own). Default 1. */
+    float pose_prior;         /**< Weight of the joint rotation prior (>= 0). Default 1. */
+    uint32_t max_points;      /**< Scan points used per iteration, a fixed random subset (>= 16). Default 3000. */
+    uint32_t seed;            /**< Seed of that subset. Default 1. */
+} ssc_fitter_def;
+
+/** Fills def with defaults; size = sizeof(*def). Threads: any. */
+SSC_API void ssc_fitter_def_init(ssc_fitter_def* def, size_t size);
+
+/**
+ * Creates a fitter with no observations.
+ * @param model  the model; the fitter takes a reference to it.
+ * @param def    options; NULL = defaults.
+ * @param out    receives the fitter; set only on success.
+ * Ownership: the caller owns *out, ended by ssc_fitter_destroy. The fitter keeps a double-precision
+ * copy of the shape basis it uses (24 bytes per vertex and component). Threads: any; the fitter
+ * itself is used from one thread at a time.
+ */
+SSC_API ssc_status ssc_fitter_create(ssc_model* model, const ssc_fitter_def* def, ssc_fitter** out);
+
+/** Destroys a fitter and drops its model reference. NULL is ignored. Threads: the fitter's thread. */
+SSC_API void ssc_fitter_destroy(ssc_fitter* fitter);
+
+/** Removes every observation and result (the fitter is as created). Threads: the fitter's thread. */
+SSC_API ssc_status ssc_fitter_clear(ssc_fitter* fitter);
+
+/** Frames that have observations or results (the highest frame index used plus one). */
+SSC_API uint32_t ssc_fitter_frame_count(const ssc_fitter* fitter);
+
+/**
+ * Adds landmark observations to a frame.
+ * @param frame      frame index: an existing frame or ssc_fitter_frame_count (a new frame).
+ * @param indices    count model landmark indices (ssc_model_find_landmark).
+ * @param positions  3 * count floats, metres, any frame of reference (the fit finds the rigid motion).
+ * @param weights    count relative confidences (> 0), or NULL for all 1.
+ * @return SSC_ERROR_INVALID_ARGUMENT for NULL, a bad frame, an index out of range, non-finite
+ *         values or non-positive weights; nothing is added then.
+ * Ownership: the arrays are copied. Threads: the fitter's thread.
+ */
+SSC_API ssc_status ssc_fitter_add_landmarks(ssc_fitter* fitter, uint32_t frame, const uint32_t* indices,
+                                            const float* positions, const float* weights, uint32_t count);
+
+/**
+ * As ssc_fitter_add_landmarks, by name (the CAESAR names of the default model, e.g. "Sellion").
+ * @return SSC_ERROR_NOT_FOUND (nothing added) when a name is not one of the model's landmarks; the
+ *         message names it.
+ */
+SSC_API ssc_status ssc_fitter_add_landmarks_by_name(ssc_fitter* fitter, uint32_t frame, const char* const* names,
+                                                    const float* positions, const float* weights, uint32_t count);
+
+/**
+ * Adds a point cloud (scan vertices, depth samples) to a frame.
+ * @param points      count points, 3 floats each at stride bytes (0 = packed), metres.
+ * @param normals     NULL, or count unit normals (outward) at the same stride; estimated when NULL.
+ * @param confidence  NULL, or count weights in [0, 1] (packed floats).
+ * @param count       at least 16 points.
+ * @return SSC_ERROR_INVALID_ARGUMENT for NULL, a bad frame or stride, too few points, non-finite
+ *         values, non-unit normals or confidences outside [0, 1]; nothing is added then.
+ * Ownership: the arrays are copied. Threads: the fitter's thread.
+ */
+SSC_API ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float* points, const float* normals,
+                                         const float* confidence, uint32_t count, size_t stride);
+
+/** Called once per solver iteration with the current cost; return non-zero to cancel. */
+typedef int (*ssc_progress_fn)(void* user, uint32_t iteration, float cost);
+
+/** What a solve did. Fill struct_size (sizeof) before the call; fields beyond it are not written. */
+typedef struct ssc_fit_report {
+    uint32_t struct_size;     /**< sizeof(ssc_fit_report), set by the caller. */
+    uint32_t iterations;      /**< Levenberg-Marquardt iterations run. */
+    uint32_t converged;       /**< Non-zero when the cost stopped decreasing before the iteration limit. */
+    uint32_t reserved;        /**< 0. */
+    float initial_cost;       /**< Cost at the start (robust, in units of the sigmas). */
+    float final_cost;         /**< Cost at the end. */
+    float landmark_rms;       /**< RMS distance of landmarks to their model landmarks, metres (0 if none). */
+    float point_mean;         /**< Mean distance of accepted scan correspondences, metres (0 if none). */
+    float inlier_fraction;    /**< Share of correspondence candidates accepted (0 if no points). */
+    float seconds;            /**< Wall time of the solve. */
+} ssc_fit_report;
+
+/**
+ * Fits the model to every frame's observations: a rigid start (from landmarks when there are at
+ * least 3, else from the clouds' principal axes trying the plausible facing directions), then
+ * Levenberg-Marquardt over shape, pose, translation (and scale), coarse to fine.
+ * Not converging within max_iterations is reported in report->converged, not as an error.
+ * @param progress  NULL or a callback; non-zero from it stops the solve with SSC_ERROR_CANCELLED
+ *                  (the results then hold the state reached).
+ * @param report    NULL or a report to fill (struct_size set by the caller).
+ * @return SSC_ERROR_INVALID_ARGUMENT when a frame has too little data (fewer than 3 landmarks and
+ *         16 points) or there are no frames.
+ * Threads: the fitter's thread (runs on it; uses no other threads).
+ */
+SSC_API ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* user, ssc_fit_report* report);
+
+/** The fitted shape (standard deviations); capacity >= ssc_model_shape_count (unused components 0).
+ *  @return SSC_ERROR_INVALID_ARGUMENT before a successful solve. Threads: the fitter's thread. */
+SSC_API ssc_status ssc_fitter_get_shape(const ssc_fitter* fitter, float* out, uint32_t capacity);
+
+/**
+ * The fitted pose of a frame: joint_capacity >= ssc_model_joint_count quaternions (x y z w, each
+ * joint's rest frame, as ssc_body_set_pose takes), translation (3 floats, metres) and scale (1
+ * float). Any output may be NULL. The fitted surface is scale * (posed body) + translation.
+ * Threads: the fitter's thread.
+ */
+SSC_API ssc_status ssc_fitter_get_pose(const ssc_fitter* fitter, uint32_t frame, float* rotations, uint32_t joint_capacity,
+                                       float* translation, float* scale);
+
+/** The fitted surface of a frame (scale and translation applied): capacity in vertices, stride in
+ *  bytes (0 = packed). Threads: the fitter's thread. */
+SSC_API ssc_status ssc_fitter_get_vertices(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity,
+                                           size_t stride);
+
+/**
+ * Per-point residuals of a frame after a solve, in the order the points were added (all clouds of
+ * the frame, one after another): the distance in metres from each point to the fitted surface
+ * (along the normal of the nearest fitted vertex). Outliers keep their (large) distances.
+ * @param capacity  floats out holds: at least the frame's point count.
+ * Threads: the fitter's thread.
+ */
+SSC_API ssc_status ssc_fitter_get_point_residuals(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity);
+
+/** Number of points added to a frame (0 for an unknown frame). */
+SSC_API uint32_t ssc_fitter_point_count(const ssc_fitter* fitter, uint32_t frame);
+
 #ifdef __cplusplus
 }
 #endif

@@ -4,6 +4,7 @@
 
 #include "common/alloc.hpp"
 #include "common/thread_pool.hpp"
+#include "fitting/fitter.hpp"
 #include "synthesis/body.hpp"
 #include "synthesis/model.hpp"
 
@@ -41,8 +42,21 @@ struct ssc_body {
     explicit ssc_body(ssc_model* m) : model(m), body(m->model, &m->context->allocator) {}
 };
 
+struct ssc_fitter {
+    ssc_model* model;  // holds one reference
+    ssc::fitting::FitOptions options;
+    ssc::fitting::LinearModel linear;
+    std::vector<ssc::fitting::Frame> frames;
+    bool solved = false;
+    ssc::fitting::FitSolution solution;
+    std::vector<std::vector<float>> residuals;  // per frame, per point, after a solve
+
+    ssc_fitter(ssc_model* m, const ssc::fitting::FitOptions& o) : model(m), options(o), linear(m->model, o.components) {}
+};
+
 namespace ssc::capi {
 
+inline Allocator allocator_of(const ssc_fitter* f) { return f->model->context->allocator; }
 inline Allocator allocator_of(const ssc_context* c) { return c->allocator; }
 inline Allocator allocator_of(const ssc_model* m) { return m->context->allocator; }
 inline Allocator allocator_of(const ssc_body* b) { return b->model->context->allocator; }
