@@ -1,5 +1,6 @@
-// The `sscape` command line: one file per command, all built on the public C API except
-// make-test-model, which drives the C++ model writer.
+// The `sscape` command line: one file per command, built on the public C API except where a
+// command needs the C++ tools (make-test-model and train write models; simulate and the fit
+// picture use the simulator and renderer).
 #pragma once
 
 #include <sscape/sscape.h>
@@ -32,5 +33,7 @@ int cmd_info(const std::vector<std::string>& args);
 int cmd_synth(const std::vector<std::string>& args);
 int cmd_make_test_model(const std::vector<std::string>& args);
 int cmd_train(const std::vector<std::string>& args);
+int cmd_fit(const std::vector<std::string>& args);
+int cmd_simulate(const std::vector<std::string>& args);
 
 }  // namespace ssc::cli

@@ -67,7 +67,13 @@ const char* kUsage =
     "                             write a procedural test model\n"
     "  train --assets MAKEHUMAN_DIR -o OUT.sscape [--bodies N] [--components K] [--seed S]\n"
     "        [--heldout N] [--population-csv FILE] [--report PREFIX] [--procrustes]\n"
-    "                             train a model from the CC0 MakeHuman assets\n";
+    "                             train a model from the CC0 MakeHuman assets\n"
+    "  fit [MODEL] (--landmarks FILE.lnd | --points FILE.ply|.obj)... -o OUT.obj|.ply [--units m|cm|mm]\n"
+    "      [--scale] [--hands] [--components K] [--iterations N] [--png FIT.png]\n"
+    "                             fit shape and pose to landmarks and/or a scan; write the fitted mesh\n"
+    "  simulate [MODEL] -o PREFIX [--seed S] [--points N] [--noise M] [--missing F] [--outliers F]\n"
+    "      [--landmark-noise M] [--pose-amount A] [--heading DEG]\n"
+    "                             a random posed body measured: PREFIX_scan.ply, PREFIX.lnd, PREFIX_truth.obj\n";
 
 }  // namespace
 
@@ -83,6 +89,8 @@ int main(int argc, char** argv) {
         if (command == "synth") return ssc::cli::cmd_synth(args);
         if (command == "make-test-model") return ssc::cli::cmd_make_test_model(args);
         if (command == "train") return ssc::cli::cmd_train(args);
+        if (command == "fit") return ssc::cli::cmd_fit(args);
+        if (command == "simulate") return ssc::cli::cmd_simulate(args);
         throw ssc::cli::UsageError("unknown command '" + command + "'");
     } catch (const ssc::cli::UsageError& e) {
         std::fprintf(stderr, "sscape: %s\n%s", e.what(), kUsage);

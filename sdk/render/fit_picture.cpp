@@ -47,7 +47,8 @@ void write_fit_picture(const std::string& path, const Model& model, const fittin
             if (col == 0) {
                 // The input: every point as a dot (at most 20k drawn).
                 const std::size_t n = pv.size() / 3, step = std::max<std::size_t>(1, n / 20000);
-                for (std::size_t i = 0; i < n; i += step) draw_point(img, vp, v, &pv[3 * i], 1, dot);
+                const int radius = n < 500 ? 3 : 1;  // landmarks big, scan points small
+                for (std::size_t i = 0; i < n; i += step) draw_point(img, vp, v, &pv[3 * i], radius, dot);
             } else {
                 const std::vector<float>& mesh = col == 1 ? fv : tv;
                 draw_mesh(img, depth, vp, v, mesh.data(), tris.data(), uint32_t(tris.size() / 3), col == 1 ? skin : truth_colour);

@@ -1,0 +1,163 @@
+// `sscape fit`: fits the model to a landmark file and/or point files through the C API fitter and
+// writes the fitted mesh, a report and optionally a picture of the fit beside its input.
+#include "cli.hpp"
+
+#include "capi/handles.hpp"
+#include "export/mesh_writers.hpp"
+#include "io/readers.hpp"
+#include "render/fit_picture.hpp"
+
+#include <cstdio>
+#include <unordered_map>
+
+namespace ssc::cli {
+namespace {
+
+struct Options {
+    std::string model, out, png;
+    std::vector<std::string> landmarks, points;
+    double points_scale = 1;  // to metres
+    bool scale = false, hands = false;
+    uint32_t components = 0, iterations = 0;
+};
+
+Options parse(const std::vector<std::string>& args) {
+    Options o;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& { return option_value(args, i); };
+        if (a == "-o" || a == "--output") o.out = value();
+        else if (a == "--landmarks") o.landmarks.push_back(value());
+        else if (a == "--points") o.points.push_back(value());
+        else if (a == "--units") {
+            const std::string& u = value();
+            if (u == "m") o.points_scale = 1;
+            else if (u == "mm") o.points_scale = 1e-3;
+            else if (u == "cm") o.points_scale = 1e-2;
+            else throw UsageError("--units must be m, cm or mm");
+        } else if (a == "--scale") o.scale = true;
+        else if (a == "--hands") o.hands = true;
+        else if (a == "--components") o.components = parse_count(value(), a);
+        else if (a == "--iterations") o.iterations = parse_count(value(), a);
+        else if (a == "--png") o.png = value();
+        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+        else if (o.model.empty()) o.model = a;
+        else throw UsageError("unexpected argument '" + a + "'");
+    }
+    if (o.landmarks.empty() && o.points.empty()) throw UsageError("fit needs --landmarks FILE.lnd and/or --points FILE.ply|.obj");
+    if (o.out.empty()) throw UsageError("fit needs -o OUT.obj or OUT.ply");
+    exporters::check_mesh_path(o.out);
+    if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
+        throw UsageError("--png needs a file name ending in .png");
+    return o;
+}
+
+bool is_hand_landmark(const std::string& normalized) {
+    return normalized.find("metacarpal") != std::string::npos || normalized.find("dactylion") != std::string::npos;
+}
+
+}  // namespace
+
+int cmd_fit(const std::vector<std::string>& args) {
+    const Options o = parse(args);
+    ssc_model* model = load_model(o.model);
+    struct Guard {
+        ssc_model* m;
+        ssc_fitter* f = nullptr;
+        ~Guard() {
+            ssc_fitter_destroy(f);
+            ssc_model_release(m);
+        }
+    } guard{model};
+    ssc_fitter_def def;
+    ssc_fitter_def_init(&def, sizeof def);
+    def.fit_scale = o.scale;
+    def.shape_count = o.components;
+    if (o.iterations) def.max_iterations = o.iterations;
+    check(ssc_fitter_create(model, &def, &guard.f), "fitter");
+
+    // Landmarks matched by name, as CAESAR files spell them.
+    std::unordered_map<std::string, uint32_t> by_name;
+    for (uint32_t l = 0; l < ssc_model_landmark_count(model); ++l) {
+        const char* name = "";
+        check(ssc_model_get_landmark_name(model, l, &name), "landmark name");
+        by_name[io::normalized_landmark_name(name)] = l;
+    }
+    std::vector<Eigen::Vector3d> shown;  // input drawn in the picture
+    for (const auto& path : o.landmarks) {
+        std::vector<uint32_t> indices;
+        std::vector<float> positions;
+        uint32_t skipped_hands = 0;
+        for (const auto& r : io::read_lnd(path)) {
+            const std::string key = io::normalized_landmark_name(r.name);
+            const auto it = by_name.find(key);
+            if (it == by_name.end()) {
+                std::fprintf(stderr, "%s: landmark '%s' is not one of the model's; ignored\n", path.c_str(), r.name.c_str());
+                continue;
+            }
+            if (!o.hands && is_hand_landmark(key)) {
+                ++skipped_hands;
+                continue;
+            }
+            indices.push_back(it->second);
+            for (int a = 0; a < 3; ++a) positions.push_back(float(r.position[a]));
+            shown.push_back(r.position);
+        }
+        if (indices.size() < 3) throw UsageError(path + ": fewer than 3 usable landmarks");
+        check(ssc_fitter_add_landmarks(guard.f, 0, indices.data(), positions.data(), nullptr, uint32_t(indices.size())), path);
+        std::printf("%s: %zu landmarks (%u hand landmarks left out; --hands uses them)\n", path.c_str(), indices.size(), skipped_hands);
+    }
+    for (const auto& path : o.points) {
+        const io::PointFile pf = io::read_points(path);
+        std::vector<float> pts, nrm;
+        for (const auto& p : pf.points) {
+            for (int a = 0; a < 3; ++a) pts.push_back(float(p[a] * o.points_scale));
+            shown.push_back(p * o.points_scale);
+        }
+        for (const auto& n : pf.normals)
+            for (int a = 0; a < 3; ++a) nrm.push_back(float(n[a]));
+        check(ssc_fitter_add_points(guard.f, 0, pts.data(), nrm.empty() ? nullptr : nrm.data(), nullptr, uint32_t(pf.points.size()), 0), path);
+        std::printf("%s: %zu points%s\n", path.c_str(), pf.points.size(), pf.normals.empty() ? " (normals estimated)" : " with normals");
+    }
+    ssc_fit_report report;
+    report.struct_size = sizeof report;
+    check(ssc_fitter_solve(guard.f, nullptr, nullptr, &report), "fit");
+    std::printf("fit: %u iterations, %s, %.1f ms; cost %.4g -> %.4g\n", report.iterations, report.converged ? "converged" : "iteration limit",
+                report.seconds * 1e3, report.initial_cost, report.final_cost);
+    if (!o.landmarks.empty()) std::printf("landmark rms distance: %.2f mm\n", report.landmark_rms * 1e3);
+    if (!o.points.empty()) std::printf("scan: mean correspondence distance %.2f mm, inliers %.1f %%\n", report.point_mean * 1e3, 100 * report.inlier_fraction);
+
+    const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model), J = ssc_model_joint_count(model);
+    const uint32_t K = ssc_model_shape_count(model);
+    std::vector<float> verts(3ull * V), shape(K), rotations(4ull * J), translation(3);
+    float scale = 1;
+    std::vector<uint32_t> tris(3ull * T);
+    check(ssc_fitter_get_vertices(guard.f, 0, verts.data(), V, 0), "vertices");
+    check(ssc_fitter_get_shape(guard.f, shape.data(), K), "shape");
+    check(ssc_fitter_get_pose(guard.f, 0, rotations.data(), J, translation.data(), &scale), "pose");
+    check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
+    std::printf("scale %.4f, translation %.3f %.3f %.3f m\nshape:", scale, translation[0], translation[1], translation[2]);
+    for (uint32_t k = 0; k < K; ++k) std::printf("%s%.3f", k ? "," : " ", shape[k]);
+    std::printf("\n");
+    exporters::MeshView mesh;
+    mesh.vertex_count = V;
+    mesh.positions = verts.data();
+    mesh.triangle_count = T;
+    mesh.triangles = tris.data();
+    exporters::write_mesh(o.out, mesh);
+    std::printf("wrote %s\n", o.out.c_str());
+    if (!o.png.empty()) {
+        fitting::FitState s;
+        for (uint32_t j = 0; j < J; ++j)
+            s.pose.emplace_back(rotations[4 * j + 3], rotations[4 * j], rotations[4 * j + 1], rotations[4 * j + 2]);
+        s.translation = Eigen::Vector3d(translation[0], translation[1], translation[2]);
+        s.scale = scale;
+        std::vector<Eigen::Vector3d> fitted(V);
+        for (uint32_t v = 0; v < V; ++v) fitted[v] = Eigen::Vector3d(verts[3 * v], verts[3 * v + 1], verts[3 * v + 2]);
+        render::write_fit_picture(o.png, model->model, s, shown, fitted, {});
+        std::printf("wrote %s (input, then the fit; front and side)\n", o.png.c_str());
+    }
+    return 0;
+}
+
+}  // namespace ssc::cli

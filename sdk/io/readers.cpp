@@ -1,0 +1,388 @@
+#include "io/readers.hpp"
+
+#include "common/error.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace ssc::io {
+
+namespace {
+
+constexpr std::size_t kMaxFileBytes = std::size_t(2) << 30;  // 2 GiB: larger inputs are refused, not half read
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(SSC_ERROR_IO, "cannot open " + path);
+    in.seekg(0, std::ios::end);
+    const auto size = in.tellg();
+    if (size < 0 || std::size_t(size) > kMaxFileBytes) fail(SSC_ERROR_IO, path + ": unreadable or larger than 2 GiB");
+    std::string data(std::size_t(size), '\0');
+    in.seekg(0);
+    in.read(data.data(), size);
+    if (!in) fail(SSC_ERROR_IO, "cannot read " + path);
+    return data;
+}
+
+[[noreturn]] void bad(const std::string& path, const std::string& what) { fail(SSC_ERROR_INVALID_ARGUMENT, path + ": " + what); }
+
+bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
+
+// Normals from faces (area weighted), for files that give faces but no normals.
+std::vector<Eigen::Vector3d> face_normals(const std::vector<Eigen::Vector3d>& pts, const std::vector<uint32_t>& tris) {
+    std::vector<Eigen::Vector3d> n(pts.size(), Eigen::Vector3d::Zero());
+    for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
+        const Eigen::Vector3d f = (pts[tris[t + 1]] - pts[tris[t]]).cross(pts[tris[t + 2]] - pts[tris[t]]);
+        for (int i = 0; i < 3; ++i) n[tris[t + i]] += f;
+    }
+    // Points on no face get no normal: then the whole set goes without (the fitter estimates them).
+    for (auto& v : n) {
+        const double len = v.norm();
+        if (len == 0) return {};
+        v /= len;
+    }
+    return n;
+}
+
+// --- PLY -----------------------------------------------------------------------------------------
+
+enum class PlyType { I8, U8, I16, U16, I32, U32, F32, F64 };
+
+PlyType ply_type(const std::string& path, const std::string& t) {
+    if (t == "char" || t == "int8") return PlyType::I8;
+    if (t == "uchar" || t == "uint8") return PlyType::U8;
+    if (t == "short" || t == "int16") return PlyType::I16;
+    if (t == "ushort" || t == "uint16") return PlyType::U16;
+    if (t == "int" || t == "int32") return PlyType::I32;
+    if (t == "uint" || t == "uint32") return PlyType::U32;
+    if (t == "float" || t == "float32") return PlyType::F32;
+    if (t == "double" || t == "float64") return PlyType::F64;
+    bad(path, "unknown PLY property type '" + t + "'");
+}
+
+std::size_t ply_size(PlyType t) {
+    switch (t) {
+        case PlyType::I8: case PlyType::U8: return 1;
+        case PlyType::I16: case PlyType::U16: return 2;
+        case PlyType::I32: case PlyType::U32: case PlyType::F32: return 4;
+        case PlyType::F64: return 8;
+    }
+    return 0;
+}
+
+struct PlyProperty {
+    std::string name;
+    PlyType type = PlyType::F32;
+    bool list = false;
+    PlyType count_type = PlyType::U8;
+};
+
+struct PlyElement {
+    std::string name;
+    uint64_t count = 0;
+    std::vector<PlyProperty> props;
+};
+
+// Reads values from an ascii or binary body.
+class PlyCursor {
+public:
+    PlyCursor(const std::string& path, const std::string& data, std::size_t pos, int format)
+        : path_(path), data_(data), pos_(pos), format_(format) {
+        if (format_ == 0) text_.str(data.substr(pos));
+    }
+    double read(PlyType t) {
+        if (format_ == 0) {
+            double v;
+            if (!(text_ >> v)) bad(path_, "PLY data ends early or holds a non-number");
+            return v;
+        }
+        const std::size_t n = ply_size(t);
+        if (pos_ + n > data_.size()) bad(path_, "PLY data ends early at byte " + std::to_string(pos_));
+        unsigned char b[8];
+        std::memcpy(b, data_.data() + pos_, n);
+        pos_ += n;
+        if (format_ == 2) std::reverse(b, b + n);  // big endian
+        switch (t) {
+            case PlyType::I8: { int8_t v; std::memcpy(&v, b, 1); return v; }
+            case PlyType::U8: return b[0];
+            case PlyType::I16: { int16_t v; std::memcpy(&v, b, 2); return v; }
+            case PlyType::U16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
+            case PlyType::I32: { int32_t v; std::memcpy(&v, b, 4); return v; }
+            case PlyType::U32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
+            case PlyType::F32: { float v; std::memcpy(&v, b, 4); return v; }
+            case PlyType::F64: { double v; std::memcpy(&v, b, 8); return v; }
+        }
+        return 0;
+    }
+    std::size_t remaining() const { return format_ == 0 ? data_.size() : data_.size() - pos_; }
+
+private:
+    const std::string& path_;
+    const std::string& data_;
+    std::size_t pos_;
+    int format_;  // 0 ascii, 1 little endian, 2 big endian
+    std::istringstream text_;
+};
+
+PointFile read_ply(const std::string& path) {
+    const std::string data = slurp(path);
+    const std::size_t end = data.find("end_header");
+    if (data.compare(0, 3, "ply") != 0 || end == std::string::npos) bad(path, "not a PLY file (no 'ply' magic or 'end_header')");
+    std::size_t body = data.find('\n', end);
+    if (body == std::string::npos) bad(path, "PLY header is not terminated by a newline");
+    ++body;
+    std::istringstream header(data.substr(0, end));
+    std::string line;
+    int format = -1;
+    std::vector<PlyElement> elements;
+    while (std::getline(header, line)) {
+        std::istringstream ls(line);
+        std::string word;
+        ls >> word;
+        if (word == "format") {
+            std::string f;
+            ls >> f;
+            format = f == "ascii" ? 0 : f == "binary_little_endian" ? 1 : f == "binary_big_endian" ? 2 : -1;
+            if (format < 0) bad(path, "unknown PLY format '" + f + "'");
+        } else if (word == "element") {
+            PlyElement e;
+            if (!(ls >> e.name >> e.count)) bad(path, "malformed PLY element line '" + line + "'");
+            elements.push_back(e);
+        } else if (word == "property") {
+            if (elements.empty()) bad(path, "PLY property before any element");
+            PlyProperty p;
+            std::string t;
+            ls >> t;
+            if (t == "list") {
+                std::string ct, it;
+                ls >> ct >> it >> p.name;
+                p.list = true;
+                p.count_type = ply_type(path, ct);
+                p.type = ply_type(path, it);
+            } else {
+                p.type = ply_type(path, t);
+                ls >> p.name;
+            }
+            elements.back().props.push_back(p);
+        }
+    }
+    if (format < 0) bad(path, "PLY header has no format line");
+    PlyCursor cur(path, data, body, format);
+    PointFile out;
+    std::vector<uint32_t> tris;
+    for (const auto& e : elements) {
+        // Hostile counts: every element needs at least one byte per property, so a count larger
+        // than the remaining file is an error before anything is allocated for it.
+        if (e.count > cur.remaining()) bad(path, "PLY element '" + e.name + "' claims " + std::to_string(e.count) + " entries, more than the file holds");
+        int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, ifaces = -1;
+        for (std::size_t i = 0; i < e.props.size(); ++i) {
+            const auto& n = e.props[i].name;
+            if (n == "x") ix = int(i);
+            if (n == "y") iy = int(i);
+            if (n == "z") iz = int(i);
+            if (n == "nx") inx = int(i);
+            if (n == "ny") iny = int(i);
+            if (n == "nz") inz = int(i);
+            if (n == "vertex_indices" || n == "vertex_index") ifaces = int(i);
+        }
+        const bool vertex = e.name == "vertex";
+        if (vertex && (ix < 0 || iy < 0 || iz < 0)) bad(path, "PLY vertex element lacks x, y or z");
+        const bool has_normals = vertex && inx >= 0 && iny >= 0 && inz >= 0;
+        std::vector<double> values(e.props.size());
+        for (uint64_t r = 0; r < e.count; ++r) {
+            std::vector<uint32_t> poly;
+            for (std::size_t i = 0; i < e.props.size(); ++i) {
+                const auto& p = e.props[i];
+                if (!p.list) {
+                    values[i] = cur.read(p.type);
+                    continue;
+                }
+                const double n = cur.read(p.count_type);
+                if (!(n >= 0 && n <= 1024)) bad(path, "PLY list of " + std::to_string(n) + " entries");
+                for (int k = 0; k < int(n); ++k) {
+                    const double idx = cur.read(p.type);
+                    if (int(i) == ifaces) {
+                        if (!(idx >= 0 && idx < double(out.points.size()))) bad(path, "PLY face index " + std::to_string(idx) + " out of range");
+                        poly.push_back(uint32_t(idx));
+                    }
+                }
+            }
+            if (vertex) {
+                const Eigen::Vector3d p(values[std::size_t(ix)], values[std::size_t(iy)], values[std::size_t(iz)]);
+                if (!finite(p)) bad(path, "PLY vertex " + std::to_string(r) + " is not finite");
+                out.points.push_back(p);
+                if (has_normals) {
+                    Eigen::Vector3d n(values[std::size_t(inx)], values[std::size_t(iny)], values[std::size_t(inz)]);
+                    const double len = n.norm();
+                    out.normals.push_back(std::isfinite(len) && len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero());
+                }
+            }
+            for (std::size_t k = 1; k + 1 < poly.size(); ++k) tris.insert(tris.end(), {poly[0], poly[k], poly[k + 1]});
+        }
+    }
+    // Normals of zero length (or none at all) leave the estimate to the fitter.
+    for (const auto& n : out.normals)
+        if (n.squaredNorm() == 0) {
+            out.normals.clear();
+            break;
+        }
+    if (out.normals.empty() && !tris.empty()) out.normals = face_normals(out.points, tris);
+    return out;
+}
+
+// --- OBJ -----------------------------------------------------------------------------------------
+
+PointFile read_obj(const std::string& path) {
+    const std::string data = slurp(path);
+    std::istringstream in(data);
+    std::string line;
+    PointFile out;
+    std::vector<Eigen::Vector3d> vn;
+    std::vector<uint32_t> tris;
+    std::size_t number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        std::istringstream ls(line);
+        std::string tag;
+        ls >> tag;
+        if (tag == "v" || tag == "vn") {
+            Eigen::Vector3d p;
+            if (!(ls >> p.x() >> p.y() >> p.z()) || !finite(p)) bad(path, "line " + std::to_string(number) + ": malformed '" + tag + "'");
+            (tag == "v" ? out.points : vn).push_back(p);
+        } else if (tag == "f") {
+            std::vector<uint32_t> poly;
+            std::string ref;
+            while (ls >> ref) {
+                const long idx = std::strtol(ref.c_str(), nullptr, 10);
+                const long n = long(out.points.size());
+                const long resolved = idx < 0 ? n + idx : idx - 1;  // OBJ indices are 1-based, negative = relative
+                if (resolved < 0 || resolved >= n) bad(path, "line " + std::to_string(number) + ": face index out of range");
+                poly.push_back(uint32_t(resolved));
+            }
+            for (std::size_t k = 1; k + 1 < poly.size(); ++k) tris.insert(tris.end(), {poly[0], poly[k], poly[k + 1]});
+        }
+    }
+    if (!tris.empty()) {
+        out.normals = face_normals(out.points, tris);
+    } else if (vn.size() == out.points.size()) {
+        out.normals = vn;
+        for (auto& n : out.normals) {
+            const double len = n.norm();
+            if (len == 0) {
+                out.normals.clear();
+                break;
+            }
+            n /= len;
+        }
+    }
+    return out;
+}
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+    if (s.size() < suffix.size()) return false;
+    for (std::size_t i = 0; i < suffix.size(); ++i)
+        if (std::tolower(static_cast<unsigned char>(s[s.size() - suffix.size() + i])) != suffix[i]) return false;
+    return true;
+}
+
+}  // namespace
+
+PointFile read_points(const std::string& path) {
+    PointFile f;
+    if (ends_with(path, ".ply")) f = read_ply(path);
+    else if (ends_with(path, ".obj")) f = read_obj(path);
+    else bad(path, "unknown point file type (expected .ply or .obj)");
+    if (f.points.empty()) bad(path, "holds no points");
+    return f;
+}
+
+std::string normalized_landmark_name(const std::string& name) {
+    std::string out;
+    for (char c : name)
+        if (std::isalnum(static_cast<unsigned char>(c))) out += char(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+std::vector<LandmarkRecord> read_lnd(const std::string& path) {
+    const std::string data = slurp(path);
+    std::istringstream in(data);
+    std::string line;
+    bool rows = false, ended = false;
+    std::size_t number = 0;
+    std::vector<LandmarkRecord> out;
+    while (std::getline(in, line)) {
+        ++number;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream ls(line);
+        std::string first;
+        ls >> first;
+        if (!rows) {
+            if (first == "AUX") rows = true;
+            continue;
+        }
+        if (first == "END") {
+            ended = true;
+            break;
+        }
+        if (first.empty()) continue;
+        // index, status, status, a fourth number, x, y, z, name (may contain spaces).
+        double index, s1, s2, fourth, x, y, z;
+        std::istringstream row(line);
+        if (!(row >> index >> s1 >> s2 >> fourth >> x >> y >> z))
+            bad(path, "line " + std::to_string(number) + ": expected index, two status columns, a number, x, y, z and a name");
+        std::string name;
+        std::getline(row, name);
+        const auto b = name.find_first_not_of(" \t");
+        name = b == std::string::npos ? "" : name.substr(b);
+        if (s1 == -999 || s2 == -999) continue;  // not found on this subject
+        LandmarkRecord r;
+        if (!(index >= 1 && index < 1e6)) bad(path, "line " + std::to_string(number) + ": landmark index out of range");
+        r.index = uint32_t(index);
+        r.name = name;
+        r.position = Eigen::Vector3d(x, y, z) / 1000.0;
+        if (!finite(r.position)) bad(path, "line " + std::to_string(number) + ": coordinates are not finite");
+        out.push_back(r);
+    }
+    if (!rows) bad(path, "no 'AUX =' line: not a CAESAR .lnd file");
+    if (!ended) bad(path, "no 'END =' line: the file is truncated");
+    return out;
+}
+
+DepthImage read_pgm_depth(const std::string& path) {
+    const std::string data = slurp(path);
+    std::size_t pos = 0;
+    auto token = [&]() {
+        for (;;) {
+            while (pos < data.size() && std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
+            if (pos < data.size() && data[pos] == '#') {
+                while (pos < data.size() && data[pos] != '\n') ++pos;
+                continue;
+            }
+            break;
+        }
+        const std::size_t start = pos;
+        while (pos < data.size() && !std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
+        return data.substr(start, pos - start);
+    };
+    if (token() != "P5") bad(path, "not a binary PGM (P5) file");
+    const long w = std::strtol(token().c_str(), nullptr, 10), h = std::strtol(token().c_str(), nullptr, 10);
+    const long maxval = std::strtol(token().c_str(), nullptr, 10);
+    if (w <= 0 || h <= 0 || w > 16384 || h > 16384) bad(path, "image size out of range");
+    if (maxval <= 255 || maxval > 65535) bad(path, "expected 16-bit samples (maxval 256..65535), got maxval " + std::to_string(maxval));
+    ++pos;  // the single whitespace after maxval
+    const std::size_t need = std::size_t(w) * std::size_t(h) * 2;
+    if (pos > data.size() || data.size() - pos < need) bad(path, "pixel data is truncated");
+    DepthImage img;
+    img.width = uint32_t(w);
+    img.height = uint32_t(h);
+    img.depth.resize(std::size_t(w) * std::size_t(h));
+    const auto* p = reinterpret_cast<const unsigned char*>(data.data() + pos);
+    for (std::size_t i = 0; i < img.depth.size(); ++i) img.depth[i] = float((p[2 * i] << 8) | p[2 * i + 1]) / 1000.f;
+    return img;
+}
+
+}  // namespace ssc::io

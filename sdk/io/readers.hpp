@@ -1,0 +1,47 @@
+// Readers for measurement files the fitter takes: CAESAR .lnd landmark files, PLY and OBJ point
+// clouds or meshes, 16-bit PGM depth images. Each validates what it reads and throws
+// ssc::Error (SSC_ERROR_IO for unreadable files, SSC_ERROR_INVALID_ARGUMENT for malformed content)
+// with the file name and line or offset.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ssc::io {
+
+struct LandmarkRecord {
+    uint32_t index = 0;          // the file's 1-based landmark number
+    std::string name;            // as written in the file
+    Eigen::Vector3d position;    // metres (the file's millimetres / 1000), the file's frame
+};
+
+// CAESAR .lnd: header lines, then rows between "AUX =" and "END =". Rows whose status columns hold
+// -999 (landmark not found) are skipped.
+std::vector<LandmarkRecord> read_lnd(const std::string& path);
+
+struct PointFile {
+    std::vector<Eigen::Vector3d> points;   // in the file's units (the caller scales)
+    std::vector<Eigen::Vector3d> normals;  // empty, or one unit normal per point
+};
+
+// PLY (ascii or binary little/big endian; x y z, optional nx ny nz; faces give normals when the
+// file has none) and OBJ (v lines, optional vn per vertex or f lines for normals). By extension.
+PointFile read_points(const std::string& path);
+
+struct DepthImage {
+    uint32_t width = 0, height = 0;
+    std::vector<float> depth;  // metres, row-major from the top; 0 = no measurement
+};
+
+// Binary PGM (P5) with maxval > 255 (16-bit big-endian samples), values in millimetres.
+DepthImage read_pgm_depth(const std::string& path);
+
+// Landmark names compared as the CAESAR files spell them: case, spaces and punctuation ignored
+// ("Lt. Metacarpal-Phal. II" == "lt metacarpal phal ii").
+std::string normalized_landmark_name(const std::string& name);
+
+}  // namespace ssc::io

@@ -1,0 +1,104 @@
+// Measurement file readers: well-formed files read back, malformed and hostile ones refused with
+// a message naming the file, never a crash.
+#include "common/error.hpp"
+#include "io/readers.hpp"
+#include "io/writers.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <fstream>
+
+using namespace ssc;
+
+namespace {
+
+std::string temp_file(const std::string& name, const std::string& content) {
+    const std::string path = "io_test_" + name;
+    std::ofstream(path, std::ios::binary) << content;
+    return path;
+}
+
+template <class F>
+ssc_status status_of(F&& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.status();
+    }
+    return SSC_OK;
+}
+
+}  // namespace
+
+TEST_CASE("lnd files round-trip and skip missing landmarks", "[io]") {
+    std::vector<io::LandmarkRecord> in = {{1, "Sellion", Eigen::Vector3d(0.01, 1.6, 0.1)}, {12, "Lt. Clavicale", Eigen::Vector3d(0.1, 1.4, 0)}};
+    io::write_lnd("io_test_a.lnd", "subject 1", in);
+    const auto out = io::read_lnd("io_test_a.lnd");
+    REQUIRE(out.size() == 2);
+    CHECK(out[1].name == "Lt. Clavicale");
+    CHECK(out[1].index == 12);
+    CHECK((out[0].position - in[0].position).norm() < 1e-5);
+    // The documented row shape, with a not-found landmark and CRLF line ends.
+    const auto path = temp_file("b.lnd", "SUBJECT_ID = x\r\nAUX =\r\n12   0  12  105.10   99.16   -2.63  326.00 Lt. Clavicale\r\n"
+                                         " 3 -999 -999 0 0 0 0 Lt. Infraorbitale\r\nEND =\r\n");
+    const auto b = io::read_lnd(path);
+    REQUIRE(b.size() == 1);
+    CHECK(b[0].position.isApprox(Eigen::Vector3d(0.09916, -0.00263, 0.326)));
+    CHECK(io::normalized_landmark_name("Lt. Metacarpal-Phal. II") == io::normalized_landmark_name("lt metacarpal phal ii"));
+    CHECK(status_of([&] { io::read_lnd(temp_file("c.lnd", "AUX =\n1 0 1 0 1 2 3 Sellion\n")); }) == SSC_ERROR_INVALID_ARGUMENT);  // no END
+    CHECK(status_of([&] { io::read_lnd(temp_file("d.lnd", "AUX =\n1 0 1 zero 1 2 3 Sellion\nEND =\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(status_of([&] { io::read_lnd("io_test_missing.lnd"); }) == SSC_ERROR_IO);
+}
+
+TEST_CASE("PLY and OBJ point files read, with normals from faces", "[io]") {
+    const auto ply = temp_file("a.ply",
+                               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    const auto a = io::read_points(ply);
+    REQUIRE(a.points.size() == 3);
+    REQUIRE(a.normals.size() == 3);
+    CHECK(a.normals[0].isApprox(Eigen::Vector3d(0, 0, 1)));
+    const auto obj = temp_file("a.obj", "# c\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const auto b = io::read_points(obj);
+    REQUIRE(b.points.size() == 3);
+    CHECK(b.normals[2].isApprox(Eigen::Vector3d(0, 0, 1)));
+    // Binary little endian with normals.
+    std::string bin = "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                      "property float nx\nproperty float ny\nproperty float nz\nend_header\n";
+    const float v[12] = {1, 2, 3, 0, 0, 1, 4, 5, 6, 1, 0, 0};
+    bin.append(reinterpret_cast<const char*>(v), sizeof v);
+    const auto c = io::read_points(temp_file("b.ply", bin));
+    REQUIRE(c.points.size() == 2);
+    CHECK(c.points[1].isApprox(Eigen::Vector3d(4, 5, 6)));
+    CHECK(c.normals[1].isApprox(Eigen::Vector3d(1, 0, 0)));
+    // Truncated at every byte: an error, never a crash.
+    for (std::size_t n = 0; n < bin.size(); ++n) {
+        const auto path = temp_file("t.ply", bin.substr(0, n));
+        CHECK(status_of([&] { io::read_points(path); }) != SSC_OK);
+    }
+    // Hostile count and bad face index.
+    CHECK(status_of([&] {
+              io::read_points(temp_file("h.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
+                                                 "property float y\nproperty float z\nend_header\n"));
+          }) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(status_of([&] { io::read_points(temp_file("f.obj", "v 0 0 0\nf 1 2 3\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(status_of([&] { io::read_points(temp_file("n.obj", "v 0 nan 0\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(status_of([&] { io::read_points(temp_file("x.xyz", "0 0 0\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
+}
+
+TEST_CASE("16-bit PGM depth images read in metres", "[io]") {
+    std::string pgm = "P5\n# depth\n3 2\n65535\n";
+    const unsigned char px[12] = {0x03, 0xE8, 0, 0, 0x07, 0xD0, 0, 1, 0, 2, 0xFF, 0xFF};  // 1000 mm, 0, 2000 mm, ...
+    pgm.append(reinterpret_cast<const char*>(px), sizeof px);
+    const auto img = io::read_pgm_depth(temp_file("a.pgm", pgm));
+    REQUIRE(img.width == 3);
+    REQUIRE(img.height == 2);
+    CHECK(img.depth[0] == Approx(1.0f));
+    CHECK(img.depth[1] == 0.f);
+    CHECK(img.depth[2] == Approx(2.0f));
+    CHECK(img.depth[5] == Approx(65.535f));
+    CHECK(status_of([&] { io::read_pgm_depth(temp_file("b.pgm", pgm.substr(0, pgm.size() - 1))); }) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(status_of([&] { io::read_pgm_depth(temp_file("c.pgm", "P5\n3 2\n255\n123456")); }) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(status_of([&] { io::read_pgm_depth(temp_file("d.pgm", "P2\n3 2\n65535\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
+}
