@@ -96,6 +96,7 @@ struct Stage {
     double gm_scale;      // Geman-McClure scale in sigmas
     double min_normal_dot;
     double point_fraction;  // of max_points
+    double tolerance = 1e-5;  // converged when a step lowers the cost by less than this fraction
 };
 
 struct FrameData {
@@ -141,21 +142,9 @@ public:
             }
             kin_.emplace_back(lin);
         }
-        // Model vertices for the model-to-scan direction, drawn by surface area (uniform over the
-        // surface, as scans are), so the finely meshed hands and face are not oversampled.
-        std::vector<double> area(lin.V, 0.0);
-        const auto& tri = d.mesh.triangles;
-        auto mean = [&](uint32_t v) { return Vector3d(d.shape.mean[3 * v], d.shape.mean[3 * v + 1], d.shape.mean[3 * v + 2]); };
-        for (std::size_t t = 0; t + 2 < tri.size(); t += 3) {
-            const double a = 0.5 * (mean(tri[t + 1]) - mean(tri[t])).cross(mean(tri[t + 2]) - mean(tri[t])).norm();
-            for (int i = 0; i < 3; ++i) area[tri[t + i]] += a / 3;
-        }
-        std::discrete_distribution<uint32_t> pick(area.begin(), area.end());
-        std::vector<uint8_t> taken(lin.V, 0);
-        for (uint32_t n = 0; n < 4 * o.max_points && vertex_sample_.size() < o.max_points; ++n) {
-            const uint32_t v = pick(rng);
-            if (!taken[v]) taken[v] = 1, vertex_sample_.push_back(v);
-        }
+        bool any_points = false;
+        for (const auto& fd : frames_) any_points |= !fd.points.empty();
+        if (any_points) sample_vertices(rng);
         posed_.resize(lin.V);
         posed_normals_.resize(lin.V);
     }
@@ -178,9 +167,9 @@ public:
         // Stage budgets: a fifth rigid, a third coarse, the rest fine.
         const uint32_t n0 = std::max<uint32_t>(1, total / 5), n1 = std::max<uint32_t>(1, total / 3);
         const Stage stages[3] = {
-            {n0, false, false, 0, 0.30, 10.0, 0.0, 0.25},
-            {n1, true, false, std::min<uint32_t>(K_, 10), 0.10, 6.0, 0.3, 0.5},
-            {total - n0 - n1, true, true, K_, 0.04, 4.0, 0.5, 1.0},
+            {n0, false, false, 0, 0.30, 10.0, 0.0, 0.25, 1e-3},
+            {n1, true, false, std::min<uint32_t>(K_, 10), 0.10, 6.0, 0.3, 0.5, 1e-4},
+            {total - n0 - n1, true, true, K_, 0.04, 4.0, 0.5, 1.0, 1e-5},
         };
         bool cancelled = false, converged = false;
         uint32_t iteration = 0;
@@ -220,6 +209,27 @@ public:
     }
 
 private:
+    // Model vertices for the model-to-scan direction, drawn by surface area (uniform over the
+    // surface, as scans are), so the finely meshed hands and face are not oversampled.
+    void sample_vertices(std::mt19937& rng) {
+        const auto& d = lin_.model.data();
+        const FitOptions& o = o_;
+        const LinearModel& lin = lin_;
+        std::vector<double> area(lin.V, 0.0);
+        const auto& tri = d.mesh.triangles;
+        auto mean = [&](uint32_t v) { return Vector3d(d.shape.mean[3 * v], d.shape.mean[3 * v + 1], d.shape.mean[3 * v + 2]); };
+        for (std::size_t t = 0; t + 2 < tri.size(); t += 3) {
+            const double a = 0.5 * (mean(tri[t + 1]) - mean(tri[t])).cross(mean(tri[t + 2]) - mean(tri[t])).norm();
+            for (int i = 0; i < 3; ++i) area[tri[t + i]] += a / 3;
+        }
+        std::discrete_distribution<uint32_t> pick(area.begin(), area.end());
+        std::vector<uint8_t> taken(lin.V, 0);
+        for (uint32_t n = 0; n < 4 * o.max_points && vertex_sample_.size() < o.max_points; ++n) {
+            const uint32_t v = pick(rng);
+            if (!taken[v]) taken[v] = 1, vertex_sample_.push_back(v);
+        }
+    }
+
     // Levenberg-Marquardt iterations of one stage (all frames, or one). Returns whether it converged.
     bool run_stage(const Stage& st, uint32_t frame_only, const FitProgress* progress, uint32_t& iteration, bool& cancelled,
                    double* first_cost = nullptr) {
@@ -235,16 +245,14 @@ private:
                 cancelled = true;
                 return false;
             }
-            freeze_inactive(st, H, g);
+            const std::vector<int> cols = solve_columns(st);
             // Damp until the cost (same correspondences) goes down.
             const std::vector<double> shape0 = shape_;
             const std::vector<FitState> states0 = states_;
             bool improved = false;
             double new_cost = cost;
             for (int attempt = 0; attempt < 6 && !improved; ++attempt) {
-                MatrixXd A = H;
-                for (Eigen::Index i = 0; i < A.rows(); ++i) A(i, i) += mu * std::max(A(i, i), 1e-9) + 1e-12;
-                const VectorXd delta = A.ldlt().solve(-g);
+                const VectorXd delta = damped_step(H, g, cols, mu);
                 if (!delta.allFinite()) {
                     mu *= 10;
                     continue;
@@ -261,7 +269,7 @@ private:
                     mu *= 4;
                 }
             }
-            if (!improved || cost - new_cost < 1e-6 * std::max(cost, 1e-12)) {
+            if (!improved || cost - new_cost < st.tolerance * std::max(cost, 1e-12)) {
                 ++iteration;
                 return true;
             }
@@ -381,9 +389,11 @@ private:
         MatrixXd H;
         VectorXd g;
         const double cost = evaluate(st, &H, &g, f);
-        freeze_inactive(st, H, g);
-        for (Eigen::Index i = 0; i < H.rows(); ++i) H(i, i) *= 1.0 + 1e-3;
-        apply(H.ldlt().solve(-g));
+        std::vector<int> cols;
+        for (int c : solve_columns(st))
+            if (c < int(K_) || (uint32_t(c) - K_) / B_ == f) cols.push_back(c);
+        const VectorXd delta = damped_step(H, g, cols, 1e-3);
+        if (delta.allFinite()) apply(delta);
         return cost;
     }
 
@@ -489,20 +499,28 @@ private:
         return st.body_joints && joint_sigma_[j] >= 0.3;
     }
 
-    void freeze_inactive(const Stage& st, MatrixXd& H, VectorXd& g) const {
-        // Parameters no data touches (another frame during the start search) stay put too.
-        for (Eigen::Index c = 0; c < H.rows(); ++c)
-            if (H(c, c) == 0) H(c, c) = 1, g[c] = 0;
+    // The columns a step solves for: active in the stage and, for joint rotations and frame
+    // parameters, touched by some data row in the last evaluate(). Joints nothing observes (the
+    // fingers, for landmarks) keep their value; leaving them out shrinks the system severalfold.
+    std::vector<int> solve_columns(const Stage& st) const {
+        std::vector<int> cols;
         for (uint32_t f = 0; f < F_; ++f)
             for (uint32_t local = 0; local < K_ + B_; ++local) {
                 if (f > 0 && local < K_) continue;
-                if (active(st, local)) continue;
                 const uint32_t c = column(f, local);
-                H.row(c).setZero();
-                H.col(c).setZero();
-                H(c, c) = 1;
-                g[c] = 0;
+                if (active(st, local) && (local < K_ || touched_[c])) cols.push_back(int(c));
             }
+        return cols;
+    }
+
+    // Solves (H + mu D) d = -g on the given columns; the other parameters do not move.
+    VectorXd damped_step(const MatrixXd& H, const VectorXd& g, const std::vector<int>& cols, double mu) const {
+        MatrixXd A = H(cols, cols);
+        for (Eigen::Index i = 0; i < A.rows(); ++i) A(i, i) += mu * std::max(A(i, i), 1e-9) + 1e-12;
+        const VectorXd d = A.ldlt().solve(-g(cols));
+        VectorXd delta = VectorXd::Zero(H.rows());
+        delta(cols) = d;
+        return delta;
     }
 
     void apply(const VectorXd& delta) {
@@ -521,6 +539,7 @@ private:
         if (H) {
             H->setZero(P, P);
             g->setZero(P);
+            touched_.assign(P, 0);
         }
         double cost = 0;
         const uint32_t PL = K_ + B_;
@@ -539,6 +558,7 @@ private:
                 const double va = row[nz[a]];
                 if (va == 0) continue;
                 const uint32_t ca = column(f, nz[a]);
+                touched_[ca] = 1;
                 (*g)[ca] += w * va * r;
                 for (std::size_t b = a; b < nz.size(); ++b) (*H)(ca, column(f, nz[b])) += w * va * row[nz[b]];
             }
@@ -625,6 +645,7 @@ private:
     std::vector<Vector3d> posed_, posed_normals_;
     std::vector<std::size_t> pair_candidates_;
     std::vector<double> joint_sigma_, plane_row_;
+    std::vector<uint8_t> touched_;  // columns some data row reached in the last evaluate() with H
 
 public:
     void init_sigmas() {

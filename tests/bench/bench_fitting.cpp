@@ -74,6 +74,9 @@ int main(int argc, char** argv) {
             r.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[0]), truth.vertices));
             r.times.push_back(sol.report.seconds);
             r.converged += sol.report.converged;
+            if (verbose)
+                std::printf("  trial %d: error %.2f mm, %u iterations, landmark rms %.2f mm, %.1f ms\n", t, r.errors.back() * 1e3,
+                            sol.report.iterations, sol.report.landmark_rms * 1e3, sol.report.seconds * 1e3);
         }
         print("67 landmarks, 10 mm noise", r);
     }
