@@ -100,6 +100,19 @@ int main(int argc, char** argv) {
                 render::write_fit_picture(png + "_scan_" + std::to_string(t) + ".png", model, sol.frames[0], pts,
                                           simulation::fitted_vertices(model, sol.frames[0]), truth.vertices);
             }
+            if (verbose) {
+                // Where the error is: the hands (a quarter of the vertices) or the rest.
+                const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
+                std::vector<uint8_t> hand(model.vertex_count(), 0);
+                for (const auto& set : model.data().vertex_sets)
+                    if (set.name == "hands")
+                        for (uint32_t v : set.vertices) hand[v] = 1;
+                double eh = 0, eo = 0;
+                std::size_t nh = 0, no = 0;
+                for (uint32_t v = 0; v < model.vertex_count(); ++v)
+                    (hand[v] ? eh : eo) += (fv[v] - truth.vertices[v]).norm(), ++(hand[v] ? nh : no);
+                std::printf("  hands %.2f mm, rest %.2f mm\n", 1e3 * eh / double(nh), 1e3 * eo / double(no));
+            }
             if (verbose)
                 std::printf("  trial %d: error %.2f mm, %u iterations, point mean %.2f mm, inliers %.2f, %.0f ms\n", t, r.errors.back() * 1e3,
                             sol.report.iterations, sol.report.point_mean * 1e3, sol.report.inlier_fraction, sol.report.seconds * 1e3);
