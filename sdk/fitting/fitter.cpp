@@ -710,6 +710,8 @@ void validate(const LinearModel& lin, const std::vector<Frame>& frames, const Fi
 double joint_rotation_sigma(const std::string& name) {
     for (const char* small : {"thumb", "index", "middle", "ring", "pinky", "ball"})
         if (name.find(small) != std::string::npos) return 0.15;
+    // Wrists: a flat hand fits nearly as well turned over, so the prior keeps them near neutral.
+    if (name.rfind("hand", 0) == 0) return 0.3;
     return 0.6;
 }
 
