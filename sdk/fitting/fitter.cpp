@@ -165,10 +165,13 @@ public:
             for (uint32_t f = 0; f < F_; ++f) states_[f] = initial_state(f);
         }
         const uint32_t total = std::max<uint32_t>(o_.max_iterations, 3);
+        const bool given_start = start && !o_.auto_start;
         // Stage budgets: a fifth rigid, a third coarse, the rest fine.
         const uint32_t n0 = std::max<uint32_t>(1, total / 5), n1 = std::max<uint32_t>(1, total / 3);
         const Stage stages[3] = {
-            {n0, false, false, 0, 0.30, 10.0, 0.0, 0.25, 1e-3},
+            // A given start may be off by tens of centimetres at the head: the rigid stage then reaches
+            // far with a wide loss. After the automatic start search it stays close.
+            {n0, false, false, 0, given_start ? 1.0 : 0.3, given_start ? 40.0 : 10.0, 0.0, 0.25, 1e-3},
             {n1, true, false, std::min<uint32_t>(K_, 10), 0.10, 6.0, 0.3, 0.5, 1e-4},
             {total - n0 - n1, true, true, K_, 0.04, 4.0, 0.5, 1.0, 1e-5},
         };

@@ -142,7 +142,9 @@ int main(int argc, char** argv) {
                 start.pose.emplace_back(pose[4 * j + 3], pose[4 * j], pose[4 * j + 1], pose[4 * j + 2]);
             std::normal_distribution<double> n(0.0, 1.0);
             const Eigen::Vector3d axis = Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
-            start.pose[0] = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 6, axis)) * start.pose[0];
+            const char* deg = std::getenv("SSCAPE_BENCH_START_DEGREES");
+            const double angle = (deg ? std::atof(deg) : 30.0) * M_PI / 180;
+            start.pose[0] = Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis)) * start.pose[0];
             fitting::FitOptions o;
             o.auto_start = false;
             const std::vector<fitting::FitState> starts = {start};
