@@ -2,6 +2,7 @@
 #include "guard.hpp"
 #include "handles.hpp"
 #include "fitting/nearest.hpp"
+#include "fitting/posed_surface.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -176,26 +177,17 @@ ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* 
         fitter->solved = false;
         fitter->solution = fitting::fit(fitter->linear, fitter->frames, fitter->options, nullptr, cb);
         // Residuals: distance of each point to the fitted surface along the nearest vertex's normal.
-        const Model& m = fitter->model->model;
         fitter->residuals.assign(fitter->frames.size(), {});
+        Body body(fitter->model->model, nullptr);
+        std::vector<Eigen::Vector3d> posed, normals;
         for (std::size_t f = 0; f < fitter->frames.size(); ++f) {
             if (fitter->frames[f].clouds.empty()) continue;
-            fitting::Kinematics kin(fitter->linear);
-            kin.update(fitter->solution.frames[f]);
-            std::vector<Eigen::Vector3d> posed(m.vertex_count()), normals(m.vertex_count(), Eigen::Vector3d::Zero());
-            fitting::SurfacePoint sp;
-            for (uint32_t v = 0; v < m.vertex_count(); ++v) sp.vertex[0] = v, posed[v] = kin.point(sp);
-            const auto& tri = m.data().mesh.triangles;
-            for (std::size_t t = 0; t + 2 < tri.size(); t += 3) {
-                const Eigen::Vector3d n = (posed[tri[t + 1]] - posed[tri[t]]).cross(posed[tri[t + 2]] - posed[tri[t]]);
-                for (int i = 0; i < 3; ++i) normals[tri[t + i]] += n;
-            }
+            fitting::posed_surface(body, fitter->solution.frames[f], posed, &normals);
             const fitting::PointIndex index(posed);
             for (const auto& c : fitter->frames[f].clouds)
                 for (const auto& p : c.points) {
                     const uint32_t v = index.nearest(p, nullptr);
-                    const Eigen::Vector3d n = normals[v].normalized();
-                    fitter->residuals[f].push_back(float(std::abs(n.dot(p - posed[v]))));
+                    fitter->residuals[f].push_back(float(std::abs(normals[v].dot(p - posed[v]))));
                 }
         }
         fitter->solved = true;
@@ -255,13 +247,12 @@ ssc_status ssc_fitter_get_vertices(const ssc_fitter* fitter, uint32_t frame, flo
         require_solved(fitter, frame);
         const uint32_t V = fitter->model->model.vertex_count();
         stride = check_output(out, capacity, V, stride, 12);
-        fitting::Kinematics kin(fitter->linear);
-        kin.update(fitter->solution.frames[frame]);
-        fitting::SurfacePoint sp;
+        Body body(fitter->model->model, nullptr);
+        std::vector<Eigen::Vector3d> posed;
+        fitting::posed_surface(body, fitter->solution.frames[frame], posed);
         auto* base = reinterpret_cast<unsigned char*>(out);
         for (uint32_t v = 0; v < V; ++v) {
-            sp.vertex[0] = v;
-            const Eigen::Vector3d p = kin.point(sp);
+            const Eigen::Vector3d& p = posed[v];
             float* o = reinterpret_cast<float*>(base + std::size_t(v) * stride);
             o[0] = float(p.x()), o[1] = float(p.y()), o[2] = float(p.z());
         }

@@ -52,10 +52,6 @@ Options parse(const std::vector<std::string>& args) {
     return o;
 }
 
-bool is_hand_landmark(const std::string& normalized) {
-    return normalized.find("metacarpal") != std::string::npos || normalized.find("dactylion") != std::string::npos;
-}
-
 }  // namespace
 
 int cmd_fit(const std::vector<std::string>& args) {
@@ -95,7 +91,7 @@ int cmd_fit(const std::vector<std::string>& args) {
                 std::fprintf(stderr, "%s: landmark '%s' is not one of the model's; ignored\n", path.c_str(), r.name.c_str());
                 continue;
             }
-            if (!o.hands && is_hand_landmark(key)) {
+            if (!o.hands && fitting::is_hand_landmark(r.name)) {
                 ++skipped_hands;
                 continue;
             }

@@ -5,13 +5,14 @@
 #include "common/error.hpp"
 #include "common/rigid.hpp"
 #include "fitting/nearest.hpp"
-#include "synthesis/body.hpp"
+#include "fitting/posed_surface.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -143,6 +144,7 @@ public:
             }
             kin_.emplace_back(lin);
         }
+        for (const auto& name : d.skeleton.joint_names) joint_sigma_.push_back(joint_rotation_sigma(name));
         bool any_points = false;
         for (const auto& fd : frames_) any_points |= !fd.points.empty();
         if (any_points) sample_vertices(rng);
@@ -409,26 +411,8 @@ private:
     }
 
     // Posed vertices and normals of frame f (for correspondences).
-    // Posed vertices and normals of frame f (for correspondences), through the runtime's float
-    // synthesis: ten times faster than the double kinematics and identical to 1e-5 m (tested).
-    void pose_frame(uint32_t f) {
-        const FitState& st = states_[f];
-        std::vector<float> shape(shape_.begin(), shape_.end());
-        std::vector<float> quats(4 * std::size_t(lin_.J));
-        for (uint32_t j = 0; j < lin_.J; ++j) {
-            const Eigen::Quaterniond q = st.pose[j].normalized();
-            quats[4 * j] = float(q.x()), quats[4 * j + 1] = float(q.y()), quats[4 * j + 2] = float(q.z()), quats[4 * j + 3] = float(q.w());
-        }
-        body_.set_shape(shape.data(), uint32_t(shape.size()));
-        body_.set_pose(quats.data(), nullptr);
-        const float* p = body_.posed();
-        const float* n = body_.normals();
-        const uint32_t V = lin_.V;
-        for (uint32_t v = 0; v < V; ++v) {
-            posed_[v] = st.scale * Vector3d(p[v], p[V + v], p[2 * std::size_t(V) + v]) + st.translation;
-            posed_normals_[v] = Vector3d(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
-        }
-    }
+    // Posed vertices and normals of frame f (for correspondences).
+    void pose_frame(uint32_t f) { posed_surface(body_, states_[f], posed_, &posed_normals_); }
 
     void find_pairs(const Stage& st, uint32_t frame_only = 0xFFFFFFFFu) {
         pair_candidates_.assign(F_, 0);
@@ -618,7 +602,7 @@ private:
             }
             // Pose prior: each joint's local rotation vector, over its sigma (not the root: free).
             for (uint32_t j = 1; j < lin_.J; ++j) {
-                const double s = std::sqrt(o_.pose_prior) / joint_sigma(j);
+                const double s = std::sqrt(o_.pose_prior) / joint_sigma_[j];
                 if (s == 0) continue;
                 const Vector3d r = log_rotation(states_[f].pose[j]);
                 cost += 0.5 * s * s * r.squaredNorm();
@@ -644,14 +628,6 @@ private:
         return cost;
     }
 
-    double joint_sigma(uint32_t j) {
-        if (joint_sigma_.empty()) {
-            const auto& names = lin_.model.data().skeleton.joint_names;
-            for (const auto& n : names) joint_sigma_.push_back(joint_rotation_sigma(n));
-        }
-        return joint_sigma_[j];
-    }
-
     const LinearModel& lin_;
     FitOptions o_;
     uint32_t F_, K_, B_;
@@ -665,11 +641,6 @@ private:
     std::vector<std::size_t> pair_candidates_;
     std::vector<double> joint_sigma_;
     std::vector<uint8_t> touched_;  // columns some data row reached in the last evaluate() with H
-
-public:
-    void init_sigmas() {
-        for (uint32_t j = 0; j < lin_.J; ++j) joint_sigma(j);
-    }
 };
 
 void validate(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& o) {
@@ -710,6 +681,12 @@ void validate(const LinearModel& lin, const std::vector<Frame>& frames, const Fi
 
 }  // namespace
 
+bool is_hand_landmark(const std::string& name) {
+    std::string lower;
+    for (char c : name) lower += char(std::tolower(static_cast<unsigned char>(c)));
+    return lower.find("metacarpal") != std::string::npos || lower.find("dactylion") != std::string::npos;
+}
+
 double joint_rotation_sigma(const std::string& name) {
     for (const char* small : {"thumb", "index", "middle", "ring", "pinky", "ball"})
         if (name.find(small) != std::string::npos) return 0.15;
@@ -724,7 +701,6 @@ FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const 
     if (start && !options.auto_start)
         SSC_REQUIRE_ARG_S(start->size() == frames.size(), "fit: " << start->size() << " start states for " << frames.size() << " frames");
     Solver solver(lin, frames, options);
-    solver.init_sigmas();
     return solver.run(start, progress);
 }
 

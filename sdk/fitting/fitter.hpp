@@ -81,4 +81,8 @@ FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const 
 // tight for fingers and the toes, which sparse data rarely constrain.
 double joint_rotation_sigma(const std::string& joint_name);
 
+// The six CAESAR hand landmarks (metacarpal-phalangeal II and V, dactylion, each side): scanned
+// subjects often close their hands, so fits commonly leave them out.
+bool is_hand_landmark(const std::string& landmark_name);
+
 }  // namespace ssc::fitting

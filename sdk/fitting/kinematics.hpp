@@ -73,17 +73,14 @@ public:
     // leading dimension = parameter_count, row-major) for the given point.
     void point_jacobian(const SurfacePoint& p, double* J3, double factor = 1) const;
 
-    // Posed joint positions (final frame) and world rotations.
+    // Posed joint positions (final frame).
     Vector3d joint_position(uint32_t j) const { return scale_ * posed_joint_[j] + translation_; }
-    const Matrix3d& joint_world(uint32_t j) const { return world_[j]; }
     // Rotation that maps a world-frame increment to the joint's local pose increment (A^T above).
     Matrix3d local_from_world(uint32_t j) const { return pre_pose_[j].transpose(); }
 
     // Applies an increment (parameter_count values) to a state: the retraction matching the Jacobians.
     void apply(const double* delta, FitState& s) const;
 
-    // Ancestors of a joint, itself first.
-    const std::vector<uint32_t>& chain(uint32_t j) const { return lin_.chains[j]; }
     // The parameters a point's Jacobian can touch (sorted): shape, its joints' chains, translation, scale.
     void nonzeros(const SurfacePoint& p, std::vector<uint32_t>& out) const;
 

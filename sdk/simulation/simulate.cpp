@@ -1,6 +1,6 @@
 #include "simulation/simulate.hpp"
 
-#include "synthesis/body.hpp"
+#include "fitting/posed_surface.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -118,8 +118,7 @@ std::vector<fitting::LandmarkTarget> simulate_landmarks(const Model& m, const Tr
     const auto& d = m.data();
     for (uint32_t l = 0; l < d.landmarks.size(); ++l) {
         const std::string& name = d.landmarks[l].name;
-        const bool hand = name.find("Metacarpal") != std::string::npos || name.find("Dactylion") != std::string::npos;
-        if (skip_hands && hand) continue;
+        if (skip_hands && fitting::is_hand_landmark(name)) continue;
         fitting::LandmarkTarget t;
         t.landmark = l;
         t.position = b.landmarks[l] + Vector3d(n(rng), n(rng), n(rng));
@@ -195,16 +194,10 @@ double mean_vertex_error(const std::vector<Vector3d>& a, const std::vector<Vecto
 }
 
 std::vector<Vector3d> fitted_vertices(const Model& m, const fitting::FitState& s) {
-    std::vector<float> shape(m.component_count(), 0.f);
-    for (std::size_t k = 0; k < s.shape.size() && k < shape.size(); ++k) shape[k] = float(s.shape[k]);
-    std::vector<float> pose(4 * std::size_t(m.joint_count()));
-    for (uint32_t j = 0; j < m.joint_count(); ++j) {
-        const Quaterniond q = s.pose[j].normalized();
-        pose[4 * j] = float(q.x()), pose[4 * j + 1] = float(q.y()), pose[4 * j + 2] = float(q.z()), pose[4 * j + 3] = float(q.w());
-    }
-    TrueBody b = make_body(m, shape, pose, Vector3d::Zero());
-    for (auto& v : b.vertices) v = s.scale * v + s.translation;
-    return b.vertices;
+    Body body(m, nullptr);
+    std::vector<Vector3d> v;
+    fitting::posed_surface(body, s, v);
+    return v;
 }
 
 }  // namespace ssc::simulation

@@ -37,6 +37,15 @@ void print(const char* name, Row& r) {
     std::fflush(stdout);
 }
 
+// 1 for the vertices of the model's "hands" vertex set.
+std::vector<uint8_t> hand_mask(const Model& model) {
+    std::vector<uint8_t> hand(model.vertex_count(), 0);
+    for (const auto& set : model.data().vertex_sets)
+        if (set.name == "hands")
+            for (uint32_t v : set.vertices) hand[v] = 1;
+    return hand;
+}
+
 Eigen::Matrix3d random_heading(std::mt19937& rng) {
     std::uniform_real_distribution<double> u(-M_PI, M_PI);
     return Eigen::AngleAxisd(u(rng), Eigen::Vector3d::UnitY()).toRotationMatrix();
@@ -103,10 +112,7 @@ int main(int argc, char** argv) {
             if (verbose) {
                 // Where the error is: the hands (a quarter of the vertices) or the rest.
                 const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
-                std::vector<uint8_t> hand(model.vertex_count(), 0);
-                for (const auto& set : model.data().vertex_sets)
-                    if (set.name == "hands")
-                        for (uint32_t v : set.vertices) hand[v] = 1;
+                const auto hand = hand_mask(model);
                 double eh = 0, eo = 0;
                 std::size_t nh = 0, no = 0;
                 for (uint32_t v = 0; v < model.vertex_count(); ++v)
@@ -125,10 +131,7 @@ int main(int argc, char** argv) {
         Row r;
         std::mt19937 rng(300);
         int ok = 0;
-        std::vector<uint8_t> hand(model.vertex_count(), 0);
-        for (const auto& set : model.data().vertex_sets)
-            if (set.name == "hands")
-                for (uint32_t v : set.vertices) hand[v] = 1;
+        const auto hand = hand_mask(model);
         for (int t = 0; t < trials; ++t) {
             const auto pose = simulation::random_pose(model, rng);
             auto truth = simulation::make_body(model, simulation::random_shape(model, rng), pose, Eigen::Vector3d::Zero());
