@@ -2,12 +2,16 @@
 // runtime's synthesis, accuracy on simulated measurements of the default model, and bad input.
 #include "capi/handles.hpp"
 #include "common/error.hpp"
+#include "fitting/depth_image.hpp"
 #include "fitting/fitter.hpp"
+#include "fitting/nearest.hpp"
+#include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <memory>
 
 using namespace ssc;
@@ -268,4 +272,128 @@ TEST_CASE("the C API fits landmarks by name and reports through ssc_fitter", "[f
     ssc_fitter_destroy(nullptr);
     ssc_body_destroy(body);
     ssc_model_release(model);
+}
+
+TEST_CASE("depth images back-project onto the seen surface with normals towards the camera", "[fitting][depth]") {
+    const Model& m = default_model().model();
+    std::mt19937 rng(5);
+    const auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, 0.5), Eigen::Vector3d::Zero());
+    simulation::DepthCameraSpec spec;
+    spec.noise = 0;
+    const Eigen::Vector3d eye(0.4, 1.1, 2.6), target(0, 0.9, 0);
+    const auto cam = simulation::look_at(eye, target, spec);
+    auto depth = simulation::render_depth(m, truth, cam, spec, rng);
+    fitting::DepthView view;
+    view.width = spec.width, view.height = spec.height, view.depth = depth.data(), view.camera = cam;
+    const auto cloud = fitting::depth_to_cloud(view);
+    REQUIRE(cloud.points.size() > 5000);
+    REQUIRE(cloud.normals.size() == cloud.points.size());
+    // Every point lies on the body (within the mesh's faceting) and faces the camera.
+    const fitting::PointIndex index(truth.vertices);
+    double mean = 0;
+    std::size_t facing = 0;
+    for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+        double d2;
+        const uint32_t v = index.nearest(cloud.points[i], &d2);
+        mean += std::sqrt(d2);
+        facing += cloud.normals[i].dot(eye - cloud.points[i]) > 0 && cloud.normals[i].dot(truth.normals[v]) > 0.5;
+    }
+    mean /= double(cloud.points.size());
+    INFO("mean distance to the nearest vertex " << mean * 1e3 << " mm; facing " << facing << " of " << cloud.points.size());
+    CHECK(mean < 0.008);  // vertices are about 1-2 cm apart: the nearest is rarely the foot point
+    CHECK(double(facing) > 0.95 * double(cloud.points.size()));
+    // A mask removes what it covers; depth limits remove what lies outside them.
+    std::vector<uint8_t> mask(depth.size(), 1);
+    for (uint32_t v = 0; v < spec.height / 2; ++v)
+        for (uint32_t u = 0; u < spec.width; ++u) mask[v * spec.width + u] = 0;
+    view.mask = mask.data();
+    const auto lower = fitting::depth_to_cloud(view);
+    CHECK(lower.points.size() < cloud.points.size());
+    for (const auto& p : lower.points) CHECK((cam.rotation.transpose() * (p - cam.position)).y() > -0.01);
+    view.mask = nullptr;
+    view.max_depth = 0.5;
+    CHECK_THROWS_AS(fitting::depth_to_cloud(view), Error);  // nothing within 0.5 m
+    view.max_depth = 0;
+    view.camera.fx = 0;
+    CHECK_THROWS_AS(fitting::depth_to_cloud(view), Error);
+    view.camera.fx = 525;
+    view.camera.cy = std::nan("");
+    CHECK_THROWS_AS(fitting::depth_to_cloud(view), Error);
+}
+
+TEST_CASE("front and back depth images fit a body through the C API", "[fitting][depth][capi]") {
+    const Model& m = default_model().model();
+    ssc_model* model = default_model().handle;
+    std::mt19937 rng(8);
+    const auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, 0.5), Eigen::Vector3d::Zero());
+    simulation::DepthCameraSpec spec;
+    ssc_fitter* fitter = nullptr;
+    REQUIRE(ssc_fitter_create(model, nullptr, &fitter) == SSC_OK);
+    for (const double side : {1.0, -1.0}) {
+        const auto cam = simulation::look_at(Eigen::Vector3d(0, 1.0, 2.8 * side), Eigen::Vector3d(0, 1.0, 0), spec);
+        const auto depth = simulation::render_depth(m, truth, cam, spec, rng);
+        // 16-bit millimetres, as a sensor delivers them, rows padded to 1300 bytes.
+        const std::size_t stride = 1300;
+        std::vector<uint8_t> rows(stride * spec.height, 0xAB);
+        for (uint32_t v = 0; v < spec.height; ++v)
+            for (uint32_t u = 0; u < spec.width; ++u) {
+                const uint16_t mm = uint16_t(std::lround(depth[v * spec.width + u] * 1000));
+                std::memcpy(&rows[v * stride + 2 * u], &mm, 2);
+            }
+        float pose[16] = {0};
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 3; ++c) pose[4 * c + r] = float(cam.rotation(r, c));
+            pose[12 + r] = float(cam.position[r]);
+        }
+        pose[15] = 1;
+        ssc_depth_image_def img;
+        ssc_depth_image_def_init(&img, sizeof img);
+        img.width = spec.width, img.height = spec.height;
+        img.samples = rows.data();
+        img.row_stride = stride;
+        img.fx = float(cam.fx), img.fy = float(cam.fy), img.cx = float(cam.cx), img.cy = float(cam.cy);
+        img.camera_to_world = pose;
+        // Bad input first: nothing is added.
+        ssc_depth_image_def bad = img;
+        bad.fx = 0;
+        CHECK(ssc_fitter_add_depth_image(fitter, 0, &bad, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+        bad = img;
+        bad.cx = std::nanf("");
+        CHECK(ssc_fitter_add_depth_image(fitter, 0, &bad, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+        bad = img;
+        bad.row_stride = 1279;
+        CHECK(ssc_fitter_add_depth_image(fitter, 0, &bad, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+        bad = img;
+        bad.samples = nullptr;
+        CHECK(ssc_fitter_add_depth_image(fitter, 0, &bad, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+        float skewed[16];
+        std::memcpy(skewed, pose, sizeof pose);
+        skewed[0] *= 2;
+        bad = img;
+        bad.camera_to_world = skewed;
+        CHECK(ssc_fitter_add_depth_image(fitter, 0, &bad, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+        bad = img;
+        bad.format = ssc_depth_format(7);
+        CHECK(ssc_fitter_add_depth_image(fitter, 0, &bad, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+        CHECK(ssc_fitter_add_depth_image(fitter, 0, nullptr, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+        CHECK(ssc_fitter_add_depth_image(fitter, 5, &img, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+        const uint32_t before = ssc_fitter_point_count(fitter, 0);
+        uint32_t added = 0;
+        REQUIRE(ssc_fitter_add_depth_image(fitter, 0, &img, &added) == SSC_OK);
+        CHECK(added > 5000);
+        CHECK(ssc_fitter_point_count(fitter, 0) == before + added);
+    }
+    CHECK(ssc_fitter_frame_count(fitter) == 1);
+    ssc_fit_report report;
+    report.struct_size = sizeof report;
+    REQUIRE(ssc_fitter_solve(fitter, nullptr, nullptr, &report) == SSC_OK);
+    const uint32_t V = m.vertex_count();
+    std::vector<float> fitted(3 * V);
+    REQUIRE(ssc_fitter_get_vertices(fitter, 0, fitted.data(), V, 0) == SSC_OK);
+    double err = 0;
+    for (uint32_t v = 0; v < V; ++v) err += (Eigen::Vector3d(fitted[3 * v], fitted[3 * v + 1], fitted[3 * v + 2]) - truth.vertices[v]).norm();
+    err /= V;
+    INFO("mean vertex error " << err * 1e3 << " mm, point mean " << report.point_mean * 1e3 << " mm");
+    CHECK(err < 0.012);
+    ssc_fitter_destroy(fitter);
 }

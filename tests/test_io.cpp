@@ -102,3 +102,35 @@ TEST_CASE("16-bit PGM depth images read in metres", "[io]") {
     CHECK(status_of([&] { io::read_pgm_depth(temp_file("c.pgm", "P5\n3 2\n255\n123456")); }) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(status_of([&] { io::read_pgm_depth(temp_file("d.pgm", "P2\n3 2\n65535\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
 }
+
+TEST_CASE("PGM depth images keep their camera through write and read", "[io]") {
+    io::DepthImage img;
+    img.width = 4, img.height = 3;
+    img.depth = {1.0f, 0.f, 2.5f, 0.0004f, 1.2345f, 70.f, std::nanf(""), 3.f, 0.5f, 0.5f, 0.5f, 0.5f};
+    img.has_intrinsics = img.has_pose = true;
+    img.fx = 525, img.fy = 524.5, img.cx = 1.5, img.cy = 1;
+    img.camera_to_world.topLeftCorner<3, 3>() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    img.camera_to_world.topRightCorner<3, 1>() = Eigen::Vector3d(0.1, 1.2, 2.8);
+    const std::string path = temp_file("cam.pgm", "");
+    io::write_pgm_depth(path, img);
+    const auto back = io::read_pgm_depth(path);
+    REQUIRE(back.width == 4);
+    REQUIRE(back.height == 3);
+    CHECK(back.depth[0] == Approx(1.0f));
+    CHECK(back.depth[2] == Approx(2.5f));
+    CHECK(back.depth[3] == 0.f);                       // below half a millimetre
+    CHECK(back.depth[4] == Approx(1.235f).margin(1e-6));  // rounded to millimetres
+    CHECK(back.depth[5] == 0.f);                       // beyond 65.535 m
+    CHECK(back.depth[6] == 0.f);                       // NaN: no reading
+    REQUIRE(back.has_intrinsics);
+    REQUIRE(back.has_pose);
+    CHECK(back.fy == 524.5);
+    CHECK(back.cx == 1.5);
+    CHECK((back.camera_to_world - img.camera_to_world).norm() < 1e-12);
+    std::string bad = "P5\n# sscape intrinsics 525 525 x 3\n2 2\n65535\n";
+    bad.append(8, '\0');
+    CHECK(status_of([&] { io::read_pgm_depth(temp_file("e.pgm", bad)); }) == SSC_ERROR_INVALID_ARGUMENT);
+    std::string other = "P5\n# made by another tool 1 2 3\n2 2\n65535\n";
+    other.append(8, '\0');
+    CHECK_FALSE(io::read_pgm_depth(temp_file("g.pgm", other)).has_intrinsics);
+}

@@ -530,6 +530,56 @@ SSC_API ssc_status ssc_fitter_add_landmarks_by_name(ssc_fitter* fitter, uint32_t
 SSC_API ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float* points, const float* normals,
                                          const float* confidence, uint32_t count, size_t stride);
 
+/** Sample formats of depth images. */
+typedef enum ssc_depth_format {
+    SSC_DEPTH_U16_MM = 0,  /**< uint16_t millimetres (Kinect, RealSense, 16-bit PGM); 0 = no reading. */
+    SSC_DEPTH_F32_M = 1,   /**< float metres; <= 0, NaN or infinite = no reading. */
+    SSC_DEPTH_FORMAT_FORCE32 = 0x7FFFFFFF
+} ssc_depth_format;
+
+/**
+ * A depth image seen through a pinhole camera (no lens distortion). Depth is measured along the
+ * optical axis. Camera frame as depth-sensor SDKs (and OpenCV) use it: x right, y down, z forward;
+ * pixel (u, v) with depth z is the camera point ((u - cx) z / fx, (v - cy) z / fy, z), pixel
+ * centres at integer coordinates, v = 0 the top row. Fill with ssc_depth_image_def_init.
+ */
+typedef struct ssc_depth_image_def {
+    uint32_t struct_size;           /**< sizeof(ssc_depth_image_def), set by ssc_depth_image_def_init. */
+    uint32_t width, height;         /**< Pixels, 5..16384 each. */
+    ssc_depth_format format;        /**< Sample format. Default SSC_DEPTH_U16_MM. */
+    const void* samples;            /**< height rows of width samples, top row first. Required. */
+    size_t row_stride;              /**< Bytes from one row to the next; 0 = packed. */
+    const uint8_t* mask;            /**< NULL, or width * height bytes (packed): 0 = ignore the pixel. */
+    float fx, fy;                   /**< Focal lengths, pixels (> 0). Required. */
+    float cx, cy;                   /**< Principal point, pixels. Required. */
+    const float* camera_to_world;   /**< NULL (camera = world frame) or a column-major 4x4 rigid transform
+                                         taking camera points to the frame's world (metres). */
+    float min_depth, max_depth;     /**< Metres: readings outside are ignored (background, sensor range);
+                                         max_depth 0 = no limit. Default 0 and 0. */
+} ssc_depth_image_def;
+
+/** Fills def with defaults (no samples, no intrinsics); size = sizeof(*def). Threads: any. */
+SSC_API void ssc_depth_image_def_init(ssc_depth_image_def* def, size_t size);
+
+/**
+ * Adds a depth image to a frame as a point cloud: each usable pixel is back-projected into the
+ * world with a normal estimated from its 5 x 5 neighbourhood and turned towards the camera. A pixel
+ * is usable when it has a reading inside the depth limits, is not masked out and at least 6 of its
+ * neighbours lie on the same surface (isolated readings and mixed pixels at depth edges are
+ * dropped). Images of one person from several cameras at one instant go in one frame; images
+ * taken at different times (the person turned around) go in frames of their own.
+ * @param frame         an existing frame or ssc_fitter_frame_count (a new frame).
+ * @param image         the image and its camera; the samples and mask are read during the call only.
+ * @param points_added  NULL, or receives the number of points added (the pixels used; residuals of
+ *                      ssc_fitter_get_point_residuals come in row-major pixel order of those).
+ * @return SSC_ERROR_INVALID_ARGUMENT for NULL, a bad frame, a bad size, format or stride, degenerate
+ *         intrinsics (fx or fy not positive, non-finite values), a camera_to_world that is not a
+ *         rigid transform, or fewer than 16 usable pixels; nothing is added then.
+ * Ownership: nothing is kept of the caller's arrays. Threads: the fitter's thread.
+ */
+SSC_API ssc_status ssc_fitter_add_depth_image(ssc_fitter* fitter, uint32_t frame, const ssc_depth_image_def* image,
+                                              uint32_t* points_added);
+
 /** Called once per solver iteration with the current cost; return non-zero to cancel. */
 typedef int (*ssc_progress_fn)(void* user, uint32_t iteration, float cost);
 

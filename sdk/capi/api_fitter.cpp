@@ -1,6 +1,7 @@
 // Fitters: observations in, shape and per-frame pose out (sdk/fitting does the work).
 #include "guard.hpp"
 #include "handles.hpp"
+#include "fitting/depth_image.hpp"
 #include "fitting/nearest.hpp"
 #include "fitting/posed_surface.hpp"
 
@@ -165,6 +166,69 @@ ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float
         }
         frame_for_adding(fitter, frame).clouds.push_back(std::move(c));
         fitter->solved = false;
+    });
+}
+
+void ssc_depth_image_def_init(ssc_depth_image_def* def, size_t size) {
+    if (!def || size < sizeof(uint32_t)) return;
+    ssc_depth_image_def d{};
+    d.struct_size = static_cast<uint32_t>(size < sizeof d ? size : sizeof d);
+    d.format = SSC_DEPTH_U16_MM;
+    std::memcpy(def, &d, d.struct_size);
+}
+
+ssc_status ssc_fitter_add_depth_image(ssc_fitter* fitter, uint32_t frame, const ssc_depth_image_def* image,
+                                      uint32_t* points_added) {
+    return guarded(__func__, [&] {
+        need(fitter, "fitter");
+        need(image, "image");
+        const ssc_depth_image_def d = read_def(image, ssc_depth_image_def_init, "image");
+        need(d.samples, "image->samples");
+        SSC_REQUIRE_ARG_S(d.format == SSC_DEPTH_U16_MM || d.format == SSC_DEPTH_F32_M, "image->format " << int(d.format) << " is unknown");
+        SSC_REQUIRE_ARG_S(d.width >= 5 && d.height >= 5 && d.width <= 16384 && d.height <= 16384,
+                          "image size " << d.width << " x " << d.height << " (5..16384 each)");
+        const std::size_t sample = d.format == SSC_DEPTH_U16_MM ? 2 : 4;
+        const std::size_t stride = d.row_stride ? d.row_stride : sample * d.width;
+        SSC_REQUIRE_ARG_S(stride >= sample * d.width && stride % sample == 0,
+                          "image->row_stride " << d.row_stride << " must be 0 or a multiple of " << sample << " >= " << sample * d.width);
+        fitting::DepthView view;
+        view.width = d.width;
+        view.height = d.height;
+        view.mask = d.mask;
+        view.camera.fx = d.fx, view.camera.fy = d.fy, view.camera.cx = d.cx, view.camera.cy = d.cy;
+        view.min_depth = d.min_depth, view.max_depth = d.max_depth;
+        if (d.camera_to_world) {
+            const float* m = d.camera_to_world;  // column-major: element (row r, column c) at m[4c + r]
+            for (int r = 0; r < 3; ++r) {
+                for (int c = 0; c < 3; ++c) view.camera.rotation(r, c) = m[4 * c + r];
+                view.camera.position[r] = m[12 + r];
+            }
+            SSC_REQUIRE_ARG(m[3] == 0 && m[7] == 0 && m[11] == 0 && m[15] == 1,
+                            "image->camera_to_world: the last row must be 0 0 0 1 (a rigid transform)");
+        }
+        // Samples as metres in one packed float image.
+        std::vector<float> depth(std::size_t(d.width) * d.height);
+        const auto* base = static_cast<const unsigned char*>(d.samples);
+        for (uint32_t v = 0; v < d.height; ++v) {
+            const unsigned char* row = base + std::size_t(v) * stride;
+            for (uint32_t u = 0; u < d.width; ++u) {
+                float z;
+                if (d.format == SSC_DEPTH_U16_MM) {
+                    uint16_t mm;
+                    std::memcpy(&mm, row + 2 * std::size_t(u), 2);
+                    z = float(mm) * 1e-3f;
+                } else {
+                    std::memcpy(&z, row + 4 * std::size_t(u), 4);
+                }
+                depth[std::size_t(v) * d.width + u] = z;
+            }
+        }
+        view.depth = depth.data();
+        fitting::PointCloud cloud = fitting::depth_to_cloud(view);
+        const uint32_t n = uint32_t(cloud.points.size());
+        frame_for_adding(fitter, frame).clouds.push_back(std::move(cloud));
+        fitter->solved = false;
+        if (points_added) *points_added = n;
     });
 }
 

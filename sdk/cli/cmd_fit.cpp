@@ -1,9 +1,10 @@
-// `sscape fit`: fits the model to a landmark file and/or point files through the C API fitter and
-// writes the fitted mesh, a report and optionally a picture of the fit beside its input.
+// `sscape fit`: fits the model to landmark files, point files and/or depth images through the C API
+// fitter and writes the fitted mesh, a report and optionally a picture of the fit beside its input.
 #include "cli.hpp"
 
 #include "capi/handles.hpp"
 #include "export/mesh_writers.hpp"
+#include "fitting/depth_image.hpp"
 #include "io/readers.hpp"
 #include "render/fit_picture.hpp"
 
@@ -15,9 +16,10 @@ namespace {
 
 struct Options {
     std::string model, out, png;
-    std::vector<std::string> landmarks, points;
+    std::vector<std::string> landmarks, points, depth;
     double points_scale = 1;  // to metres
-    bool scale = false, hands = false;
+    std::vector<float> intrinsics;  // fx fy cx cy for depth images whose files do not give them
+    bool scale = false, hands = false, frames = false;
     uint32_t components = 0, iterations = 0;
 };
 
@@ -29,6 +31,11 @@ Options parse(const std::vector<std::string>& args) {
         if (a == "-o" || a == "--output") o.out = value();
         else if (a == "--landmarks") o.landmarks.push_back(value());
         else if (a == "--points") o.points.push_back(value());
+        else if (a == "--depth") o.depth.push_back(value());
+        else if (a == "--intrinsics") {
+            o.intrinsics = parse_floats(value(), a);
+            if (o.intrinsics.size() != 4) throw UsageError("--intrinsics needs FX,FY,CX,CY (pixels)");
+        } else if (a == "--frames") o.frames = true;
         else if (a == "--units") {
             const std::string& u = value();
             if (u == "m") o.points_scale = 1;
@@ -44,7 +51,8 @@ Options parse(const std::vector<std::string>& args) {
         else if (o.model.empty()) o.model = a;
         else throw UsageError("unexpected argument '" + a + "'");
     }
-    if (o.landmarks.empty() && o.points.empty()) throw UsageError("fit needs --landmarks FILE.lnd and/or --points FILE.ply|.obj");
+    if (o.landmarks.empty() && o.points.empty() && o.depth.empty())
+        throw UsageError("fit needs --landmarks FILE.lnd, --points FILE.ply|.obj and/or --depth FILE.pgm");
     if (o.out.empty()) throw UsageError("fit needs -o OUT.obj or OUT.ply");
     exporters::check_mesh_path(o.out);
     if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
@@ -79,8 +87,13 @@ int cmd_fit(const std::vector<std::string>& args) {
         check(ssc_model_get_landmark_name(model, l, &name), "landmark name");
         by_name[io::normalized_landmark_name(name)] = l;
     }
-    std::vector<Eigen::Vector3d> shown;  // input drawn in the picture
+    std::vector<Eigen::Vector3d> shown;  // input of frame 0, drawn in the picture
+    // With --frames each file is a frame of its own (the person moved between them); otherwise all
+    // observe one pose.
+    uint32_t next_frame = 0;
+    auto frame_for = [&]() { return o.frames ? next_frame++ : 0u; };
     for (const auto& path : o.landmarks) {
+        const uint32_t frame = frame_for();
         std::vector<uint32_t> indices;
         std::vector<float> positions;
         uint32_t skipped_hands = 0;
@@ -97,23 +110,53 @@ int cmd_fit(const std::vector<std::string>& args) {
             }
             indices.push_back(it->second);
             for (int a = 0; a < 3; ++a) positions.push_back(float(r.position[a]));
-            shown.push_back(r.position);
+            if (frame == 0) shown.push_back(r.position);
         }
         if (indices.size() < 3) throw UsageError(path + ": fewer than 3 usable landmarks");
-        check(ssc_fitter_add_landmarks(guard.f, 0, indices.data(), positions.data(), nullptr, uint32_t(indices.size())), path);
+        check(ssc_fitter_add_landmarks(guard.f, frame, indices.data(), positions.data(), nullptr, uint32_t(indices.size())), path);
         std::printf("%s: %zu landmarks (%u hand landmarks left out; --hands uses them)\n", path.c_str(), indices.size(), skipped_hands);
     }
     for (const auto& path : o.points) {
         const io::PointFile pf = io::read_points(path);
+        const uint32_t frame = frame_for();
         std::vector<float> pts, nrm;
         for (const auto& p : pf.points) {
             for (int a = 0; a < 3; ++a) pts.push_back(float(p[a] * o.points_scale));
-            shown.push_back(p * o.points_scale);
+            if (frame == 0) shown.push_back(p * o.points_scale);
         }
         for (const auto& n : pf.normals)
             for (int a = 0; a < 3; ++a) nrm.push_back(float(n[a]));
-        check(ssc_fitter_add_points(guard.f, 0, pts.data(), nrm.empty() ? nullptr : nrm.data(), nullptr, uint32_t(pf.points.size()), 0), path);
+        check(ssc_fitter_add_points(guard.f, frame, pts.data(), nrm.empty() ? nullptr : nrm.data(), nullptr, uint32_t(pf.points.size()), 0), path);
         std::printf("%s: %zu points%s\n", path.c_str(), pf.points.size(), pf.normals.empty() ? " (normals estimated)" : " with normals");
+    }
+    for (const auto& path : o.depth) {
+        const io::DepthImage img = io::read_pgm_depth(path);
+        ssc_depth_image_def def;
+        ssc_depth_image_def_init(&def, sizeof def);
+        def.width = img.width, def.height = img.height;
+        def.format = SSC_DEPTH_F32_M;
+        def.samples = img.depth.data();
+        if (!o.intrinsics.empty()) def.fx = o.intrinsics[0], def.fy = o.intrinsics[1], def.cx = o.intrinsics[2], def.cy = o.intrinsics[3];
+        else if (img.has_intrinsics) def.fx = float(img.fx), def.fy = float(img.fy), def.cx = float(img.cx), def.cy = float(img.cy);
+        else throw UsageError(path + ": the file does not give the camera's intrinsics; pass --intrinsics FX,FY,CX,CY");
+        float pose[16];
+        for (int i = 0; i < 16; ++i) pose[i] = float(img.camera_to_world(i % 4, i / 4));
+        if (img.has_pose) def.camera_to_world = pose;
+        const uint32_t frame = frame_for();
+        uint32_t added = 0;
+        check(ssc_fitter_add_depth_image(guard.f, frame, &def, &added), path);
+        std::printf("%s: %u x %u depth image, %u points%s\n", path.c_str(), img.width, img.height, added,
+                    img.has_pose ? "" : " (camera at the origin: the file gives no pose)");
+        if (frame == 0 && !o.png.empty()) {
+            // The same back-projection the fitter made, for the picture.
+            fitting::DepthView view;
+            view.width = img.width, view.height = img.height, view.depth = img.depth.data();
+            view.camera.fx = def.fx, view.camera.fy = def.fy, view.camera.cx = def.cx, view.camera.cy = def.cy;
+            view.camera.rotation = img.camera_to_world.topLeftCorner<3, 3>();
+            view.camera.position = img.camera_to_world.topRightCorner<3, 1>();
+            const auto cloud = fitting::depth_to_cloud(view);
+            shown.insert(shown.end(), cloud.points.begin(), cloud.points.end());
+        }
     }
     ssc_fit_report report;
     report.struct_size = sizeof report;
@@ -121,7 +164,7 @@ int cmd_fit(const std::vector<std::string>& args) {
     std::printf("fit: %u iterations, %s, %.1f ms; cost %.4g -> %.4g\n", report.iterations, report.converged ? "converged" : "iteration limit",
                 report.seconds * 1e3, report.initial_cost, report.final_cost);
     if (!o.landmarks.empty()) std::printf("landmark rms distance: %.2f mm\n", report.landmark_rms * 1e3);
-    if (!o.points.empty()) std::printf("scan: mean correspondence distance %.2f mm, inliers %.1f %%\n", report.point_mean * 1e3, 100 * report.inlier_fraction);
+    if (!o.points.empty() || !o.depth.empty()) std::printf("points: mean correspondence distance %.2f mm, inliers %.1f %%\n", report.point_mean * 1e3, 100 * report.inlier_fraction);
 
     const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model), J = ssc_model_joint_count(model);
     const uint32_t K = ssc_model_shape_count(model);
@@ -142,6 +185,16 @@ int cmd_fit(const std::vector<std::string>& args) {
     mesh.triangles = tris.data();
     exporters::write_mesh(o.out, mesh);
     std::printf("wrote %s\n", o.out.c_str());
+    // Further frames (--frames): the same shape in each frame's pose, OUT_frameN.EXT.
+    std::vector<float> more(3ull * V);
+    for (uint32_t f = 1; f < ssc_fitter_frame_count(guard.f); ++f) {
+        const std::size_t dot = o.out.find_last_of('.');
+        const std::string path = o.out.substr(0, dot) + "_frame" + std::to_string(f) + o.out.substr(dot);
+        check(ssc_fitter_get_vertices(guard.f, f, more.data(), V, 0), "vertices");
+        mesh.positions = more.data();
+        exporters::write_mesh(path, mesh);
+        std::printf("wrote %s\n", path.c_str());
+    }
     if (!o.png.empty()) {
         fitting::FitState s;
         for (uint32_t j = 0; j < J; ++j)

@@ -1,11 +1,13 @@
 // `sscape simulate`: a random body of the model measured as a scanner would: a point cloud with
 // noise, holes and outliers (PLY with normals), landmarks with placement noise (CAESAR .lnd, mm),
-// and the true mesh (OBJ) to compare fits with.
+// optionally depth images from cameras in front of and behind the body (16-bit PGM in mm with the
+// camera in its header), and the true mesh (OBJ) to compare fits with.
 #include "cli.hpp"
 
 #include "capi/handles.hpp"
 #include "export/mesh_writers.hpp"
 #include "io/writers.hpp"
+#include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
 
 #include <cstdio>
@@ -17,6 +19,8 @@ int cmd_simulate(const std::vector<std::string>& args) {
     uint32_t seed = 1;
     double pose_amount = 1, landmark_noise = 0.01, heading = 0;
     simulation::CloudSpec spec;
+    simulation::DepthCameraSpec camera_spec;
+    std::vector<std::string> views;  // "front", "back"
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto number = [&]() {
@@ -33,6 +37,12 @@ int cmd_simulate(const std::vector<std::string>& args) {
         else if (a == "--landmark-noise") landmark_noise = number();
         else if (a == "--pose-amount") pose_amount = number();
         else if (a == "--heading") heading = number();
+        else if (a == "--depth") {
+            const std::string& v = option_value(args, i);
+            if (v == "front" || v == "back") views = {v};
+            else if (v == "front,back" || v == "both") views = {"front", "back"};
+            else throw UsageError("--depth takes front, back or front,back");
+        } else if (a == "--depth-noise") camera_spec.noise = number();
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
         else if (model_path.empty()) model_path = a;
         else throw UsageError("unexpected argument '" + a + "'");
@@ -62,6 +72,31 @@ int cmd_simulate(const std::vector<std::string>& args) {
     for (const auto& t : simulation::simulate_landmarks(m, truth, landmark_noise, false, rng))
         lnd.push_back({t.landmark + 1, m.data().landmarks[t.landmark].name, t.position});
     io::write_lnd(prefix + ".lnd", "simulated seed " + std::to_string(seed), lnd);
+    std::string depth_note;
+    if (!views.empty()) {
+        // Cameras 2.8 m from the body's centre at its height, in front (+z) and behind (-z): a
+        // 640 x 480 Kinect-class sensor then sees the whole body with raised arms.
+        Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+        for (const auto& v : truth.vertices) centre += v;
+        centre /= double(truth.vertices.size());
+        for (const auto& view : views) {
+            const Eigen::Vector3d eye = centre + Eigen::Vector3d(0, 0, view == "front" ? 2.8 : -2.8);
+            const fitting::PinholeCamera cam = simulation::look_at(eye, centre, camera_spec);
+            io::DepthImage img;
+            img.width = camera_spec.width, img.height = camera_spec.height;
+            img.depth = simulation::render_depth(m, truth, cam, camera_spec, rng);
+            img.has_intrinsics = img.has_pose = true;
+            img.fx = cam.fx, img.fy = cam.fy, img.cx = cam.cx, img.cy = cam.cy;
+            img.camera_to_world.topLeftCorner<3, 3>() = cam.rotation;
+            img.camera_to_world.topRightCorner<3, 1>() = cam.position;
+            const std::string path = prefix + "_" + view + ".pgm";
+            io::write_pgm_depth(path, img);
+            depth_note += ", " + path;
+        }
+        char note[96];
+        std::snprintf(note, sizeof note, " (%u x %u depth in mm, %.1f mm noise)", camera_spec.width, camera_spec.height, camera_spec.noise * 1e3);
+        depth_note += note;
+    }
     std::vector<float> tv;
     for (const auto& v : truth.vertices)
         for (int a = 0; a < 3; ++a) tv.push_back(float(v[a]));
@@ -72,9 +107,9 @@ int cmd_simulate(const std::vector<std::string>& args) {
     mv.triangles = m.data().mesh.triangles.data();
     exporters::write_obj(prefix + "_truth.obj", mv);
     std::printf("wrote %s_scan.ply (%zu points: %.1f mm noise, %.0f %% missing, %.1f %% outliers), %s.lnd (%zu landmarks, %.1f mm noise), "
-                "%s_truth.obj\n",
+                "%s_truth.obj%s\n",
                 prefix.c_str(), cloud.points.size(), spec.noise * 1e3, spec.missing * 100, spec.outliers * 100, prefix.c_str(), lnd.size(),
-                landmark_noise * 1e3, prefix.c_str());
+                landmark_noise * 1e3, prefix.c_str(), depth_note.c_str());
     return 0;
 }
 

@@ -68,12 +68,16 @@ const char* kUsage =
     "  train --assets MAKEHUMAN_DIR -o OUT.sscape [--bodies N] [--components K] [--seed S]\n"
     "        [--heldout N] [--population-csv FILE] [--report PREFIX] [--procrustes]\n"
     "                             train a model from the CC0 MakeHuman assets\n"
-    "  fit [MODEL] (--landmarks FILE.lnd | --points FILE.ply|.obj)... -o OUT.obj|.ply [--units m|cm|mm]\n"
-    "      [--scale] [--hands] [--components K] [--iterations N] [--png FIT.png]\n"
-    "                             fit shape and pose to landmarks and/or a scan; write the fitted mesh\n"
+    "  fit [MODEL] (--landmarks FILE.lnd | --points FILE.ply|.obj | --depth FILE.pgm)... -o OUT.obj|.ply\n"
+    "      [--units m|cm|mm] [--intrinsics FX,FY,CX,CY] [--frames] [--scale] [--hands] [--components K]\n"
+    "      [--iterations N] [--png FIT.png]\n"
+    "                             fit shape and pose to landmarks, scans and/or depth images; write the\n"
+    "                             fitted mesh (--frames: each file is its own frame, one shared shape)\n"
     "  simulate [MODEL] -o PREFIX [--seed S] [--points N] [--noise M] [--missing F] [--outliers F]\n"
-    "      [--landmark-noise M] [--pose-amount A] [--heading DEG]\n"
-    "                             a random posed body measured: PREFIX_scan.ply, PREFIX.lnd, PREFIX_truth.obj\n";
+    "      [--landmark-noise M] [--pose-amount A] [--heading DEG] [--depth front|back|front,back]\n"
+    "      [--depth-noise M]\n"
+    "                             a random posed body measured: PREFIX_scan.ply, PREFIX.lnd, PREFIX_truth.obj,\n"
+    "                             with --depth PREFIX_front.pgm / PREFIX_back.pgm (16-bit mm, camera in header)\n";
 
 }  // namespace
 

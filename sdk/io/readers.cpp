@@ -355,11 +355,33 @@ std::vector<LandmarkRecord> read_lnd(const std::string& path) {
 DepthImage read_pgm_depth(const std::string& path) {
     const std::string data = slurp(path);
     std::size_t pos = 0;
+    DepthImage img;
+    auto comment = [&](const std::string& line) {
+        std::istringstream in(line);
+        std::string hash, tag, key;
+        in >> hash >> tag >> key;
+        if (tag != "sscape") return;
+        std::vector<double> v;
+        for (double x; in >> x;) v.push_back(x);
+        const bool numbers_only = in.eof();
+        auto all_finite = [&]() { return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }); };
+        if (key == "intrinsics") {
+            if (!numbers_only || v.size() != 4 || !all_finite()) bad(path, "'# sscape intrinsics' needs 4 numbers: fx fy cx cy");
+            img.has_intrinsics = true;
+            img.fx = v[0], img.fy = v[1], img.cx = v[2], img.cy = v[3];
+        } else if (key == "camera_to_world") {
+            if (!numbers_only || v.size() != 16 || !all_finite()) bad(path, "'# sscape camera_to_world' needs 16 numbers (column-major 4x4)");
+            img.has_pose = true;
+            for (int i = 0; i < 16; ++i) img.camera_to_world(i % 4, i / 4) = v[std::size_t(i)];
+        }
+    };
     auto token = [&]() {
         for (;;) {
             while (pos < data.size() && std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
             if (pos < data.size() && data[pos] == '#') {
+                const std::size_t start = pos;
                 while (pos < data.size() && data[pos] != '\n') ++pos;
+                comment(data.substr(start, pos - start));
                 continue;
             }
             break;
@@ -376,7 +398,6 @@ DepthImage read_pgm_depth(const std::string& path) {
     ++pos;  // the single whitespace after maxval
     const std::size_t need = std::size_t(w) * std::size_t(h) * 2;
     if (pos > data.size() || data.size() - pos < need) bad(path, "pixel data is truncated");
-    DepthImage img;
     img.width = uint32_t(w);
     img.height = uint32_t(h);
     img.depth.resize(std::size_t(w) * std::size_t(h));

@@ -35,9 +35,16 @@ PointFile read_points(const std::string& path);
 struct DepthImage {
     uint32_t width = 0, height = 0;
     std::vector<float> depth;  // metres, row-major from the top; 0 = no measurement
+    // The camera, when the file's header comments give it (sscape simulate writes them):
+    //   # sscape intrinsics FX FY CX CY            pinhole, pixels
+    //   # sscape camera_to_world M0 ... M15        column-major 4x4, camera frame x right, y down, z forward
+    bool has_intrinsics = false, has_pose = false;
+    double fx = 0, fy = 0, cx = 0, cy = 0;
+    Eigen::Matrix4d camera_to_world = Eigen::Matrix4d::Identity();
 };
 
-// Binary PGM (P5) with maxval > 255 (16-bit big-endian samples), values in millimetres.
+// Binary PGM (P5) with maxval > 255 (16-bit big-endian samples), values in millimetres; the camera
+// comments above are read when present (malformed ones are an error, other comments are ignored).
 DepthImage read_pgm_depth(const std::string& path);
 
 // Landmark names compared as the CAESAR files spell them: case, spaces and punctuation ignored

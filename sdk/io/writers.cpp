@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -19,6 +20,29 @@ void write_lnd(const std::string& path, const std::string& subject, const std::v
     }
     s << "END =\n";
     const std::string text = s.str();
+    write_file_atomically(path, text.data(), text.size());
+}
+
+void write_pgm_depth(const std::string& path, const DepthImage& img) {
+    std::ostringstream s;
+    s.precision(17);
+    s << "P5\n";
+    if (img.has_intrinsics) s << "# sscape intrinsics " << img.fx << ' ' << img.fy << ' ' << img.cx << ' ' << img.cy << "\n";
+    if (img.has_pose) {
+        s << "# sscape camera_to_world";
+        for (int i = 0; i < 16; ++i) s << ' ' << img.camera_to_world(i % 4, i / 4);
+        s << "\n";
+    }
+    s << img.width << ' ' << img.height << "\n65535\n";
+    std::string text = s.str();
+    const std::size_t header = text.size();
+    text.resize(header + 2 * img.depth.size());
+    for (std::size_t i = 0; i < img.depth.size(); ++i) {
+        const double mm = std::round(double(img.depth[i]) * 1000.0);
+        const uint16_t v = std::isfinite(mm) && mm > 0 && mm <= 65535 ? uint16_t(mm) : 0;
+        text[header + 2 * i] = char(v >> 8);  // PGM samples are big-endian
+        text[header + 2 * i + 1] = char(v & 0xFF);
+    }
     write_file_atomically(path, text.data(), text.size());
 }
 

@@ -1,0 +1,73 @@
+#include "fitting/depth_image.hpp"
+
+#include "common/error.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+
+namespace ssc::fitting {
+
+void validate_camera(const PinholeCamera& c) {
+    SSC_REQUIRE_ARG_S(std::isfinite(c.fx) && std::isfinite(c.fy) && c.fx > 0 && c.fy > 0,
+                      "camera: focal lengths must be positive (fx " << c.fx << ", fy " << c.fy << ")");
+    SSC_REQUIRE_ARG_S(std::isfinite(c.cx) && std::isfinite(c.cy), "camera: principal point is not finite");
+    SSC_REQUIRE_ARG(c.rotation.allFinite() && (c.rotation.transpose() * c.rotation - Matrix3d::Identity()).norm() < 1e-3 &&
+                        c.rotation.determinant() > 0,
+                    "camera: rotation is not a proper rotation matrix");
+    SSC_REQUIRE_ARG(c.position.allFinite(), "camera: position is not finite");
+}
+
+PointCloud depth_to_cloud(const DepthView& img) {
+    validate_camera(img.camera);
+    SSC_REQUIRE_ARG(img.depth != nullptr, "depth image: no samples");
+    SSC_REQUIRE_ARG_S(img.width >= 5 && img.height >= 5 && img.width <= 16384 && img.height <= 16384,
+                      "depth image: size " << img.width << " x " << img.height << " (5..16384 each)");
+    SSC_REQUIRE_ARG(std::isfinite(img.min_depth) && std::isfinite(img.max_depth) && img.min_depth >= 0 && img.max_depth >= 0,
+                    "depth image: depth limits must be finite and >= 0");
+    const PinholeCamera& cam = img.camera;
+    const int W = int(img.width), H = int(img.height);
+    const double far = img.max_depth > 0 ? img.max_depth : std::numeric_limits<double>::infinity();
+    auto depth_at = [&](int u, int v) -> double {
+        const std::size_t i = std::size_t(v) * std::size_t(W) + std::size_t(u);
+        const float z = img.depth[i];
+        if (!(z > 0) || !std::isfinite(z) || (img.mask && !img.mask[i]) || z < img.min_depth || z > far) return 0;
+        return z;
+    };
+    auto camera_point = [&](int u, int v, double z) { return Vector3d((u - cam.cx) * z / cam.fx, (v - cam.cy) * z / cam.fy, z); };
+    PointCloud out;
+    constexpr int R = 2;  // window radius: at 5 mm pixels, a 2.5 cm patch averages sensor noise
+    for (int v = 0; v < H; ++v)
+        for (int u = 0; u < W; ++u) {
+            const double z0 = depth_at(u, v);
+            if (z0 == 0) continue;
+            const double jump = 0.03 + 0.02 * z0;
+            Vector3d sum = Vector3d::Zero();
+            Matrix3d outer = Matrix3d::Zero();
+            int n = 0;
+            for (int dv = -R; dv <= R; ++dv)
+                for (int du = -R; du <= R; ++du) {
+                    const int uu = u + du, vv = v + dv;
+                    if (uu < 0 || vv < 0 || uu >= W || vv >= H) continue;
+                    const double z = depth_at(uu, vv);
+                    if (z == 0 || std::abs(z - z0) > jump) continue;
+                    const Vector3d p = camera_point(uu, vv, z);
+                    sum += p;
+                    outer += p * p.transpose();
+                    ++n;
+                }
+            if (n < 6) continue;
+            const Vector3d mean = sum / n;
+            const Matrix3d cov = outer / n - mean * mean.transpose();
+            const Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
+            Vector3d normal = es.eigenvectors().col(0);
+            const Vector3d p = camera_point(u, v, z0);
+            if (normal.dot(p) > 0) normal = -normal;  // towards the camera centre (the origin here)
+            out.points.push_back(cam.rotation * p + cam.position);
+            out.normals.push_back((cam.rotation * normal).normalized());
+        }
+    SSC_REQUIRE_ARG_S(out.points.size() >= 16, "depth image: " << out.points.size() << " usable pixels (at least 16 needed)");
+    return out;
+}
+
+}  // namespace ssc::fitting
