@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 #include "fitting/depth_image.hpp"
 #include "fitting/fitter.hpp"
+#include "fitting/joint_limits.hpp"
 #include "fitting/nearest.hpp"
 #include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
@@ -396,4 +397,49 @@ TEST_CASE("front and back depth images fit a body through the C API", "[fitting]
     INFO("mean vertex error " << err * 1e3 << " mm, point mean " << report.point_mean * 1e3 << " mm");
     CHECK(err < 0.012);
     ssc_fitter_destroy(fitter);
+}
+
+TEST_CASE("everyday poses lie within the joint limits and impossible ones outside", "[fitting][limits]") {
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, 1);
+    const auto limits = fitting::joint_limits(m);
+    REQUIRE(limits.size() == m.joint_count());
+    uint32_t limited = 0;
+    for (const auto& l : limits) limited += l.limited;
+    CHECK(limited == 21);  // 3 spine, neck, head, and 8 per side
+    auto quat = [](const std::vector<float>& pose, uint32_t j) {
+        return Eigen::Quaterniond(pose[4 * j + 3], pose[4 * j], pose[4 * j + 1], pose[4 * j + 2]);
+    };
+    std::mt19937 rng(12);
+    for (int t = 0; t < 300; ++t) {
+        const auto pose = simulation::random_pose(m, rng);
+        for (uint32_t j = 0; j < m.joint_count(); ++j) {
+            if (!limits[j].limited) continue;
+            const Eigen::Vector3d c = fitting::anatomical_angles(limits[j], quat(pose, j));
+            INFO(m.data().skeleton.joint_names[j] << ": " << c.transpose() * 180 / M_PI << " degrees");
+            CHECK((c.array() >= limits[j].lo.array()).all());
+            CHECK((c.array() <= limits[j].hi.array()).all());
+        }
+    }
+    // A rotation given about the body's axes at rest (as random_pose draws them).
+    const auto& sk = m.data().skeleton;
+    std::vector<Eigen::Matrix3d> W(m.joint_count());
+    for (uint32_t j = 0; j < m.joint_count(); ++j) W[j] = sk.parents[j] < 0 ? lin.rest_orient[j] : W[uint32_t(sk.parents[j])] * lin.rest_orient[j];
+    auto angles = [&](const char* joint, const Eigen::Vector3d& axis, double radians) {
+        const uint32_t j = uint32_t(m.find_joint(joint));
+        const Eigen::Matrix3d body = Eigen::AngleAxisd(radians, axis.normalized()).toRotationMatrix();
+        return fitting::anatomical_angles(limits[j], Eigen::Quaterniond(W[j].transpose() * body * W[j]));
+    };
+    const uint32_t calf_l = uint32_t(m.find_joint("calf_l")), calf_r = uint32_t(m.find_joint("calf_r"));
+    CHECK(angles("calf_l", Eigen::Vector3d::UnitX(), 1.2).x() == Approx(1.2).margin(0.05));   // a knee bends backwards
+    CHECK(angles("calf_r", Eigen::Vector3d::UnitX(), 1.2).x() == Approx(1.2).margin(0.05));
+    CHECK(angles("calf_l", Eigen::Vector3d::UnitX(), -0.6).x() < limits[calf_l].lo.x());      // not forwards
+    CHECK(angles("calf_r", Eigen::Vector3d::UnitX(), -0.6).x() < limits[calf_r].lo.x());
+    // A thigh turned 120 degrees about the leg, either side.
+    const uint32_t thigh_l = uint32_t(m.find_joint("thigh_l"));
+    CHECK(std::abs(angles("thigh_l", Eigen::Vector3d::UnitY(), 2.1).y()) > limits[thigh_l].hi.y());
+    CHECK(std::abs(angles("thigh_r", Eigen::Vector3d::UnitY(), -2.1).y()) > limits[thigh_l].hi.y());
+    // Raising the left arm sideways is -z', on the right too (mirrored).
+    CHECK(angles("upperarm_l", Eigen::Vector3d::UnitZ(), 1.0).z() == Approx(-1.0).margin(0.05));
+    CHECK(angles("upperarm_r", Eigen::Vector3d::UnitZ(), -1.0).z() == Approx(-1.0).margin(0.05));
 }

@@ -471,6 +471,8 @@ typedef struct ssc_fitter_def {
     float pose_prior;         /**< Weight of the joint rotation prior (>= 0). Default 1. */
     uint32_t max_points;      /**< Scan points used per iteration, a fixed random subset (>= 16). Default 3000. */
     uint32_t seed;            /**< Seed of that subset. Default 1. */
+    uint32_t joint_limits;    /**< Non-zero: keep joints within anatomical ranges of motion (AAOS averages;
+                                   soft walls in the pose prior). Default 1. */
 } ssc_fitter_def;
 
 /** Fills def with defaults; size = sizeof(*def). Threads: any. */

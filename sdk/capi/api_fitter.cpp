@@ -61,6 +61,7 @@ void ssc_fitter_def_init(ssc_fitter_def* def, size_t size) {
     d.pose_prior = float(o.pose_prior);
     d.max_points = o.max_points;
     d.seed = o.seed;
+    d.joint_limits = o.joint_limits;
     std::memcpy(def, &d, d.struct_size);
 }
 
@@ -87,6 +88,7 @@ ssc_status ssc_fitter_create(ssc_model* model, const ssc_fitter_def* def, ssc_fi
         o.pose_prior = d.pose_prior;
         o.max_points = d.max_points;
         o.seed = d.seed;
+        o.joint_limits = d.joint_limits != 0;
         ssc_fitter* f = make<ssc_fitter>(allocator_of(model), model, o);
         ssc_model_retain(model);
         *out = f;

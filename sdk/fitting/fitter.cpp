@@ -4,6 +4,7 @@
 
 #include "common/error.hpp"
 #include "common/rigid.hpp"
+#include "fitting/joint_limits.hpp"
 #include "fitting/nearest.hpp"
 #include "fitting/posed_surface.hpp"
 
@@ -30,6 +31,9 @@ constexpr double kHuber = 2.0;
 // Weight of the point-to-point part next to point-to-plane: enough to stop sliding along flat
 // regions, small enough that the vertex spacing (about 1 cm) does not bias the fit.
 constexpr double kTangential = 0.1;
+// Joint limits are soft walls: beyond a limit the cost grows as (excess / kLimitSigma)^2 / 2, so
+// 10 degrees past a limit costs as much as 75 scan points each 3 sigma off.
+constexpr double kLimitSigma = 0.02;
 
 struct Robust {
     double cost, weight;  // rho(r) and rho'(r)/r (IRLS weight)
@@ -99,6 +103,9 @@ struct Stage {
     double min_normal_dot;
     double point_fraction;  // of max_points
     double tolerance = 1e-5;  // converged when a step lowers the cost by less than this fraction
+    // Scan-to-model correspondences against every vertex, or (coarse stages) against the
+    // area-sampled subset only: a tree a quarter the size, and coarse steps need no more.
+    bool dense_model = false;
 };
 
 struct FrameData {
@@ -145,6 +152,7 @@ public:
             kin_.emplace_back(lin);
         }
         for (const auto& name : d.skeleton.joint_names) joint_sigma_.push_back(joint_rotation_sigma(name));
+        if (o.joint_limits) limits_ = joint_limits(lin.model);
         bool any_points = false;
         for (const auto& fd : frames_) any_points |= !fd.points.empty();
         if (any_points) sample_vertices(rng);
@@ -175,7 +183,7 @@ public:
             // far with a wide loss. After the automatic start search it stays close.
             {n0, false, false, 0, given_start ? 1.0 : 0.3, given_start ? 40.0 : 10.0, 0.0, 0.25, 1e-3},
             {n1, true, false, std::min<uint32_t>(K_, 10), 0.10, 6.0, 0.3, 0.5, 1e-4},
-            {total - n0 - n1, true, true, K_, 0.04, 4.0, 0.5, 1.0, 1e-5},
+            {total - n0 - n1, true, true, K_, 0.04, 4.0, 0.5, 1.0, 1e-5, true},
         };
         bool cancelled = false, converged = false;
         uint32_t iteration = 0;
@@ -365,9 +373,8 @@ private:
                 R.col(1) = y;
                 R.col(2) = z;
                 states_[f] = place(R, scale, c - scale * R * mc);
-                double cost = 0;
-                for (uint32_t it = 0; it < probe.iterations; ++it) cost = rigid_step(f, probe);
-                candidates.emplace_back(cost, states_[f]);
+                for (uint32_t it = 0; it < probe.iterations; ++it) rigid_step(f, probe);
+                candidates.emplace_back(explained(f), states_[f]);
             }
         std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
         FitState best = candidates[0].second;
@@ -380,11 +387,51 @@ private:
             run_stage(coarse, f, nullptr, iterations, cancelled);
             update_kinematics();
             find_pairs(coarse, f);
-            const double cost = evaluate(coarse, nullptr, nullptr, f);
+            const double cost = explained(f);
             if (cost < best_cost) best_cost = cost, best = states_[f];
         }
         std::fill(shape_.begin(), shape_.end(), 0.0);
         return best;
+    }
+
+    // The posed positions of the area-sampled vertex subset (posed_ must be current).
+    const std::vector<Vector3d>& posed_subset() {
+        subset_posed_.resize(vertex_sample_.size());
+        for (std::size_t i = 0; i < vertex_sample_.size(); ++i) subset_posed_[i] = posed_[vertex_sample_[i]];
+        return subset_posed_;
+    }
+
+    // How badly the current state of frame f explains its cloud, for choosing between start
+    // candidates: truncated squared distances both ways over fixed point sets, a point whose
+    // nearest partner faces the other way counting as unexplained. Unlike the fit's cost (which
+    // gates correspondences away), a candidate cannot look good by leaving data unexplained.
+    double explained(uint32_t f) {
+        constexpr double cap = 0.05;  // metres
+        auto& fd = frames_[f];
+        kin_[f].update(states_[f]);
+        pose_frame(f);
+        const PointIndex model_index(posed_subset());
+        auto faces_away = [&](const Vector3d& scan_n, const Vector3d& model_n) {
+            if (scan_n.squaredNorm() == 0) return false;
+            const double dot = scan_n.dot(model_n);
+            return (fd.oriented ? dot : std::abs(dot)) < 0.0;
+        };
+        double sum = 0;
+        const std::size_t n = std::min<std::size_t>(fd.scan_sample.size(), 1000);
+        for (std::size_t s = 0; s < n; ++s) {
+            const uint32_t i = fd.scan_sample[s];
+            double d2;
+            const uint32_t v = vertex_sample_[model_index.nearest(fd.points[i], &d2)];
+            sum += faces_away(fd.normals[i], posed_normals_[v]) ? cap * cap : std::min(d2, cap * cap);
+        }
+        const std::size_t m = std::min<std::size_t>(vertex_sample_.size(), 1000);
+        for (std::size_t s = 0; s < m; ++s) {
+            const uint32_t v = vertex_sample_[s];
+            double d2;
+            const uint32_t i = fd.scan_index->nearest(posed_[v], &d2);
+            sum += faces_away(fd.normals[i], posed_normals_[v]) ? cap * cap : std::min(d2, cap * cap);
+        }
+        return sum;
     }
 
     // One Gauss-Newton step of a single frame's rigid parameters (start search).
@@ -411,7 +458,6 @@ private:
     }
 
     // Posed vertices and normals of frame f (for correspondences).
-    // Posed vertices and normals of frame f (for correspondences).
     void pose_frame(uint32_t f) { posed_surface(body_, states_[f], posed_, &posed_normals_); }
 
     void find_pairs(const Stage& st, uint32_t frame_only = 0xFFFFFFFFu) {
@@ -429,7 +475,10 @@ private:
         fd.pairs.clear();
         if (fd.points.empty()) return;
         if (pair_candidates_.size() < F_) pair_candidates_.assign(F_, 0);
-        const PointIndex model_index(posed_);
+        // Model points for scan-to-model queries: all vertices or the subset (see Stage).
+        const std::vector<Vector3d>* model_points = &posed_;
+        if (!st.dense_model) model_points = &posed_subset();
+        const PointIndex model_index(*model_points);
         const std::size_t n_scan = std::max<std::size_t>(
             16, std::min<std::size_t>(fd.scan_sample.size(), std::size_t(st.point_fraction * o_.max_points)));
         const std::size_t n_model = std::max<std::size_t>(16, std::min<std::size_t>(vertex_sample_.size(), n_scan));
@@ -450,7 +499,8 @@ private:
         for (std::size_t s = 0; s < n_scan; ++s) {
             const uint32_t i = fd.scan_sample[s];
             double d2;
-            const uint32_t v = model_index.nearest(fd.points[i], &d2);
+            const uint32_t nearest = model_index.nearest(fd.points[i], &d2);
+            const uint32_t v = st.dense_model ? nearest : vertex_sample_[nearest];
             ++pair_candidates_[f];
             if (d2 > max2 || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) continue;
             Pair p;
@@ -617,6 +667,36 @@ private:
                 }
             }
         }
+        // Joint limits: a quadratic wall per anatomical component beyond its range.
+        for (uint32_t f = 0; f < F_ && !limits_.empty(); ++f) {
+            if (frame_only < F_ && f != frame_only) continue;
+            const Kinematics& kin = kin_[f];
+            for (uint32_t j = 1; j < lin_.J; ++j) {
+                const JointLimit& lim = limits_[j];
+                if (!lim.limited) continue;
+                const Vector3d r = log_rotation(states_[f].pose[j]);
+                const Vector3d c = lim.to_anatomical * r;
+                Vector3d e = Vector3d::Zero();
+                for (int a = 0; a < 3; ++a) {
+                    if (c[a] > lim.hi[a]) e[a] = (c[a] - lim.hi[a]) / kLimitSigma;
+                    else if (c[a] < lim.lo[a]) e[a] = (c[a] - lim.lo[a]) / kLimitSigma;
+                }
+                if (e.isZero()) continue;
+                cost += 0.5 * e.squaredNorm();
+                if (!H) continue;
+                // Rows of the active components only: d c / d w = M J_l^-1(r) A^T, over the sigma.
+                Matrix3d Jc = lim.to_anatomical * inverse_left_jacobian(r) * kin.local_from_world(j) / kLimitSigma;
+                for (int a = 0; a < 3; ++a)
+                    if (e[a] == 0) Jc.row(a).setZero();
+                const uint32_t c0 = column(f, kin.rotation_offset(j));
+                const Matrix3d JtJ = Jc.transpose() * Jc;
+                const Vector3d Jte = Jc.transpose() * e;
+                for (int a = 0; a < 3; ++a) {
+                    (*g)[c0 + a] += Jte[a];
+                    for (int b = a; b < 3; ++b) (*H)(c0 + a, c0 + b) += JtJ(a, b);
+                }
+            }
+        }
         // Shape prior: the coefficients are standard deviations of the training population.
         for (uint32_t k = 0; k < K_; ++k) {
             cost += 0.5 * o_.shape_prior * shape_[k] * shape_[k];
@@ -636,10 +716,11 @@ private:
     std::vector<double> shape_;
     std::vector<FitState> states_;
     std::vector<uint32_t> vertex_sample_;
-    std::vector<Vector3d> posed_, posed_normals_;
+    std::vector<Vector3d> posed_, posed_normals_, subset_posed_;
     Body body_;
     std::vector<std::size_t> pair_candidates_;
     std::vector<double> joint_sigma_;
+    std::vector<JointLimit> limits_;  // empty when the options turn limits off
     std::vector<uint8_t> touched_;  // columns some data row reached in the last evaluate() with H
 };
 

@@ -10,8 +10,8 @@
 //           trees), point-to-plane where normals exist, normal-compatibility and distance tests,
 //           Geman-McClure loss and trimming;
 //   priors  Gaussian on shape (the model's own: coefficients are standard deviations) and on each
-//           joint's rotation; coarse-to-fine stages (rigid, then main joints and few components,
-//           then everything).
+//           joint's rotation, and soft walls at the anatomical joint limits (joint_limits.hpp);
+//           coarse-to-fine stages (rigid, then main joints and few components, then everything).
 #pragma once
 
 #include "fitting/kinematics.hpp"
@@ -47,6 +47,7 @@ struct FitOptions {
     double point_sigma = 0.004;         // metres: expected scan noise plus model error
     double shape_prior = 1;             // multiplies the Gaussian shape prior (0 = none)
     double pose_prior = 1;              // multiplies the joint rotation prior (0 = none)
+    bool joint_limits = true;           // keep joints within their anatomical ranges (joint_limits.hpp)
     uint32_t max_iterations = 60;       // Levenberg-Marquardt iterations, all stages together
     uint32_t max_points = 3000;         // scan points used per iteration (a fixed random subset)
     uint32_t seed = 1;                  // for that subset

@@ -1,5 +1,6 @@
 #include "simulation/simulate.hpp"
 
+#include "fitting/joint_limits.hpp"
 #include "fitting/posed_surface.hpp"
 
 #include <algorithm>
@@ -36,7 +37,7 @@ const JointRange kRanges[] = {
     {"head", -0.10, 0.15, -0.20, 0.20, -0.10, 0.10},
     {"upperarm_l", -0.90, 0.40, -0.30, 0.30, -0.40, 0.80},
     {"upperarm_r", -0.90, 0.40, -0.30, 0.30, -0.80, 0.40},
-    {"lowerarm_l", -1.60, -0.05, -0.20, 0.20, 0, 0},
+    {"lowerarm_l", -1.60, -0.05, -0.20, 0.20, 0, 0},  // anatomical: flexion, forearm rotation
     {"lowerarm_r", -1.60, -0.05, -0.20, 0.20, 0, 0},
     {"hand_l", -0.30, 0.30, -0.20, 0.20, -0.20, 0.20},
     {"hand_r", -0.30, 0.30, -0.20, 0.20, -0.20, 0.20},
@@ -62,12 +63,17 @@ std::vector<float> random_pose(const Model& m, std::mt19937& rng, double amount)
         const Matrix3d R = Quaterniond(r[3], r[0], r[1], r[2]).normalized().toRotationMatrix();
         W[j] = sk.parents[j] < 0 ? R : W[uint32_t(sk.parents[j])] * R;
     }
+    const auto limits = fitting::joint_limits(m);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (const auto& range : kRanges) {
         const int64_t j = m.find_joint(range.name);
         if (j < 0) continue;
         auto draw = [&](double lo, double hi) { return amount * (lo + (hi - lo) * u(rng)); };
-        const Vector3d w(draw(range.x_lo, range.x_hi), draw(range.y_lo, range.y_hi), draw(range.z_lo, range.z_hi));
+        Vector3d w(draw(range.x_lo, range.x_hi), draw(range.y_lo, range.y_hi), draw(range.z_lo, range.z_hi));
+        // The elbow is a hinge across the arm, not about the body's x axis: its ranges are
+        // flexion and forearm rotation in the joint's anatomical frame (joint_limits.hpp).
+        if (limits[std::size_t(j)].limited && std::string(range.name).rfind("lowerarm", 0) == 0)
+            w = W[std::size_t(j)] * limits[std::size_t(j)].to_anatomical.transpose() * w;
         const double angle = w.norm();
         const Matrix3d Rb = angle > 0 ? Eigen::AngleAxisd(angle, w / angle).toRotationMatrix() : Matrix3d::Identity();
         const Quaterniond P(W[std::size_t(j)].transpose() * Rb * W[std::size_t(j)]);

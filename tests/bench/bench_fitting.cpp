@@ -2,7 +2,8 @@
 // model (random shape, random plausible pose, random heading). Prints one table row per scenario:
 // mean vertex error (mean and worst over trials), time per fit (median).
 //
-//   sscape_fit_bench [--trials N] [--scenario NAME] [--components K]
+//   sscape_fit_bench [--trials N] [--scenario landmarks|scan|depth|depth2|robust] [--components K]
+//                    [--max-points N] [--no-joint-limits]
 #include "fitting/fitter.hpp"
 #include "render/fit_picture.hpp"
 #include "simulation/depth_camera.hpp"
@@ -62,10 +63,15 @@ int main(int argc, char** argv) {
     const std::string png = png_env ? png_env : "";
     bool verbose = std::getenv("SSCAPE_BENCH_VERBOSE") != nullptr;
     uint32_t components = 0xFFFFFFFFu;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--trials")) trials = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--scenario")) only = argv[i + 1];
-        else if (!std::strcmp(argv[i], "--components")) components = uint32_t(std::atoi(argv[i + 1]));
+    uint32_t max_points = 0;  // 0: the fitter's default
+    bool limits = true;
+    for (int i = 1; i < argc; ++i) {
+        auto value = [&]() { return i + 1 < argc ? argv[++i] : "0"; };
+        if (!std::strcmp(argv[i], "--no-joint-limits")) limits = false;
+        else if (!std::strcmp(argv[i], "--trials")) trials = std::atoi(value());
+        else if (!std::strcmp(argv[i], "--scenario")) only = value();
+        else if (!std::strcmp(argv[i], "--components")) components = uint32_t(std::atoi(value()));
+        else if (!std::strcmp(argv[i], "--max-points")) max_points = uint32_t(std::atoi(value()));
     }
     const Model model(format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH), nullptr);
     const fitting::LinearModel lin(model, components);
@@ -81,6 +87,8 @@ int main(int argc, char** argv) {
             fitting::Frame frame;
             frame.landmarks = simulation::simulate_landmarks(model, truth, 0.010, true, rng);
             fitting::FitOptions o;
+            if (max_points) o.max_points = max_points;
+            o.joint_limits = limits;
             const auto sol = fitting::fit(lin, {frame}, o);
             r.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[0]), truth.vertices));
             r.times.push_back(sol.report.seconds);
@@ -102,6 +110,8 @@ int main(int argc, char** argv) {
             simulation::CloudSpec spec;
             frame.clouds.push_back(simulation::simulate_cloud(model, truth, spec, rng));
             fitting::FitOptions o;
+            if (max_points) o.max_points = max_points;
+            o.joint_limits = limits;
             const auto sol = fitting::fit(lin, {frame}, o);
             r.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[0]), truth.vertices));
             r.times.push_back(sol.report.seconds);
@@ -157,6 +167,8 @@ int main(int argc, char** argv) {
                 convert += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
             }
             fitting::FitOptions o;
+            if (max_points) o.max_points = max_points;
+            o.joint_limits = limits;
             const auto sol = fitting::fit(lin, {frame}, o);
             const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
             r.errors.push_back(simulation::mean_vertex_error(fv, truth.vertices));
@@ -198,6 +210,8 @@ int main(int argc, char** argv) {
             const double angle = (deg ? std::atof(deg) : 30.0) * M_PI / 180;
             start.pose[0] = Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis)) * start.pose[0];
             fitting::FitOptions o;
+            if (max_points) o.max_points = max_points;
+            o.joint_limits = limits;
             o.auto_start = false;
             const std::vector<fitting::FitState> starts = {start};
             const auto sol = fitting::fit(lin, {frame}, o, &starts);

@@ -1,0 +1,96 @@
+#include "fitting/joint_limits.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace ssc::fitting {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+
+struct Range {
+    const char* name;     // joint name without the side suffix
+    char hinge;           // flexion axis: 'x' the body's left-right axis, 'a' across the arm (see
+                          // joint_limits.hpp), 'z' the forward axis (the clavicle lies along x)
+    double x_lo, x_hi;    // degrees, flexion axis x'
+    double y_lo, y_hi;    // axial rotation about the bone
+    double z_lo, z_hi;    // abduction axis z'
+};
+
+// Left-side conventions (right mirrored). Signs, from the rig's rest pose: +x' bends the trunk,
+// neck and head forward and the knee, -x' swings the thigh and the upper arm forward and bends
+// the elbow, +x' points the foot down; -z' abducts the thigh and raises the arm sideways.
+// Rest-pose offsets are subtracted: the rest pose holds the upper arm 43° abducted, the elbow
+// 42° and the knee 7° flexed.
+const Range kRanges[] = {
+    {"spine_01", 'x', -10, 30, -17, 17, -14, 14},
+    {"spine_02", 'x', -10, 30, -17, 17, -14, 14},
+    {"spine_03", 'x', -10, 30, -17, 17, -14, 14},
+    {"neck_01", 'x', -28, 28, -35, 35, -26, 26},
+    {"head", 'x', -25, 25, -30, 30, -22, 22},
+    {"clavicle", 'z', -20, 20, -20, 20, -25, 25},
+    {"upperarm", 'x', -185, 65, -95, 95, -140, 80},
+    {"lowerarm", 'a', -113, 47, -90, 90, -15, 15},
+    {"hand", 'a', -85, 75, -30, 30, -35, 35},
+    {"thigh", 'x', -125, 35, -50, 50, -50, 35},
+    {"calf", 'x', -12, 133, -20, 20, -8, 8},
+    {"foot", 'x', -25, 55, -35, 35, -25, 25},
+    {"ball", 'x', -40, 40, -10, 10, -10, 10},
+};
+
+}  // namespace
+
+std::vector<JointLimit> joint_limits(const Model& model) {
+    const auto& sk = model.data().skeleton;
+    const uint32_t J = model.joint_count();
+    std::vector<Matrix3d> W(J);  // rest world rotations
+    for (uint32_t j = 0; j < J; ++j) {
+        const float* q = &sk.rest_orientations[4 * std::size_t(j)];
+        const Matrix3d R = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
+        W[j] = sk.parents[j] < 0 ? R : W[uint32_t(sk.parents[j])] * R;
+    }
+    auto find = [&](const std::string& name) -> int {
+        for (uint32_t j = 0; j < J; ++j)
+            if (sk.joint_names[j] == name) return int(j);
+        return -1;
+    };
+    std::vector<JointLimit> out(J);
+    for (const Range& r : kRanges) {
+        for (const char* side : {"", "_l", "_r"}) {
+            const int j = find(std::string(r.name) + side);
+            if (j < 0) continue;
+            const bool right = std::string(side) == "_r";
+            const Vector3d bone = W[std::size_t(j)].col(1);
+            Vector3d hinge = r.hinge == 'z' ? Vector3d::UnitZ() : Vector3d::UnitX();
+            // The upper arm's own frame is built the same way from the body's x axis, which in the
+            // rest pose lies across the arm; its forearm and hand hinge about that axis.
+            if (r.hinge == 'a') {
+                const int upper = find(std::string("upperarm") + side);
+                if (upper >= 0) hinge = Vector3d::UnitZ().cross(W[std::size_t(upper)].col(1)).normalized();
+            }
+            Vector3d x = hinge - hinge.dot(bone) * bone;
+            if (x.norm() < 0.2) continue;  // bone along the hinge: no frame (not in the default rig)
+            x.normalize();
+            Matrix3d A;
+            A.col(0) = x;
+            A.col(1) = bone;
+            A.col(2) = x.cross(bone);
+            Matrix3d mirror = Matrix3d::Identity();
+            if (right) mirror(1, 1) = mirror(2, 2) = -1;
+            JointLimit& l = out[std::size_t(j)];
+            l.limited = true;
+            l.to_anatomical = mirror * A.transpose() * W[std::size_t(j)];
+            l.lo = Vector3d(r.x_lo, r.y_lo, r.z_lo) * kDeg;
+            l.hi = Vector3d(r.x_hi, r.y_hi, r.z_hi) * kDeg;
+        }
+    }
+    return out;
+}
+
+Vector3d anatomical_angles(const JointLimit& limit, const Eigen::Quaterniond& q) {
+    const Eigen::AngleAxisd aa(q.normalized());
+    return limit.to_anatomical * (aa.angle() * aa.axis());
+}
+
+}  // namespace ssc::fitting
