@@ -29,6 +29,9 @@ const std::string& option_value(const std::vector<std::string>& args, std::size_
 // Loads MODEL, or the default model compiled into the library when path is empty.
 ssc_model* load_model(const std::string& path);
 
+// path with suffix inserted before its extension: ("out/fit.obj", "_frame1") -> "out/fit_frame1.obj".
+std::string with_suffix(const std::string& path, const std::string& suffix);
+
 int cmd_info(const std::vector<std::string>& args);
 int cmd_synth(const std::vector<std::string>& args);
 int cmd_make_test_model(const std::vector<std::string>& args);

@@ -188,8 +188,7 @@ int cmd_fit(const std::vector<std::string>& args) {
     // Further frames (--frames): the same shape in each frame's pose, OUT_frameN.EXT.
     std::vector<float> more(3ull * V);
     for (uint32_t f = 1; f < ssc_fitter_frame_count(guard.f); ++f) {
-        const std::size_t dot = o.out.find_last_of('.');
-        const std::string path = o.out.substr(0, dot) + "_frame" + std::to_string(f) + o.out.substr(dot);
+        const std::string path = with_suffix(o.out, "_frame" + std::to_string(f));
         check(ssc_fitter_get_vertices(guard.f, f, more.data(), V, 0), "vertices");
         mesh.positions = more.data();
         exporters::write_mesh(path, mesh);

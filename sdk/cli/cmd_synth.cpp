@@ -109,10 +109,9 @@ void render_bodies(const std::string& path, const std::vector<std::vector<float>
 
 std::string numbered(const std::string& out, uint32_t i, uint32_t n) {
     if (n <= 1) return out;
-    const auto dot = out.find_last_of('.');
     char buf[16];
     std::snprintf(buf, sizeof buf, "_%03u", i);
-    return out.substr(0, dot) + buf + out.substr(dot);
+    return with_suffix(out, buf);
 }
 
 }  // namespace

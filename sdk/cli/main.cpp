@@ -44,6 +44,12 @@ const std::string& option_value(const std::vector<std::string>& args, std::size_
     return args[++i];
 }
 
+std::string with_suffix(const std::string& path, const std::string& suffix) {
+    const std::size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos) return path + suffix;
+    return path.substr(0, dot) + suffix + path.substr(dot);
+}
+
 ssc_model* load_model(const std::string& path) {
     ssc_model* model = nullptr;
     if (path.empty()) check(ssc_model_load_default(nullptr, &model), "cannot load the default model");

@@ -73,6 +73,12 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--components")) components = uint32_t(std::atoi(value()));
         else if (!std::strcmp(argv[i], "--max-points")) max_points = uint32_t(std::atoi(value()));
     }
+    auto options = [&]() {  // the fitter's defaults with the command line's changes
+        fitting::FitOptions o;
+        if (max_points) o.max_points = max_points;
+        o.joint_limits = limits;
+        return o;
+    };
     const Model model(format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH), nullptr);
     const fitting::LinearModel lin(model, components);
     std::printf("model: default, %u components used, %d trials per scenario\n", lin.K, trials);
@@ -86,9 +92,7 @@ int main(int argc, char** argv) {
             simulation::transform_body(truth, random_heading(rng), Eigen::Vector3d::Zero());
             fitting::Frame frame;
             frame.landmarks = simulation::simulate_landmarks(model, truth, 0.010, true, rng);
-            fitting::FitOptions o;
-            if (max_points) o.max_points = max_points;
-            o.joint_limits = limits;
+            fitting::FitOptions o = options();
             const auto sol = fitting::fit(lin, {frame}, o);
             r.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[0]), truth.vertices));
             r.times.push_back(sol.report.seconds);
@@ -109,9 +113,7 @@ int main(int argc, char** argv) {
             fitting::Frame frame;
             simulation::CloudSpec spec;
             frame.clouds.push_back(simulation::simulate_cloud(model, truth, spec, rng));
-            fitting::FitOptions o;
-            if (max_points) o.max_points = max_points;
-            o.joint_limits = limits;
+            fitting::FitOptions o = options();
             const auto sol = fitting::fit(lin, {frame}, o);
             r.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[0]), truth.vertices));
             r.times.push_back(sol.report.seconds);
@@ -166,9 +168,7 @@ int main(int argc, char** argv) {
                 frame.clouds.push_back(fitting::depth_to_cloud(img));
                 convert += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
             }
-            fitting::FitOptions o;
-            if (max_points) o.max_points = max_points;
-            o.joint_limits = limits;
+            fitting::FitOptions o = options();
             const auto sol = fitting::fit(lin, {frame}, o);
             const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
             r.errors.push_back(simulation::mean_vertex_error(fv, truth.vertices));
@@ -209,9 +209,7 @@ int main(int argc, char** argv) {
             const char* deg = std::getenv("SSCAPE_BENCH_START_DEGREES");
             const double angle = (deg ? std::atof(deg) : 30.0) * M_PI / 180;
             start.pose[0] = Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis)) * start.pose[0];
-            fitting::FitOptions o;
-            if (max_points) o.max_points = max_points;
-            o.joint_limits = limits;
+            fitting::FitOptions o = options();
             o.auto_start = false;
             const std::vector<fitting::FitState> starts = {start};
             const auto sol = fitting::fit(lin, {frame}, o, &starts);
