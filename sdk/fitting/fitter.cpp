@@ -6,6 +6,7 @@
 #include "common/rigid.hpp"
 #include "fitting/joint_limits.hpp"
 #include "fitting/nearest.hpp"
+#include "fitting/normal_equations.hpp"
 #include "fitting/posed_surface.hpp"
 
 #include <Eigen/Cholesky>
@@ -594,30 +595,24 @@ private:
             kin.nonzeros(sp, nz);
             nz.erase(std::remove_if(nz.begin(), nz.end(), [&](uint32_t c) { return !on[c]; }), nz.end());
         };
-        // Adds w * (row . delta + r)^2 / 2 to the normal equations, row given on local columns nz.
-        // Adds J^T M J to H and J^T m to g for a 3-row residual block whose Jacobian J3 lives on
-        // the local columns nz: one pass over the touched part of H whatever M is.
+        // Adds (L J)^T (L J) to H and J^T m to g for a 3-row residual block whose Jacobian J3
+        // lives on the local columns nz; L is the square root of the block's weight matrix.
         std::vector<uint32_t> cols;
-        std::vector<Vector3d> jc, tc;
-        auto add_block = [&](uint32_t f, const Matrix3d& M, const Vector3d& mr) {
+        std::vector<double> rows;
+        if (H) normal_.reset();
+        auto add_block = [&](uint32_t f, const Matrix3d& L, const Vector3d& mr) {
             const std::size_t n = nz.size();
             cols.resize(n);
-            jc.resize(n);
-            tc.resize(n);
+            rows.resize(3 * n);
             for (std::size_t a = 0; a < n; ++a) {
                 cols[a] = column(f, nz[a]);
-                jc[a] = Vector3d(J3[nz[a]], J3[PL + nz[a]], J3[2 * std::size_t(PL) + nz[a]]);
-                tc[a] = M * jc[a];
+                const Vector3d j(J3[nz[a]], J3[PL + nz[a]], J3[2 * std::size_t(PL) + nz[a]]);
+                const Vector3d lj = L * j;
+                for (int r = 0; r < 3; ++r) rows[std::size_t(r) * n + a] = lj[r];
                 touched_[cols[a]] = 1;
-                (*g)[cols[a]] += jc[a].dot(mr);
+                (*g)[cols[a]] += j.dot(mr);
             }
-            double* h = H->data();
-            const std::size_t ld = std::size_t(H->rows());
-            for (std::size_t b = 0; b < n; ++b) {
-                double* column_b = h + std::size_t(cols[b]) * ld;
-                const Vector3d& jb = jc[b];
-                for (std::size_t a = 0; a <= b; ++a) column_b[cols[a]] += tc[a].dot(jb);
-            }
+            normal_.add(cols, rows.data(), 3);
         };
         auto clear_rows = [&]() { std::fill(J3.begin(), J3.end(), 0.0); };
         for (uint32_t f = 0; f < F_; ++f) {
@@ -632,7 +627,7 @@ private:
                 if (!H) continue;
                 nonzeros(kin, fd.landmark_points[i]);
                 kin.point_jacobian(fd.landmark_points[i], J3.data(), s);
-                add_block(f, rb.weight * Matrix3d::Identity(), rb.weight * e);
+                add_block(f, std::sqrt(rb.weight) * Matrix3d::Identity(), rb.weight * e);
                 clear_rows();
             }
             for (const auto& p : fd.pairs) {
@@ -645,9 +640,12 @@ private:
                 if (!H) continue;
                 nonzeros(kin, p.model);
                 kin.point_jacobian(p.model, J3.data(), s);
-                // Point-to-plane (n n^T) plus the weak point-to-point part.
-                const Matrix3d M = rb.weight * (p.normal * p.normal.transpose() + wt * Matrix3d::Identity());
-                add_block(f, M, rb.weight * (rn * p.normal + wt * e));
+                // Point-to-plane (n n^T) plus the weak point-to-point part: weight matrix
+                // M = w (n n^T + wt I), whose square root is sqrt(w) (a n n^T + b I) with
+                // b = sqrt(wt) and (a + b)^2 = 1 + wt (n unit).
+                const double b = std::sqrt(wt), a = std::sqrt(1 + wt) - b;
+                const Matrix3d L = std::sqrt(rb.weight) * (a * p.normal * p.normal.transpose() + b * Matrix3d::Identity());
+                add_block(f, L, rb.weight * (rn * p.normal + wt * e));
                 clear_rows();
             }
             // Pose prior: each joint's local rotation vector, over its sigma (not the root: free).
@@ -704,7 +702,10 @@ private:
             (*H)(k, k) += o_.shape_prior;
             (*g)[k] += o_.shape_prior * shape_[k];
         }
-        if (H) *H = H->selfadjointView<Eigen::Upper>();  // blocks filled the upper triangle
+        if (H) {
+            normal_.add_to_upper(*H);
+            *H = H->selfadjointView<Eigen::Upper>();  // everything above filled the upper triangle
+        }
         return cost;
     }
 
@@ -721,6 +722,7 @@ private:
     std::vector<std::size_t> pair_candidates_;
     std::vector<double> joint_sigma_;
     std::vector<JointLimit> limits_;  // empty when the options turn limits off
+    NormalEquations normal_;  // data blocks of the H being built
     std::vector<uint8_t> touched_;  // columns some data row reached in the last evaluate() with H
 };
 

@@ -49,6 +49,24 @@ std::vector<uint8_t> hand_mask(const Model& model) {
     return hand;
 }
 
+// Mean error of the vertices each joint mostly moves, for the joints over 10 mm: where a fit went wrong.
+void print_joint_errors(const Model& model, const std::vector<Eigen::Vector3d>& fit, const std::vector<Eigen::Vector3d>& truth) {
+    const auto& skin = model.data().skin;
+    std::vector<double> sum(model.joint_count(), 0.0);
+    std::vector<int> count(model.joint_count(), 0);
+    for (uint32_t v = 0; v < model.vertex_count(); ++v) {
+        int best = 0;
+        for (int i = 1; i < 4; ++i)
+            if (skin.weights[4 * std::size_t(v) + i] > skin.weights[4 * std::size_t(v) + best]) best = i;
+        const uint16_t j = skin.joints[4 * std::size_t(v) + best];
+        sum[j] += (fit[v] - truth[v]).norm();
+        ++count[j];
+    }
+    for (uint32_t j = 0; j < model.joint_count(); ++j)
+        if (count[j] && sum[j] / count[j] > 0.01)
+            std::printf("    %s %.1f mm\n", model.data().skeleton.joint_names[j].c_str(), 1e3 * sum[j] / count[j]);
+}
+
 Eigen::Matrix3d random_heading(std::mt19937& rng) {
     std::uniform_real_distribution<double> u(-M_PI, M_PI);
     return Eigen::AngleAxisd(u(rng), Eigen::Vector3d::UnitY()).toRotationMatrix();
@@ -132,6 +150,7 @@ int main(int argc, char** argv) {
                 for (uint32_t v = 0; v < model.vertex_count(); ++v)
                     (hand[v] ? eh : eo) += (fv[v] - truth.vertices[v]).norm(), ++(hand[v] ? nh : no);
                 std::printf("  hands %.2f mm, rest %.2f mm\n", 1e3 * eh / double(nh), 1e3 * eo / double(no));
+                print_joint_errors(model, fv, truth.vertices);
             }
             if (verbose)
                 std::printf("  trial %d: error %.2f mm, %u iterations, point mean %.2f mm, inliers %.2f, %.0f ms\n", t, r.errors.back() * 1e3,
