@@ -409,6 +409,75 @@ SSC_API ssc_status ssc_body_get_skinning_matrices(ssc_body* body, float* out, ui
 SSC_API ssc_status ssc_model_get_skin(const ssc_model* model, uint16_t* joints, float* weights, uint32_t capacity);
 
 /* ---------------------------------------------------------------------------------------------- */
+/* Body measurements                                                                               */
+
+/**
+ * The measurements a body gives, as a tailor or an anthropometric survey takes them (definitions
+ * after ISO 8559-1 and ISO 7250-1; ssc_measurement_get_info returns each one's definition). Taken on
+ * the body's shape in the rest pose, whatever its current pose; limbs on the right side. Girths are
+ * tape girths: the convex hull of the body's section, as a tape spans concavities.
+ * Values are fixed forever; new measurements are appended.
+ */
+typedef enum ssc_measurement {
+    SSC_MEASUREMENT_STATURE = 0,           /**< Floor to the top of the head, m. */
+    SSC_MEASUREMENT_CHEST_GIRTH = 1,       /**< Bust/chest girth at bust point height, m. */
+    SSC_MEASUREMENT_UNDERBUST_GIRTH = 2,   /**< Girth just below the breasts, m. */
+    SSC_MEASUREMENT_WAIST_GIRTH = 3,       /**< Girth midway between lowest rib and iliac crest, m. */
+    SSC_MEASUREMENT_HIP_GIRTH = 4,         /**< Girth at the greatest buttock protrusion, m. */
+    SSC_MEASUREMENT_NECK_GIRTH = 5,        /**< Neck girth perpendicular to the neck, m. */
+    SSC_MEASUREMENT_THIGH_GIRTH = 6,       /**< Right thigh just below the gluteal fold, m. */
+    SSC_MEASUREMENT_CALF_GIRTH = 7,        /**< Right calf, maximum, m. */
+    SSC_MEASUREMENT_UPPER_ARM_GIRTH = 8,   /**< Right upper arm midway acromion-olecranon, m. */
+    SSC_MEASUREMENT_WRIST_GIRTH = 9,       /**< Right wrist over the styloid processes, m. */
+    SSC_MEASUREMENT_INSEAM = 10,           /**< Crotch height above the floor, m. */
+    SSC_MEASUREMENT_ARM_LENGTH = 11,       /**< Right acromion over the elbow to the wrist, m. */
+    SSC_MEASUREMENT_SHOULDER_BREADTH = 12, /**< Biacromial breadth, m. */
+    SSC_MEASUREMENT_SURFACE_AREA = 13,     /**< Body surface area, m^2. */
+    SSC_MEASUREMENT_VOLUME = 14,           /**< Enclosed volume, m^3. */
+    SSC_MEASUREMENT_MASS = 15,             /**< Volume x 1010 kg/m^3, kg. */
+    SSC_MEASUREMENT_FORCE32 = 0x7FFFFFFF
+} ssc_measurement;
+
+/** Units of measurements. */
+typedef enum ssc_unit {
+    SSC_UNIT_METRE = 0,
+    SSC_UNIT_SQUARE_METRE = 1,
+    SSC_UNIT_CUBIC_METRE = 2,
+    SSC_UNIT_KILOGRAM = 3,
+    SSC_UNIT_FORCE32 = 0x7FFFFFFF
+} ssc_unit;
+
+/** Number of measurements this library version knows (values 0 .. count-1). Threads: any. */
+SSC_API uint32_t ssc_measurement_count(void);
+
+/**
+ * Describes a measurement.
+ * @param measurement an ssc_measurement value below ssc_measurement_count().
+ * @param out_name       out, may be NULL: snake_case name ("waist_girth"), as sscape measure prints.
+ * @param out_unit       out, may be NULL.
+ * @param out_definition out, may be NULL: how it is taken and after which standard, one sentence or two.
+ * Ownership: static strings, never freed. Threads: any.
+ */
+SSC_API ssc_status ssc_measurement_get_info(uint32_t measurement, const char** out_name, ssc_unit* out_unit,
+                                            const char** out_definition);
+
+/** Finds a measurement by its name; SSC_ERROR_NOT_FOUND for an unknown one. Threads: any. */
+SSC_API ssc_status ssc_measurement_find(const char* name, uint32_t* out_measurement);
+
+/**
+ * Measures the body: every measurement, out[m] for measurement m, in the units of ssc_unit (SI).
+ * @param out       capacity floats; at least ssc_measurement_count().
+ * Errors: SSC_ERROR_NOT_FOUND when the model lacks the landmarks, joints or body-part vertex sets the
+ * definitions need (the message names them); nothing is written then.
+ * Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_measure(ssc_body* body, float* out, uint32_t capacity);
+
+/** Measures one measurement given by name (as ssc_measurement_find); otherwise as ssc_body_measure.
+ *  Threads: the body's thread. */
+SSC_API ssc_status ssc_body_measure_by_name(ssc_body* body, const char* name, float* out);
+
+/* ---------------------------------------------------------------------------------------------- */
 /* Batch synthesis                                                                                 */
 
 /** Rotation formats of pose arrays. */

@@ -38,5 +38,6 @@ int cmd_make_test_model(const std::vector<std::string>& args);
 int cmd_train(const std::vector<std::string>& args);
 int cmd_fit(const std::vector<std::string>& args);
 int cmd_simulate(const std::vector<std::string>& args);
+int cmd_measure(const std::vector<std::string>& args);
 
 }  // namespace ssc::cli

@@ -83,7 +83,11 @@ const char* kUsage =
     "      [--landmark-noise M] [--pose-amount A] [--heading DEG] [--depth front|back|front,back]\n"
     "      [--depth-noise M]\n"
     "                             a random posed body measured: PREFIX_scan.ply, PREFIX.lnd, PREFIX_truth.obj,\n"
-    "                             with --depth PREFIX_front.pgm / PREFIX_back.pgm (16-bit mm, camera in header)\n";
+    "                             with --depth PREFIX_front.pgm / PREFIX_back.pgm (16-bit mm, camera in header)\n"
+    "  measure [MODEL] [--shape C1,C2,...] [--random N [--seed S]] [--csv OUT.csv] [--png PATHS.png]\n"
+    "      [--definitions]\n"
+    "                             body measurements (stature, girths, lengths, area, volume, mass) of a\n"
+    "                             shape; --png draws where each is taken on the first body\n";
 
 }  // namespace
 
@@ -101,6 +105,7 @@ int main(int argc, char** argv) {
         if (command == "train") return ssc::cli::cmd_train(args);
         if (command == "fit") return ssc::cli::cmd_fit(args);
         if (command == "simulate") return ssc::cli::cmd_simulate(args);
+        if (command == "measure") return ssc::cli::cmd_measure(args);
         throw ssc::cli::UsageError("unknown command '" + command + "'");
     } catch (const ssc::cli::UsageError& e) {
         std::fprintf(stderr, "sscape: %s\n%s", e.what(), kUsage);

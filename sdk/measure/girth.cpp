@@ -1,41 +1,51 @@
-#include "girth.hpp"
+#include "measure/girth.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace ssc::measure {
 
-std::vector<double> horizontal_section(const float* xyz, const uint32_t* tris, std::size_t count,
-                                       const std::vector<uint8_t>& allowed, double h) {
-    std::vector<double> out;
+using Eigen::Vector3d;
+
+std::vector<Vector3d> plane_section(const float* xyz, const uint32_t* tris, std::size_t count, const std::vector<uint8_t>& allowed,
+                                    const Plane& plane, double max_radius) {
+    std::vector<Vector3d> out;
+    const double r2 = max_radius * max_radius;
+    auto vertex = [&](uint32_t v) { return Vector3d(xyz[3 * std::size_t(v)], xyz[3 * std::size_t(v) + 1], xyz[3 * std::size_t(v) + 2]); };
     for (std::size_t t = 0; t < count; ++t) {
         const uint32_t* c = tris + 3 * t;
         if (!allowed.empty() && !(allowed[c[0]] && allowed[c[1]] && allowed[c[2]])) continue;
         for (int e = 0; e < 3; ++e) {
-            const float* a = xyz + 3 * std::size_t(c[e]);
-            const float* b = xyz + 3 * std::size_t(c[(e + 1) % 3]);
-            const double da = a[1] - h, db = b[1] - h;
+            const Vector3d a = vertex(c[e]), b = vertex(c[(e + 1) % 3]);
+            const double da = (a - plane.point).dot(plane.normal), db = (b - plane.point).dot(plane.normal);
             if ((da < 0) == (db < 0)) continue;  // the edge does not cross the plane
-            const double s = da / (da - db);
-            out.push_back(a[0] + s * (b[0] - a[0]));
-            out.push_back(a[2] + s * (b[2] - a[2]));
+            const Vector3d p = a + (da / (da - db)) * (b - a);
+            if ((p - plane.point).squaredNorm() <= r2) out.push_back(p);
         }
     }
     return out;
 }
 
-double convex_perimeter(const std::vector<double>& xz) {
-    // Andrew's monotone chain.
-    std::vector<std::pair<double, double>> p;
-    for (std::size_t i = 0; i + 1 < xz.size(); i += 2) p.emplace_back(xz[i], xz[i + 1]);
-    if (p.size() < 3) return 0;
-    std::sort(p.begin(), p.end());
-    p.erase(std::unique(p.begin(), p.end()), p.end());
-    if (p.size() < 3) return 0;
-    auto cross = [](const auto& o, const auto& a, const auto& b) {
-        return (a.first - o.first) * (b.second - o.second) - (a.second - o.second) * (b.first - o.first);
+double tape_girth(const std::vector<Vector3d>& section, const Plane& plane, std::vector<Vector3d>* hull_out) {
+    // In-plane coordinates (u, v), then Andrew's monotone chain.
+    const Vector3d n = plane.normal.normalized();
+    const Vector3d u = (std::abs(n.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY()).cross(n).normalized();
+    const Vector3d v = n.cross(u);
+    struct P {
+        double x, y;
+        std::size_t i;
     };
-    std::vector<std::pair<double, double>> hull(2 * p.size());
+    std::vector<P> p;
+    for (std::size_t i = 0; i < section.size(); ++i) {
+        const Vector3d d = section[i] - plane.point;
+        p.push_back({d.dot(u), d.dot(v), i});
+    }
+    if (hull_out) hull_out->clear();
+    std::sort(p.begin(), p.end(), [](const P& a, const P& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    p.erase(std::unique(p.begin(), p.end(), [](const P& a, const P& b) { return a.x == b.x && a.y == b.y; }), p.end());
+    if (p.size() < 3) return 0;
+    auto cross = [](const P& o, const P& a, const P& b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); };
+    std::vector<P> hull(2 * p.size());
     std::size_t k = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {
         while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
@@ -48,15 +58,17 @@ double convex_perimeter(const std::vector<double>& xz) {
     hull.resize(k - 1);
     double perimeter = 0;
     for (std::size_t i = 0; i < hull.size(); ++i) {
-        const auto& a = hull[i];
-        const auto& b = hull[(i + 1) % hull.size()];
-        perimeter += std::hypot(b.first - a.first, b.second - a.second);
+        const P& a = hull[i];
+        const P& b = hull[(i + 1) % hull.size()];
+        perimeter += std::hypot(b.x - a.x, b.y - a.y);
+        if (hull_out) hull_out->push_back(section[a.i]);
     }
     return perimeter;
 }
 
 double girth_at(const float* xyz, const uint32_t* tris, std::size_t count, const std::vector<uint8_t>& allowed, double h) {
-    return convex_perimeter(horizontal_section(xyz, tris, count, allowed, h));
+    const Plane plane{Vector3d(0, h, 0), Vector3d::UnitY()};
+    return tape_girth(plane_section(xyz, tris, count, allowed, plane), plane);
 }
 
 }  // namespace ssc::measure

@@ -1,22 +1,35 @@
-// Girths: the perimeter of a body's horizontal cross-section, taken like a tape measure (the
-// convex hull of the section, so the tape spans concavities). Part of the measurement stage.
+// Girths: the perimeter of a body's cross-section in a plane, taken like a tape measure (the
+// convex hull of the section, so the tape spans concavities such as the gap between the breasts
+// or the buttocks).
 #pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <cstdint>
 #include <vector>
 
 namespace ssc::measure {
 
-// The cross-section of the mesh (packed xyz vertices, 3 indices per triangle) with the plane
-// y = height, restricted to triangles whose three vertices are all allowed (allowed[v] != 0; empty
-// = all): the intersection points as (x, z) pairs.
-std::vector<double> horizontal_section(const float* xyz, const uint32_t* triangles, std::size_t triangle_count,
-                                       const std::vector<uint8_t>& allowed, double height);
+struct Plane {
+    Eigen::Vector3d point;   // metres
+    Eigen::Vector3d normal;  // unit
+};
 
-// Perimeter of the convex hull of 2D points (x, z pairs), metres; 0 for fewer than 3 points.
-double convex_perimeter(const std::vector<double>& xz);
+// The mesh (packed xyz vertices, 3 indices per triangle) cut by a plane: one point per crossing
+// edge, from triangles whose three vertices are all allowed (allowed[v] != 0; empty = all), and
+// only points within max_radius of plane.point (so a neck section leaves out the shoulders).
+std::vector<Eigen::Vector3d> plane_section(const float* xyz, const uint32_t* triangles, std::size_t triangle_count,
+                                           const std::vector<uint8_t>& allowed, const Plane& plane,
+                                           double max_radius = 1e30);
 
-// Tape girth at a height: convex_perimeter(horizontal_section(...)).
+// Tape-measure length around section points: the perimeter of their convex hull within the plane,
+// metres (0 for fewer than 3 distinct points). `hull`, when given, receives the hull's corners in
+// order (the path the tape takes).
+double tape_girth(const std::vector<Eigen::Vector3d>& section, const Plane& plane,
+                  std::vector<Eigen::Vector3d>* hull = nullptr);
+
+// Horizontal tape girth at a height (y, metres): the common case of surveys.
 double girth_at(const float* xyz, const uint32_t* triangles, std::size_t triangle_count, const std::vector<uint8_t>& allowed,
                 double height);
 

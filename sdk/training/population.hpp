@@ -3,6 +3,7 @@
 // centimetres). The population is stored as its parameters (CSV); meshes are regenerated from them.
 #pragma once
 
+#include "measure/measurements.hpp"
 #include "makehuman/assets.hpp"
 
 #include <cstdint>
@@ -26,8 +27,8 @@ struct StatureStats {
     double female_bmi_mean = 29.6, female_bmi_sd = 7.5;
 };
 
-// Whole-body density used for mass from volume (kg/m^3): lungs' air included, close to water.
-inline constexpr double kBodyDensity = 1010.0;
+// Whole-body density for mass from volume: the measurement stage's (sscape measure reports mass with it).
+using measure::kBodyDensity;
 
 struct BodyParams {
     bool male = false;

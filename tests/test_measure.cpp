@@ -1,0 +1,193 @@
+// Body measurements: tape girths of known shapes, consistency under scaling, plausible values on
+// the default model, and the C API's handling of bad input.
+#include "capi/handles.hpp"
+#include "measure/girth.hpp"
+#include "measure/measurements.hpp"
+#include "support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+
+using namespace ssc;
+using Eigen::Vector3d;
+
+namespace {
+
+// A closed tube along y: `sides` vertices per ring around (cx, cz), rings at y = 0 and y = 1.
+void add_tube(std::vector<float>& xyz, std::vector<uint32_t>& tris, double cx, double cz, double r, int sides) {
+    const uint32_t base = uint32_t(xyz.size() / 3);
+    for (int ring = 0; ring < 2; ++ring)
+        for (int i = 0; i < sides; ++i) {
+            const double a = 2 * M_PI * i / sides;
+            xyz.insert(xyz.end(), {float(cx + r * std::cos(a)), float(ring), float(cz + r * std::sin(a))});
+        }
+    for (int i = 0; i < sides; ++i) {
+        const uint32_t a = base + uint32_t(i), b = base + uint32_t((i + 1) % sides);
+        tris.insert(tris.end(), {a, b, a + uint32_t(sides), b, b + uint32_t(sides), a + uint32_t(sides)});
+    }
+}
+
+struct DefaultBody {
+    ssc_model* model = nullptr;
+    ssc_body* body = nullptr;
+    DefaultBody() {
+        REQUIRE(ssc_model_load_default(nullptr, &model) == SSC_OK);
+        REQUIRE(ssc_body_create(model, nullptr, &body) == SSC_OK);
+    }
+    ~DefaultBody() {
+        ssc_body_destroy(body);
+        ssc_model_release(model);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("a tape girth is the perimeter of the section's convex hull", "[measure]") {
+    std::vector<float> xyz;
+    std::vector<uint32_t> tris;
+    const int sides = 360;
+    add_tube(xyz, tris, 0, 0, 0.1, sides);
+    const measure::Plane plane{Vector3d(0, 0.5, 0), Vector3d::UnitY()};
+    const auto one = measure::plane_section(xyz.data(), tris.data(), tris.size() / 3, {}, plane);
+    const double polygon = 2 * sides * 0.1 * std::sin(M_PI / sides);  // inscribed polygon's perimeter
+    CHECK(measure::tape_girth(one, plane) == Approx(polygon).epsilon(1e-6));
+    // Two legs side by side: the tape spans the gap, 2 pi r + twice the distance between centres.
+    add_tube(xyz, tris, 0.3, 0, 0.1, sides);
+    std::vector<Vector3d> hull;
+    const auto two = measure::plane_section(xyz.data(), tris.data(), tris.size() / 3, {}, plane);
+    CHECK(measure::tape_girth(two, plane, &hull) == Approx(polygon + 0.6).epsilon(1e-4));
+    CHECK(hull.size() >= 3);
+    // A radius limit keeps one tube; a tilted plane cuts an ellipse, longer than the circle.
+    CHECK(measure::tape_girth(measure::plane_section(xyz.data(), tris.data(), tris.size() / 3, {}, plane, 0.15), plane) ==
+          Approx(polygon).epsilon(1e-6));
+    const measure::Plane tilted{Vector3d(0, 0.5, 0), Vector3d(0.3, 1, 0).normalized()};
+    const double ellipse = measure::tape_girth(measure::plane_section(xyz.data(), tris.data(), tris.size() / 3, {}, tilted, 0.2), tilted);
+    CHECK(ellipse > polygon * 1.01);
+    // An allowed mask that leaves out the second tube.
+    std::vector<uint8_t> first(xyz.size() / 3, 0);
+    std::fill(first.begin(), first.begin() + 2 * sides, 1);
+    CHECK(measure::tape_girth(measure::plane_section(xyz.data(), tris.data(), tris.size() / 3, first, plane), plane) ==
+          Approx(polygon).epsilon(1e-6));
+}
+
+TEST_CASE("measurements of the default model are plausible and scale like lengths, areas and volumes", "[measure]") {
+    DefaultBody b;
+    const Model& model = b.model->model;
+    const measure::Measurer measurer(model);
+    const auto& defs = measure::definitions();
+    REQUIRE(defs.size() == ssc_measurement_count());
+    auto value = [&](const std::vector<double>& v, const char* name) {
+        const int i = measure::find_measurement(name);
+        REQUIRE(i >= 0);
+        return v[std::size_t(i)];
+    };
+    std::vector<measure::Path> paths;
+    const auto mean = measurer.measure(b.body->body, &paths);
+    REQUIRE(paths.size() == defs.size());
+    // Adult ranges (metres, m^2, m^3, kg): loose, but each catches a wrong plane or part.
+    CHECK(value(mean, "stature") == Approx(1.67).margin(0.1));
+    CHECK(value(mean, "chest_girth") > 0.80);
+    CHECK(value(mean, "chest_girth") < 1.10);
+    CHECK(value(mean, "underbust_girth") < value(mean, "chest_girth"));
+    CHECK(value(mean, "waist_girth") < value(mean, "hip_girth"));
+    CHECK(value(mean, "hip_girth") > 0.85);
+    CHECK(value(mean, "neck_girth") > 0.28);
+    CHECK(value(mean, "neck_girth") < 0.45);
+    CHECK(value(mean, "thigh_girth") > value(mean, "calf_girth"));
+    CHECK(value(mean, "calf_girth") > value(mean, "wrist_girth"));
+    CHECK(value(mean, "upper_arm_girth") > value(mean, "wrist_girth"));
+    CHECK(value(mean, "wrist_girth") > 0.12);
+    CHECK(value(mean, "inseam") > 0.40 * value(mean, "stature"));
+    CHECK(value(mean, "inseam") < 0.52 * value(mean, "stature"));
+    CHECK(value(mean, "shoulder_breadth") > 0.30);
+    CHECK(value(mean, "surface_area") == Approx(1.75).margin(0.3));
+    CHECK(value(mean, "mass") == Approx(value(mean, "volume") * measure::kBodyDensity));
+    CHECK(value(mean, "mass") > 45);
+    CHECK(value(mean, "mass") < 100);
+    for (std::size_t m = 0; m < paths.size(); ++m) {
+        INFO(defs[m].name);
+        if (defs[m].unit == measure::Unit::Metre) CHECK(paths[m].points.size() >= 2);
+    }
+
+    // The same body scaled by 1.1 about a point: lengths x1.1, area x1.21, volume and mass x1.331.
+    const uint32_t V = model.vertex_count(), J = model.joint_count();
+    std::vector<float> xyz(3ull * V), joints(b.body->body.rest_joints(), b.body->body.rest_joints() + 3 * J);
+    REQUIRE(ssc_body_get_rest_vertices(b.body, xyz.data(), V, 0) == SSC_OK);
+    const auto same = measurer.measure(xyz.data(), joints.data());
+    for (std::size_t m = 0; m < mean.size(); ++m) CHECK(same[m] == Approx(mean[m]).epsilon(1e-9));
+    const float c[3] = {0.1f, 0.9f, -0.05f};
+    for (std::size_t i = 0; i < xyz.size(); ++i) xyz[i] = c[i % 3] + 1.1f * (xyz[i] - c[i % 3]);
+    for (std::size_t i = 0; i < joints.size(); ++i) joints[i] = c[i % 3] + 1.1f * (joints[i] - c[i % 3]);
+    const auto scaled = measurer.measure(xyz.data(), joints.data());
+    for (std::size_t m = 0; m < mean.size(); ++m) {
+        INFO(defs[m].name);
+        const double factor = defs[m].unit == measure::Unit::Metre ? 1.1 : defs[m].unit == measure::Unit::SquareMetre ? 1.21 : 1.331;
+        CHECK(scaled[m] == Approx(factor * mean[m]).epsilon(0.01));
+    }
+}
+
+TEST_CASE("different shapes measure differently and the pose does not matter", "[measure]") {
+    DefaultBody b;
+    const uint32_t M = ssc_measurement_count();
+    std::vector<float> mean(M), other(M), posed(M);
+    REQUIRE(ssc_body_measure(b.body, mean.data(), M) == SSC_OK);
+    const float shape[3] = {2.0f, -1.5f, 1.0f};
+    REQUIRE(ssc_body_set_shape(b.body, shape, 3) == SSC_OK);
+    REQUIRE(ssc_body_measure(b.body, other.data(), M) == SSC_OK);
+    int differ = 0;
+    for (uint32_t m = 0; m < M; ++m) differ += std::abs(other[m] - mean[m]) > 1e-3f * std::abs(mean[m]);
+    CHECK(differ >= int(M) - 2);
+    std::vector<float> aa(3ull * ssc_model_joint_count(b.model), 0.f);
+    uint32_t elbow = 0;
+    REQUIRE(ssc_model_find_joint(b.model, "lowerarm_r", &elbow) == SSC_OK);
+    aa[3 * elbow] = 1.0f;
+    REQUIRE(ssc_body_set_pose_axis_angle(b.body, aa.data(), uint32_t(aa.size() / 3), nullptr) == SSC_OK);
+    REQUIRE(ssc_body_measure(b.body, posed.data(), M) == SSC_OK);
+    for (uint32_t m = 0; m < M; ++m) CHECK(posed[m] == other[m]);
+    float waist = 0;
+    REQUIRE(ssc_body_measure_by_name(b.body, "waist_girth", &waist) == SSC_OK);
+    CHECK(waist == other[SSC_MEASUREMENT_WAIST_GIRTH]);
+}
+
+TEST_CASE("the measurement API rejects bad input without writing", "[measure][capi]") {
+    DefaultBody b;
+    const uint32_t M = ssc_measurement_count();
+    std::vector<float> out(M + 1, -7.f);
+    CHECK(ssc_body_measure(b.body, out.data(), M - 1) == SSC_ERROR_BUFFER_TOO_SMALL);
+    CHECK(ssc_body_measure(nullptr, out.data(), M) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_body_measure(b.body, nullptr, M) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_body_measure_by_name(b.body, "waist", out.data()) == SSC_ERROR_NOT_FOUND);
+    CHECK(std::string(ssc_last_error()).find("waist") != std::string::npos);
+    CHECK(ssc_body_measure_by_name(b.body, nullptr, out.data()) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_body_measure_by_name(b.body, "stature", nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+    for (float v : out) CHECK(v == -7.f);
+
+    const char* name = nullptr;
+    const char* definition = nullptr;
+    ssc_unit unit = SSC_UNIT_FORCE32;
+    CHECK(ssc_measurement_get_info(M, &name, &unit, &definition) == SSC_ERROR_INVALID_ARGUMENT);
+    REQUIRE(ssc_measurement_get_info(SSC_MEASUREMENT_VOLUME, &name, &unit, &definition) == SSC_OK);
+    CHECK(std::string(name) == "volume");
+    CHECK(unit == SSC_UNIT_CUBIC_METRE);
+    CHECK(std::strlen(definition) > 20);
+    CHECK(ssc_measurement_get_info(SSC_MEASUREMENT_MASS, nullptr, nullptr, nullptr) == SSC_OK);
+    uint32_t index = 99;
+    REQUIRE(ssc_measurement_find("hip_girth", &index) == SSC_OK);
+    CHECK(index == SSC_MEASUREMENT_HIP_GIRTH);
+    CHECK(ssc_measurement_find("Hip", &index) == SSC_ERROR_NOT_FOUND);
+    CHECK(ssc_measurement_find("hip_girth", nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+
+    // A model without the CAESAR landmarks cannot be measured: the message says what is missing.
+    const auto bytes = test::mini_bytes();
+    ssc_model* mini = nullptr;
+    REQUIRE(ssc_model_load_memory(nullptr, bytes.data(), bytes.size(), &mini) == SSC_OK);
+    ssc_body* body = nullptr;
+    REQUIRE(ssc_body_create(mini, nullptr, &body) == SSC_OK);
+    CHECK(ssc_body_measure(body, out.data(), M) == SSC_ERROR_NOT_FOUND);
+    CHECK(std::string(ssc_last_error()).find("landmark") != std::string::npos);
+    for (float v : out) CHECK(v == -7.f);
+    ssc_body_destroy(body);
+    ssc_model_release(mini);
+}
