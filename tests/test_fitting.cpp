@@ -4,7 +4,7 @@
 #include "common/error.hpp"
 #include "fitting/depth_image.hpp"
 #include "fitting/fitter.hpp"
-#include "fitting/joint_limits.hpp"
+#include "anatomy/joint_limits.hpp"
 #include "fitting/nearest.hpp"
 #include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
@@ -402,7 +402,7 @@ TEST_CASE("front and back depth images fit a body through the C API", "[fitting]
 TEST_CASE("everyday poses lie within the joint limits and impossible ones outside", "[fitting][limits]") {
     const Model& m = default_model().model();
     const fitting::LinearModel lin(m, 1);
-    const auto limits = fitting::joint_limits(m);
+    const auto limits = anatomy::joint_limits(m);
     REQUIRE(limits.size() == m.joint_count());
     uint32_t limited = 0;
     for (const auto& l : limits) limited += l.limited;
@@ -415,7 +415,7 @@ TEST_CASE("everyday poses lie within the joint limits and impossible ones outsid
         const auto pose = simulation::random_pose(m, rng);
         for (uint32_t j = 0; j < m.joint_count(); ++j) {
             if (!limits[j].limited) continue;
-            const Eigen::Vector3d c = fitting::anatomical_angles(limits[j], quat(pose, j));
+            const Eigen::Vector3d c = anatomy::anatomical_angles(limits[j], quat(pose, j));
             INFO(m.data().skeleton.joint_names[j] << ": " << c.transpose() * 180 / M_PI << " degrees");
             CHECK((c.array() >= limits[j].lo.array()).all());
             CHECK((c.array() <= limits[j].hi.array()).all());
@@ -428,7 +428,7 @@ TEST_CASE("everyday poses lie within the joint limits and impossible ones outsid
     auto angles = [&](const char* joint, const Eigen::Vector3d& axis, double radians) {
         const uint32_t j = uint32_t(m.find_joint(joint));
         const Eigen::Matrix3d body = Eigen::AngleAxisd(radians, axis.normalized()).toRotationMatrix();
-        return fitting::anatomical_angles(limits[j], Eigen::Quaterniond(W[j].transpose() * body * W[j]));
+        return anatomy::anatomical_angles(limits[j], Eigen::Quaterniond(W[j].transpose() * body * W[j]));
     };
     const uint32_t calf_l = uint32_t(m.find_joint("calf_l")), calf_r = uint32_t(m.find_joint("calf_r"));
     CHECK(angles("calf_l", Eigen::Vector3d::UnitX(), 1.2).x() == Approx(1.2).margin(0.05));   // a knee bends backwards

@@ -409,6 +409,34 @@ SSC_API ssc_status ssc_body_get_skinning_matrices(ssc_body* body, float* out, ui
 SSC_API ssc_status ssc_model_get_skin(const ssc_model* model, uint16_t* joints, float* weights, uint32_t capacity);
 
 /* ---------------------------------------------------------------------------------------------- */
+/* Named poses                                                                                     */
+
+/** Number of named poses this library version knows ("a_pose", "t_pose", "sitting",
+ *  "arms_raised", ...); indices 0 .. count-1 are stable, new poses are appended. Threads: any. */
+SSC_API uint32_t ssc_named_pose_count(void);
+
+/**
+ * Describes a named pose.
+ * @param index            below ssc_named_pose_count().
+ * @param out_name         out, may be NULL: snake_case name, as ssc_model_get_named_pose takes.
+ * @param out_description  out, may be NULL: one sentence.
+ * Ownership: static strings, never freed. Threads: any.
+ */
+SSC_API ssc_status ssc_named_pose_get_info(uint32_t index, const char** out_name, const char** out_description);
+
+/**
+ * The local joint rotations of a named pose for this model's rig, as ssc_body_set_pose takes them
+ * (4 floats x y z w per joint; identity for joints the pose does not move). The poses are defined
+ * by anatomical joint angles within the joints' ranges of motion.
+ * @param name            a named pose; SSC_ERROR_NOT_FOUND for an unknown one.
+ * @param rotations       out: 4 * joint_capacity floats.
+ * @param joint_capacity  at least ssc_model_joint_count.
+ * Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_named_pose(const ssc_model* model, const char* name, float* rotations,
+                                            uint32_t joint_capacity);
+
+/* ---------------------------------------------------------------------------------------------- */
 /* Body measurements                                                                               */
 
 /**

@@ -5,6 +5,7 @@
 #include "render/raster.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <sstream>
@@ -51,23 +52,32 @@ Options parse(const std::vector<std::string>& args) {
     return o;
 }
 
-// "--pose upperarm_l=0,0,-0.5;lowerarm_l=0.3,0,0": axis-angle radians per named joint.
+// "--pose sitting", "--pose upperarm_l=0,0,-0.5;lowerarm_l=0.3,0,0" or both ("t_pose;head=0.3,0,0"):
+// a named pose, then axis-angle radians per named joint. Returns quaternions (x y z w per joint).
 std::vector<float> parse_pose(ssc_model* model, const std::string& text) {
-    std::vector<float> aa(3ull * ssc_model_joint_count(model), 0.f);
+    const uint32_t J = ssc_model_joint_count(model);
+    std::vector<float> q(4ull * J, 0.f);
+    for (uint32_t j = 0; j < J; ++j) q[4 * j + 3] = 1.f;
     std::stringstream ss(text);
     std::string item;
     while (std::getline(ss, item, ';')) {
         if (item.empty()) continue;
         const auto eq = item.find('=');
-        if (eq == std::string::npos) throw UsageError("--pose: '" + item + "' is not JOINT=AX,AY,AZ");
+        if (eq == std::string::npos) {
+            if (ssc_model_get_named_pose(model, item.c_str(), q.data(), J) != SSC_OK)
+                throw UsageError("--pose: '" + item + "' is neither a named pose (a_pose, t_pose, sitting, arms_raised) nor JOINT=AX,AY,AZ");
+            continue;
+        }
         const std::string name = item.substr(0, eq);
         uint32_t j = 0;
         if (ssc_model_find_joint(model, name.c_str(), &j) != SSC_OK) throw UsageError("--pose: the model has no joint '" + name + "'");
         const std::vector<float> v = parse_floats(item.substr(eq + 1), "--pose " + name);
         if (v.size() != 3) throw UsageError("--pose " + name + " needs 3 numbers (axis * angle in radians)");
-        std::copy(v.begin(), v.end(), aa.begin() + 3 * j);
+        const double angle = std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+        const double s = angle > 0 ? std::sin(angle / 2) / angle : 0.5;
+        q[4 * j] = float(s * v[0]), q[4 * j + 1] = float(s * v[1]), q[4 * j + 2] = float(s * v[2]), q[4 * j + 3] = float(std::cos(angle / 2));
     }
-    return aa;
+    return q;
 }
 
 // Front and side views of every body, side by side, at one common scale.
@@ -158,7 +168,7 @@ int cmd_synth(const std::vector<std::string>& args) {
         ~RestGuard() { ssc_body_destroy(b); }
     } rest_guard{rest_body};
     const std::vector<float> pose = parse_pose(model, o.pose);
-    check(ssc_body_set_pose_axis_angle(guard.b, pose.data(), J, o.translation.empty() ? nullptr : o.translation.data()), "pose");
+    check(ssc_body_set_pose(guard.b, pose.data(), J, o.translation.empty() ? nullptr : o.translation.data()), "pose");
 
     std::mt19937 rng(o.seed);
     std::normal_distribution<float> normal;

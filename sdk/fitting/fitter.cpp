@@ -4,7 +4,7 @@
 
 #include "common/error.hpp"
 #include "common/rigid.hpp"
-#include "fitting/joint_limits.hpp"
+#include "anatomy/joint_limits.hpp"
 #include "fitting/nearest.hpp"
 #include "fitting/normal_equations.hpp"
 #include "fitting/posed_surface.hpp"
@@ -153,7 +153,7 @@ public:
             kin_.emplace_back(lin);
         }
         for (const auto& name : d.skeleton.joint_names) joint_sigma_.push_back(joint_rotation_sigma(name));
-        if (o.joint_limits) limits_ = joint_limits(lin.model);
+        if (o.joint_limits) limits_ = anatomy::joint_limits(lin.model);
         bool any_points = false;
         for (const auto& fd : frames_) any_points |= !fd.points.empty();
         if (any_points) sample_vertices(rng);
@@ -670,7 +670,7 @@ private:
             if (frame_only < F_ && f != frame_only) continue;
             const Kinematics& kin = kin_[f];
             for (uint32_t j = 1; j < lin_.J; ++j) {
-                const JointLimit& lim = limits_[j];
+                const anatomy::JointLimit& lim = limits_[j];
                 if (!lim.limited) continue;
                 const Vector3d r = log_rotation(states_[f].pose[j]);
                 const Vector3d c = lim.to_anatomical * r;
@@ -721,7 +721,7 @@ private:
     Body body_;
     std::vector<std::size_t> pair_candidates_;
     std::vector<double> joint_sigma_;
-    std::vector<JointLimit> limits_;  // empty when the options turn limits off
+    std::vector<anatomy::JointLimit> limits_;  // empty when the options turn limits off
     NormalEquations normal_;  // data blocks of the H being built
     std::vector<uint8_t> touched_;  // columns some data row reached in the last evaluate() with H
 };

@@ -1,6 +1,6 @@
 #include "simulation/simulate.hpp"
 
-#include "fitting/joint_limits.hpp"
+#include "anatomy/joint_limits.hpp"
 #include "fitting/posed_surface.hpp"
 
 #include <algorithm>
@@ -63,7 +63,7 @@ std::vector<float> random_pose(const Model& m, std::mt19937& rng, double amount)
         const Matrix3d R = Quaterniond(r[3], r[0], r[1], r[2]).normalized().toRotationMatrix();
         W[j] = sk.parents[j] < 0 ? R : W[uint32_t(sk.parents[j])] * R;
     }
-    const auto limits = fitting::joint_limits(m);
+    const auto limits = anatomy::joint_limits(m);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (const auto& range : kRanges) {
         const int64_t j = m.find_joint(range.name);

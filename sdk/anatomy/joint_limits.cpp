@@ -1,9 +1,9 @@
-#include "fitting/joint_limits.hpp"
+#include "anatomy/joint_limits.hpp"
 
 #include <cmath>
 #include <string>
 
-namespace ssc::fitting {
+namespace ssc::anatomy {
 
 namespace {
 
@@ -93,4 +93,4 @@ Vector3d anatomical_angles(const JointLimit& limit, const Eigen::Quaterniond& q)
     return limit.to_anatomical * (aa.angle() * aa.axis());
 }
 
-}  // namespace ssc::fitting
+}  // namespace ssc::anatomy

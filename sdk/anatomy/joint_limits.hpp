@@ -1,4 +1,4 @@
-// Anatomical joint limits for the fitter's pose prior: the range of motion of each joint in an
+// Anatomical joint limits (the fitter's pose prior, named poses, pose checks): the range of motion of each joint in an
 // anatomical frame (flexion/extension, axial rotation, abduction/adduction), so that fits cannot
 // reach bodies no person can take (a knee bent forwards, a thigh turned half round), the local
 // minima of fitting sparse or partial data.
@@ -22,11 +22,17 @@
 // approximate the clinical angles at large rotations).
 #pragma once
 
-#include "fitting/kinematics.hpp"
+#include "synthesis/model.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <vector>
 
-namespace ssc::fitting {
+namespace ssc::anatomy {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
 
 struct JointLimit {
     bool limited = false;
@@ -41,4 +47,4 @@ std::vector<JointLimit> joint_limits(const Model& model);
 // The anatomical components of a joint's local pose rotation.
 Vector3d anatomical_angles(const JointLimit& limit, const Eigen::Quaterniond& local_pose);
 
-}  // namespace ssc::fitting
+}  // namespace ssc::anatomy

@@ -1,0 +1,106 @@
+// Named poses: what they look like (arm and leg joint positions), that they respect the joint
+// limits, and the C API's handling of bad input.
+#include "anatomy/joint_limits.hpp"
+#include "anatomy/named_poses.hpp"
+#include "capi/handles.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <string>
+
+using namespace ssc;
+using Eigen::Vector3d;
+
+namespace {
+
+struct Posed {
+    ssc_model* model = nullptr;
+    ssc_body* body = nullptr;
+    Posed() {
+        REQUIRE(ssc_model_load_default(nullptr, &model) == SSC_OK);
+        REQUIRE(ssc_body_create(model, nullptr, &body) == SSC_OK);
+    }
+    ~Posed() {
+        ssc_body_destroy(body);
+        ssc_model_release(model);
+    }
+    // World position of a joint in the named pose.
+    Vector3d joint(const char* pose, const char* name) {
+        const uint32_t J = ssc_model_joint_count(model);
+        std::vector<float> q(4ull * J), world(16ull * J);
+        REQUIRE(ssc_model_get_named_pose(model, pose, q.data(), J) == SSC_OK);
+        REQUIRE(ssc_body_set_pose(body, q.data(), J, nullptr) == SSC_OK);
+        REQUIRE(ssc_body_get_joint_transforms(body, world.data(), J) == SSC_OK);
+        uint32_t j = 0;
+        REQUIRE(ssc_model_find_joint(model, name, &j) == SSC_OK);
+        return Vector3d(world[16 * j + 12], world[16 * j + 13], world[16 * j + 14]);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("named poses put the limbs where their names say", "[poses]") {
+    Posed p;
+    for (const char* side : {"_l", "_r"}) {
+        const std::string upper = std::string("upperarm") + side, hand = std::string("hand") + side;
+        const std::string thigh = std::string("thigh") + side, calf = std::string("calf") + side, foot = std::string("foot") + side;
+        INFO(side);
+        // A-pose (rest): the wrists well below the shoulders.
+        CHECK(p.joint("a_pose", hand.c_str()).y() < p.joint("a_pose", upper.c_str()).y() - 0.25);
+        // T-pose: the wrist level with the shoulder, an arm's length out.
+        const Vector3d ts = p.joint("t_pose", upper.c_str()), tw = p.joint("t_pose", hand.c_str());
+        CHECK(std::abs(tw.y() - ts.y()) < 0.06);
+        CHECK(std::abs(tw.x() - ts.x()) > 0.45);
+        // Arms raised: the wrist far above the shoulder.
+        CHECK(p.joint("arms_raised", hand.c_str()).y() > p.joint("arms_raised", upper.c_str()).y() + 0.4);
+        // Sitting: the knee level with the hip and in front of it, the ankle below the knee.
+        const Vector3d hip = p.joint("sitting", thigh.c_str()), knee = p.joint("sitting", calf.c_str()), ankle = p.joint("sitting", foot.c_str());
+        CHECK(std::abs(knee.y() - hip.y()) < 0.08);
+        CHECK(knee.z() > hip.z() + 0.3);
+        CHECK(ankle.y() < knee.y() - 0.3);
+        CHECK(std::abs(ankle.z() - knee.z()) < 0.08);
+    }
+}
+
+TEST_CASE("named poses stay within the anatomical joint limits", "[poses]") {
+    Posed p;
+    const Model& m = p.model->model;
+    const auto limits = anatomy::joint_limits(m);
+    for (const auto& pose : anatomy::named_poses()) {
+        const auto q = anatomy::named_pose(m, pose.name);
+        for (uint32_t j = 0; j < m.joint_count(); ++j) {
+            if (!limits[j].limited) continue;
+            const Eigen::Quaterniond r(q[4 * j + 3], q[4 * j], q[4 * j + 1], q[4 * j + 2]);
+            const Vector3d c = anatomy::anatomical_angles(limits[j], r);
+            INFO(pose.name << " " << m.data().skeleton.joint_names[j] << " " << c.transpose());
+            for (int a = 0; a < 3; ++a) {
+                CHECK(c[a] >= limits[j].lo[a] - 1e-6);
+                CHECK(c[a] <= limits[j].hi[a] + 1e-6);
+            }
+        }
+    }
+}
+
+TEST_CASE("the named pose API rejects bad input without writing", "[poses][capi]") {
+    Posed p;
+    const uint32_t J = ssc_model_joint_count(p.model);
+    REQUIRE(ssc_named_pose_count() == anatomy::named_poses().size());
+    const char* name = nullptr;
+    const char* description = nullptr;
+    REQUIRE(ssc_named_pose_get_info(1, &name, &description) == SSC_OK);
+    CHECK(std::string(name) == "t_pose");
+    CHECK(std::strlen(description) > 10);
+    CHECK(ssc_named_pose_get_info(ssc_named_pose_count(), &name, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+    std::vector<float> q(4ull * J, -3.f);
+    CHECK(ssc_model_get_named_pose(p.model, "lotus", q.data(), J) == SSC_ERROR_NOT_FOUND);
+    CHECK(std::string(ssc_last_error()).find("lotus") != std::string::npos);
+    CHECK(ssc_model_get_named_pose(p.model, "sitting", q.data(), J - 1) == SSC_ERROR_BUFFER_TOO_SMALL);
+    CHECK(ssc_model_get_named_pose(p.model, nullptr, q.data(), J) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_model_get_named_pose(nullptr, "sitting", q.data(), J) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_model_get_named_pose(p.model, "sitting", nullptr, J) == SSC_ERROR_INVALID_ARGUMENT);
+    for (float v : q) CHECK(v == -3.f);
+    // The A-pose is the rest pose: identity everywhere.
+    REQUIRE(ssc_model_get_named_pose(p.model, "a_pose", q.data(), J) == SSC_OK);
+    for (uint32_t j = 0; j < J; ++j) CHECK(q[4 * j + 3] == 1.f);
+}
