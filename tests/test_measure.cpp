@@ -50,26 +50,49 @@ TEST_CASE("a tape girth is the perimeter of the section's convex hull", "[measur
     const int sides = 360;
     add_tube(xyz, tris, 0, 0, 0.1, sides);
     const measure::Plane plane{Vector3d(0, 0.5, 0), Vector3d::UnitY()};
-    const auto one = measure::plane_section(xyz.data(), tris.data(), tris.size() / 3, {}, plane);
+    auto edges = measure::mesh_edges(tris.data(), tris.size() / 3, {});
+    REQUIRE(edges.size() == 2 * 4 * std::size_t(sides));  // two rings, risers and diagonals, each once
+    const auto one = measure::plane_section(xyz.data(), edges, plane);
     const double polygon = 2 * sides * 0.1 * std::sin(M_PI / sides);  // inscribed polygon's perimeter
     CHECK(measure::tape_girth(one, plane) == Approx(polygon).epsilon(1e-6));
     // Two legs side by side: the tape spans the gap, 2 pi r + twice the distance between centres.
     add_tube(xyz, tris, 0.3, 0, 0.1, sides);
+    edges = measure::mesh_edges(tris.data(), tris.size() / 3, {});
     std::vector<Vector3d> hull;
-    const auto two = measure::plane_section(xyz.data(), tris.data(), tris.size() / 3, {}, plane);
+    const auto two = measure::plane_section(xyz.data(), edges, plane);
     CHECK(measure::tape_girth(two, plane, &hull) == Approx(polygon + 0.6).epsilon(1e-4));
     CHECK(hull.size() >= 3);
     // A radius limit keeps one tube; a tilted plane cuts an ellipse, longer than the circle.
-    CHECK(measure::tape_girth(measure::plane_section(xyz.data(), tris.data(), tris.size() / 3, {}, plane, 0.15), plane) ==
+    CHECK(measure::tape_girth(measure::plane_section(xyz.data(), edges, plane, 0.15), plane) ==
           Approx(polygon).epsilon(1e-6));
     const measure::Plane tilted{Vector3d(0, 0.5, 0), Vector3d(0.3, 1, 0).normalized()};
-    const double ellipse = measure::tape_girth(measure::plane_section(xyz.data(), tris.data(), tris.size() / 3, {}, tilted, 0.2), tilted);
+    const double ellipse = measure::tape_girth(measure::plane_section(xyz.data(), edges, tilted, 0.2), tilted);
     CHECK(ellipse > polygon * 1.01);
     // An allowed mask that leaves out the second tube.
     std::vector<uint8_t> first(xyz.size() / 3, 0);
     std::fill(first.begin(), first.begin() + 2 * sides, 1);
-    CHECK(measure::tape_girth(measure::plane_section(xyz.data(), tris.data(), tris.size() / 3, first, plane), plane) ==
+    const auto first_edges = measure::mesh_edges(tris.data(), tris.size() / 3, first);
+    CHECK(measure::tape_girth(measure::plane_section(xyz.data(), first_edges, plane), plane) ==
           Approx(polygon).epsilon(1e-6));
+}
+
+TEST_CASE("a multi-level sweep cuts the same sections as one plane at a time", "[measure]") {
+    std::vector<float> xyz;
+    std::vector<uint32_t> tris;
+    add_tube(xyz, tris, 0, 0, 0.1, 40);
+    add_tube(xyz, tris, 0.3, 0, 0.05, 40);
+    for (std::size_t i = 1; i < xyz.size(); i += 3) xyz[i] = xyz[i] * 0.7f + float(0.05 * std::sin(double(i)));  // uneven rings
+    const auto edges = measure::mesh_edges(tris.data(), tris.size() / 3, {});
+    const auto levels = measure::horizontal_sections(xyz.data(), edges, 0.9, 0.013, 80);
+    REQUIRE(levels.size() == 80);
+    std::size_t cut = 0;
+    for (int i = 0; i < 80; ++i) {
+        const auto one = measure::plane_section(xyz.data(), edges, measure::horizontal_plane(0.9 - i * 0.013));
+        REQUIRE(levels[std::size_t(i)].size() == one.size());
+        for (std::size_t k = 0; k < one.size(); ++k) CHECK((levels[std::size_t(i)][k] - one[k]).norm() < 1e-12);
+        cut += one.size();
+    }
+    CHECK(cut > 0);
 }
 
 TEST_CASE("measurements of the default model are plausible and scale like lengths, areas and volumes", "[measure]") {

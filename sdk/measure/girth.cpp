@@ -7,20 +7,63 @@ namespace ssc::measure {
 
 using Eigen::Vector3d;
 
-std::vector<Vector3d> plane_section(const float* xyz, const uint32_t* tris, std::size_t count, const std::vector<uint8_t>& allowed,
-                                    const Plane& plane, double max_radius) {
-    std::vector<Vector3d> out;
-    const double r2 = max_radius * max_radius;
-    auto vertex = [&](uint32_t v) { return Vector3d(xyz[3 * std::size_t(v)], xyz[3 * std::size_t(v) + 1], xyz[3 * std::size_t(v) + 2]); };
+std::vector<uint32_t> mesh_edges(const uint32_t* tris, std::size_t count, const std::vector<uint8_t>& allowed) {
+    std::vector<uint64_t> keys;
+    keys.reserve(3 * count);
     for (std::size_t t = 0; t < count; ++t) {
         const uint32_t* c = tris + 3 * t;
         if (!allowed.empty() && !(allowed[c[0]] && allowed[c[1]] && allowed[c[2]])) continue;
         for (int e = 0; e < 3; ++e) {
-            const Vector3d a = vertex(c[e]), b = vertex(c[(e + 1) % 3]);
-            const double da = (a - plane.point).dot(plane.normal), db = (b - plane.point).dot(plane.normal);
-            if ((da < 0) == (db < 0)) continue;  // the edge does not cross the plane
-            const Vector3d p = a + (da / (da - db)) * (b - a);
-            if ((p - plane.point).squaredNorm() <= r2) out.push_back(p);
+            const uint32_t a = c[e], b = c[(e + 1) % 3];
+            keys.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+        }
+    }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<uint32_t> edges;
+    edges.reserve(2 * keys.size());
+    for (uint64_t k : keys) {
+        edges.push_back(uint32_t(k >> 32));
+        edges.push_back(uint32_t(k));
+    }
+    return edges;
+}
+
+namespace {
+Vector3d vertex(const float* xyz, uint32_t v) {
+    return Vector3d(xyz[3 * std::size_t(v)], xyz[3 * std::size_t(v) + 1], xyz[3 * std::size_t(v) + 2]);
+}
+}  // namespace
+
+std::vector<Vector3d> plane_section(const float* xyz, const std::vector<uint32_t>& edges, const Plane& plane, double max_radius) {
+    std::vector<Vector3d> out;
+    const double r2 = max_radius * max_radius;
+    for (std::size_t e = 0; e + 1 < edges.size(); e += 2) {
+        const Vector3d a = vertex(xyz, edges[e]), b = vertex(xyz, edges[e + 1]);
+        const double da = (a - plane.point).dot(plane.normal), db = (b - plane.point).dot(plane.normal);
+        if ((da < 0) == (db < 0)) continue;  // the edge does not cross the plane
+        const Vector3d p = a + (da / (da - db)) * (b - a);
+        if ((p - plane.point).squaredNorm() <= r2) out.push_back(p);
+    }
+    return out;
+}
+
+std::vector<std::vector<Vector3d>> horizontal_sections(const float* xyz, const std::vector<uint32_t>& edges, double top,
+                                                       double step, int count) {
+    std::vector<std::vector<Vector3d>> out(std::size_t(std::max(count, 0)));
+    if (count <= 0 || !(step > 0)) return out;
+    for (std::size_t e = 0; e + 1 < edges.size(); e += 2) {
+        const Vector3d a = vertex(xyz, edges[e]), b = vertex(xyz, edges[e + 1]);
+        // Levels i with the edge crossing y_i = top - i * step, by the same sign test as
+        // plane_section: (a.y < y) != (b.y < y), i.e. y in (min, max].
+        const double lo = std::min(a.y(), b.y()), hi = std::max(a.y(), b.y());
+        const int first = std::max(0, int(std::ceil((top - hi) / step)) - 1);
+        const int last = std::min(count - 1, int(std::floor((top - lo) / step)) + 1);
+        for (int i = first; i <= last; ++i) {
+            const double y = top - i * step;
+            const double da = a.y() - y, db = b.y() - y;
+            if ((da < 0) == (db < 0)) continue;
+            out[std::size_t(i)].push_back(a + (da / (da - db)) * (b - a));
         }
     }
     return out;
@@ -64,11 +107,6 @@ double tape_girth(const std::vector<Vector3d>& section, const Plane& plane, std:
         if (hull_out) hull_out->push_back(section[a.i]);
     }
     return perimeter;
-}
-
-double girth_at(const float* xyz, const uint32_t* tris, std::size_t count, const std::vector<uint8_t>& allowed, double h) {
-    const Plane plane{Vector3d(0, h, 0), Vector3d::UnitY()};
-    return tape_girth(plane_section(xyz, tris, count, allowed, plane), plane);
 }
 
 }  // namespace ssc::measure

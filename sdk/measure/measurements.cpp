@@ -131,15 +131,21 @@ Measurer::Measurer(const Model& model) : model_(model) {
                feet = set("feet");
     // The body's right side: the sign of x at the right acromion of the mean shape.
     const double right = model.landmark_rest()[3 * std::size_t(landmark_[kAcromionR])] < 0 ? -1.0 : 1.0;
-    torso_ = torso;
-    trunk_legs_.resize(V), right_leg_.resize(V), right_arm_.resize(V), neck_region_.resize(V);
+    std::vector<uint8_t> trunk_legs(V), right_leg(V), right_arm(V), neck_region(V);
     for (uint32_t v = 0; v < V; ++v) {
         const bool on_right = right * d.shape.mean[3 * std::size_t(v)] > 0;
-        trunk_legs_[v] = torso[v] || legs[v];
-        right_leg_[v] = (legs[v] || feet[v]) && on_right;
-        right_arm_[v] = (arms[v] || hands[v]) && on_right;
-        neck_region_[v] = head[v] || torso[v];
+        trunk_legs[v] = torso[v] || legs[v];
+        right_leg[v] = (legs[v] || feet[v]) && on_right;
+        right_arm[v] = (arms[v] || hands[v]) && on_right;
+        neck_region[v] = head[v] || torso[v];
     }
+    const uint32_t* tris = d.mesh.triangles.data();
+    const std::size_t T = d.mesh.triangles.size() / 3;
+    torso_ = mesh_edges(tris, T, torso);
+    trunk_legs_ = mesh_edges(tris, T, trunk_legs);
+    right_leg_ = mesh_edges(tris, T, right_leg);
+    right_arm_ = mesh_edges(tris, T, right_arm);
+    neck_region_ = mesh_edges(tris, T, neck_region);
 }
 
 std::vector<double> Measurer::measure(const float* xyz, const float* joints, std::vector<Path>* paths) const {
@@ -153,13 +159,13 @@ std::vector<double> Measurer::measure(const float* xyz, const float* joints, std
     for (int i = 0; i < kNeededCount; ++i) lm[i] = landmark_position(d, landmark_[std::size_t(i)], xyz);
 
     // Tape girth in a plane; its path for pictures.
-    auto girth = [&](int index, const Plane& plane, const std::vector<uint8_t>& mask, double radius = 1e30) {
+    auto girth = [&](int index, const Plane& plane, const std::vector<uint32_t>& edges, double radius = 1e30) {
         std::vector<Vector3d> hull;
-        const double g = tape_girth(plane_section(xyz, tris, T, mask, plane, radius), plane, &hull);
+        const double g = tape_girth(plane_section(xyz, edges, plane, radius), plane, &hull);
         path[std::size_t(index)] = {hull, true};
         out[std::size_t(index)] = g;
     };
-    auto horizontal = [](double y) { return Plane{Vector3d(0, y, 0), Vector3d::UnitY()}; };
+    auto horizontal = horizontal_plane;
 
     std::size_t top = 0, bottom = 0;
     for (uint32_t v = 1; v < V; ++v) {
@@ -179,9 +185,9 @@ std::vector<double> Measurer::measure(const float* xyz, const float* joints, std
     // the profile's forward reach (a flat chest has none to speak of and gets a level just below).
     std::vector<double> front;
     const double step = 0.005;
-    for (int i = 0; i <= 30; ++i) {  // bust - 0 .. bust - 15 cm
+    for (const auto& section : horizontal_sections(xyz, torso_, bust, step, 31)) {  // bust - 0 .. bust - 15 cm
         double reach = -1e30;
-        for (const Vector3d& p : plane_section(xyz, tris, T, torso_, horizontal(bust - i * step)))
+        for (const Vector3d& p : section)
             if (std::abs(p.x() - lm[kThelionR].x()) < 0.03 || std::abs(p.x() - lm[kThelionL].x()) < 0.03) reach = std::max(reach, p.z());
         front.push_back(reach);
     }
@@ -198,10 +204,11 @@ std::vector<double> Measurer::measure(const float* xyz, const float* joints, std
 
     // Hip: the level where the buttocks reach farthest back (the body faces +z).
     double hip = 0.5 * (lm[kCrotch].y() + crest), back = 1e30;
-    for (double y = lm[kCrotch].y() + 0.02; y <= crest; y += 0.005) {
-        for (const Vector3d& p : plane_section(xyz, tris, T, trunk_legs_, horizontal(y)))
-            if (p.z() < back) back = p.z(), hip = y;
-    }
+    const int hip_levels = int(std::floor((crest - lm[kCrotch].y() - 0.02) / step)) + 1;
+    const auto hip_sections = horizontal_sections(xyz, trunk_legs_, crest, step, hip_levels);  // crest down to crotch + 2 cm
+    for (int i = hip_levels - 1; i >= 0; --i)  // upwards, so ties keep the lowest level
+        for (const Vector3d& p : hip_sections[std::size_t(i)])
+            if (p.z() < back) back = p.z(), hip = crest - i * step;
     girth(kHip, horizontal(hip), trunk_legs_);
 
     const Vector3d neck = at(joints, neck_), head = at(joints, head_);
@@ -211,9 +218,12 @@ std::vector<double> Measurer::measure(const float* xyz, const float* joints, std
 
     double calf = 0;
     std::vector<Vector3d> calf_path;
-    for (double y = lm[kKneeCreaseR].y(); y >= lm[kMalleolusR].y(); y -= 0.005) {
+    const double knee = lm[kKneeCreaseR].y();
+    const int calf_levels = int(std::floor((knee - lm[kMalleolusR].y()) / step)) + 1;
+    const auto calf_sections = horizontal_sections(xyz, right_leg_, knee, step, calf_levels);
+    for (int i = 0; i < calf_levels; ++i) {
         std::vector<Vector3d> hull;
-        const double g = tape_girth(plane_section(xyz, tris, T, right_leg_, horizontal(y)), horizontal(y), &hull);
+        const double g = tape_girth(calf_sections[std::size_t(i)], horizontal(knee - i * step), &hull);
         if (g > calf) calf = g, calf_path = hull;
     }
     out[kCalf] = calf;

@@ -63,7 +63,8 @@ private:
     const Model& model_;
     std::vector<uint32_t> landmark_;  // indices of the landmarks the definitions use (kNeeded order)
     uint32_t upperarm_ = 0, lowerarm_ = 0, hand_ = 0, neck_ = 0, head_ = 0;  // right side joints, neck
-    std::vector<uint8_t> torso_, trunk_legs_, right_leg_, right_arm_, neck_region_;
+    // Edge lists (girth.hpp) of the body parts sections are cut from.
+    std::vector<uint32_t> torso_, trunk_legs_, right_leg_, right_arm_, neck_region_;
 };
 
 }  // namespace ssc::measure

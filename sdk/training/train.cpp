@@ -193,8 +193,12 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
             }
             fail(SSC_ERROR_INTERNAL, "no landmark " + name);
         };
-        const uint32_t* tris = m.mesh.triangles.data();
         const std::size_t T = m.mesh.triangles.size() / 3;
+        const std::vector<uint32_t> torso_edges = measure::mesh_edges(m.mesh.triangles.data(), T, torso),
+                                    trunk_legs_edges = measure::mesh_edges(m.mesh.triangles.data(), T, trunk_legs);
+        auto girth_at = [](const float* xyz, const std::vector<uint32_t>& edges, double y) {
+            return measure::tape_girth(measure::plane_section(xyz, edges, measure::horizontal_plane(y)), measure::horizontal_plane(y));
+        };
         std::vector<float> body(3ull * V);
         report.chest.clear();
         report.waist_iliac.clear();
@@ -205,11 +209,11 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
             const double bust = 0.5 * (landmark_y(body.data(), "Rt. Thelion/Bustpoint") + landmark_y(body.data(), "Lt. Thelion/Bustpoint"));
             const double crest = 0.5 * (landmark_y(body.data(), "Rt. Iliocristale") + landmark_y(body.data(), "Lt. Iliocristale"));
             const double troch = 0.5 * (landmark_y(body.data(), "Rt. Trochanterion") + landmark_y(body.data(), "Lt. Trochanterion"));
-            report.chest.push_back(measure::girth_at(body.data(), tris, T, torso, bust));
-            report.waist_iliac.push_back(measure::girth_at(body.data(), tris, T, torso, crest));
-            report.waist_natural.push_back(measure::girth_at(body.data(), tris, T, torso, landmark_y(body.data(), "Waist, Preferred, Post.")));
+            report.chest.push_back(girth_at(body.data(), torso_edges, bust));
+            report.waist_iliac.push_back(girth_at(body.data(), torso_edges, crest));
+            report.waist_natural.push_back(girth_at(body.data(), torso_edges, landmark_y(body.data(), "Waist, Preferred, Post.")));
             double hip = 0;
-            for (double y = troch - 0.06; y <= troch + 0.06; y += 0.005) hip = std::max(hip, measure::girth_at(body.data(), tris, T, trunk_legs, y));
+            for (double y = troch - 0.06; y <= troch + 0.06; y += 0.005) hip = std::max(hip, girth_at(body.data(), trunk_legs_edges, y));
             report.hip.push_back(hip);
         }
     }
