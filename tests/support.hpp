@@ -39,6 +39,12 @@ inline ModelPtr load(const std::vector<unsigned char>& bytes, ssc_context* ctx =
     return ModelPtr(m);
 }
 
+inline ModelPtr default_model() {
+    ssc_model* m = nullptr;
+    if (ssc_model_load_default(nullptr, &m) != SSC_OK) return nullptr;
+    return ModelPtr(m);
+}
+
 inline BodyPtr body(ssc_model* m) {
     ssc_body* b = nullptr;
     if (ssc_body_create(m, nullptr, &b) != SSC_OK) return nullptr;

@@ -171,6 +171,39 @@ TEST_CASE("semantic errors are rejected with a message that names them", "[corru
     CHECK(load_broken([](auto& m) { m.landmarks.back().barycentric[0] = std::numeric_limits<float>::quiet_NaN(); }) == SSC_ERROR_MODEL_CORRUPT);
     CHECK(load_broken([](auto& m) { std::swap(m.vertex_sets[0].vertices[0], m.vertex_sets[0].vertices[1]); }) == SSC_ERROR_MODEL_CORRUPT);
     CHECK(load_broken([](auto& m) { m.metadata.units = "cm"; }) == SSC_ERROR_MODEL_CORRUPT);
+    // Joint limits: a joint out of range, repeated, a frame that is no rotation, bounds out of order.
+    auto limit = [](uint32_t joint) {
+        format::JointLimit l;
+        l.joint = joint;
+        l.lower[0] = -1, l.upper[0] = 1;
+        return l;
+    };
+    CHECK(load_broken([&](auto& m) { m.joint_limits = {limit(1), limit(2)}; }) == SSC_OK);
+    CHECK(load_broken([&](auto& m) { m.joint_limits = {limit(99)}; }, &msg) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(msg.find("joint limit") != std::string::npos);
+    CHECK(load_broken([&](auto& m) { m.joint_limits = {limit(2), limit(2)}; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { m.joint_limits = {limit(2)}; m.joint_limits[0].frame[0] = 2; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { m.joint_limits = {limit(2)}; m.joint_limits[0].upper[0] = -2; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { m.joint_limits = {limit(2)}; m.joint_limits[0].lower[1] = std::nanf(""); }) == SSC_ERROR_MODEL_CORRUPT);
+    // Attributes: wrong sizes, an asymmetric or singular covariance, repeated names.
+    auto attributes = [](format::ModelData& m) {
+        m.attributes.attributes = {{"stature", "m", "", 1.7f, 1.5f, 1.9f, true}, {"mass", "kg", "", 70, 50, 100, true}};
+        m.attributes.covariance = {0.01f, 0.1f, 0.1f, 100.f};
+        for (uint32_t i = 0; i < 2 * m.component_count(); ++i) m.attributes.shape_covariance.push_back(0.01f * float(i % 3 + i / 3 + 1));
+    };
+    CHECK(load_broken([&](auto& m) { attributes(m); }) == SSC_OK);
+    CHECK(load_broken([&](auto& m) { attributes(m); m.attributes.covariance.pop_back(); }, &msg) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(msg.find("attributes") != std::string::npos);
+    CHECK(load_broken([&](auto& m) { attributes(m); m.attributes.shape_covariance.push_back(0); }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { attributes(m); m.attributes.covariance[1] = 0.2f; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { attributes(m); m.attributes.covariance = {0.01f, 1.f, 1.f, 100.f}; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { attributes(m); m.attributes.attributes[1].name = "stature"; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { attributes(m); m.attributes.attributes[0].minimum = 3; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) {  // two sliders moving the shape the same way
+        attributes(m);
+        for (uint32_t k = 0; k < m.component_count(); ++k) m.attributes.shape_covariance[m.component_count() + k] = m.attributes.shape_covariance[k];
+    }, &msg) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(msg.find("slider") != std::string::npos);
 }
 
 TEST_CASE("absurd sizes inside the buffer are refused without huge allocations", "[corrupt]") {

@@ -18,8 +18,18 @@ static void same(const A& a, const B& b) {
 }
 
 TEST_CASE("a model written and read back has every field equal", "[format]") {
-    const auto built = test::mini_model(true);
-    const format::ModelData& m = built.data;
+    auto built = test::mini_model(true);
+    format::ModelData& m = built.data;
+    format::JointLimit limit;
+    limit.joint = 2;
+    const float c = std::cos(0.3f), s = std::sin(0.3f);
+    const float frame[9] = {c, -s, 0, s, c, 0, 0, 0, 1};
+    std::copy(frame, frame + 9, limit.frame);
+    limit.lower[0] = -0.5f, limit.upper[0] = 2.f, limit.lower[2] = -0.1f, limit.upper[2] = 0.4f;
+    m.joint_limits = {limit};
+    m.attributes.attributes = {{"stature", "m", "height", 1.7f, 1.5f, 1.9f, true}, {"age", "years", "age", 40, 18, 80, false}};
+    m.attributes.covariance = {0.01f, 0.02f, 0.02f, 300.f};
+    for (uint32_t k = 0; k < 2 * m.component_count(); ++k) m.attributes.shape_covariance.push_back(0.01f * float(k));
     const auto bytes = format::write_model(m);
     const format::ModelData r = format::read_model(bytes.data(), bytes.size());
 
@@ -66,6 +76,18 @@ TEST_CASE("a model written and read back has every field equal", "[format]") {
         CHECK(r.vertex_sets[i].name == m.vertex_sets[i].name);
         same(r.vertex_sets[i].vertices, m.vertex_sets[i].vertices);
     }
+    REQUIRE(r.joint_limits.size() == 1);
+    CHECK(r.joint_limits[0].joint == 2);
+    for (int i = 0; i < 9; ++i) CHECK(r.joint_limits[0].frame[i] == limit.frame[i]);
+    for (int i = 0; i < 3; ++i) CHECK((r.joint_limits[0].lower[i] == limit.lower[i] && r.joint_limits[0].upper[i] == limit.upper[i]));
+    REQUIRE(r.attributes.attributes.size() == 2);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const auto &a = r.attributes.attributes[i], &b = m.attributes.attributes[i];
+        CHECK((a.name == b.name && a.unit == b.unit && a.description == b.description && a.slider == b.slider));
+        CHECK((a.mean == b.mean && a.minimum == b.minimum && a.maximum == b.maximum));
+    }
+    same(r.attributes.covariance, m.attributes.covariance);
+    same(r.attributes.shape_covariance, m.attributes.shape_covariance);
 }
 
 TEST_CASE("quantization error stays within the requested tolerance", "[format]") {

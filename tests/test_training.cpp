@@ -54,6 +54,7 @@ TEST_CASE("a small model retrained from the MakeHuman assets meets its quality n
     spec.population.seed = 3;
     spec.components = 10;
     spec.heldout = 30;
+    spec.made_to_measure_bodies = 8;
     ssc::training::TrainReport report;
     const auto model = ssc::training::train_model(spec, report);
     REQUIRE(model.vertex_count() == 13380);
@@ -75,6 +76,21 @@ TEST_CASE("a small model retrained from the MakeHuman assets meets its quality n
     // Joints follow the shape: held-out regressor error in millimetres, not centimetres.
     CHECK(report.regressor_mean_error < 0.006);
     CHECK(report.quantization.max_error <= 1e-4);
+    // Joint limits and the attribute model (sliders, made to measure) are learned and stored.
+    CHECK(model.joint_limits.size() == 21);  // 5 spine, neck and head joints, 8 on each side
+    REQUIRE(model.attributes.attributes.size() >= 15);
+    int sliders = 0;
+    for (const auto& a : model.attributes.attributes) sliders += a.slider;
+    CHECK(sliders >= 6);
+    // Bodies made to measure from held-out bodies' own measurements reach them within 1 cm.
+    const auto& mtm = report.made_to_measure;
+    REQUIRE(mtm.bodies == 8);
+    REQUIRE(mtm.measurements.size() == 4);
+    for (std::size_t k = 0; k < 4; ++k) {
+        INFO(mtm.measurements[k]);
+        CHECK(mtm.mean_error[k] < 0.003);
+        CHECK(mtm.worst_error[k] < 0.01);
+    }
 
     // The 73 CAESAR landmarks, in CAESAR order, placed where anatomy puts them.
     REQUIRE(model.landmarks.size() == 73);

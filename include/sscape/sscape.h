@@ -437,6 +437,55 @@ SSC_API ssc_status ssc_model_get_named_pose(const ssc_model* model, const char* 
                                             uint32_t joint_capacity);
 
 /* ---------------------------------------------------------------------------------------------- */
+/* Joint limits                                                                                    */
+
+/**
+ * The anatomical range of motion of a joint, as the model file stores it. A local joint rotation
+ * (relative to the rest orientation) with rotation vector r (axis times angle, radians, angle in
+ * [0, pi]) has the anatomical angles a = frame * r: a[0] flexion (+) / extension (-), a[1] axial
+ * rotation about the bone, a[2] abduction / adduction; right-side joints are mirrored so that one
+ * convention serves both sides. The rotation is within the limit when lower[i] <= a[i] <= upper[i].
+ * The default model's ranges follow the AAOS average ranges of motion (Greene & Heckman, The
+ * Clinical Measurement of Joint Motion, 1994), measured from the rest pose (the A-pose).
+ */
+typedef struct ssc_joint_limit {
+    uint32_t limited;   /**< 0: the joint has no limit (the other fields are then zero). */
+    float frame[9];     /**< Row-major 3x3 rotation from the rotation vector to anatomical angles. */
+    float lower[3];     /**< Radians: flexion, axial rotation, abduction. */
+    float upper[3];     /**< Radians, >= lower. */
+} ssc_joint_limit;
+
+/**
+ * A joint's limit.
+ * @param joint  below ssc_model_joint_count.
+ * @param out    out: written whole; out->limited = 0 for a joint without a limit (fingers, root).
+ * Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_joint_limit(const ssc_model* model, uint32_t joint, ssc_joint_limit* out);
+
+/** What ssc_body_set_pose_limited does with rotations beyond the joints' limits. */
+typedef enum ssc_limit_mode {
+    SSC_LIMITS_REJECT = 0,  /**< Sets nothing and returns SSC_ERROR_INVALID_ARGUMENT naming the first joint and angle. */
+    SSC_LIMITS_CLAMP = 1,   /**< Clamps each anatomical angle into its range, then sets the pose. */
+    SSC_LIMIT_MODE_FORCE32 = 0x7FFFFFFF
+} ssc_limit_mode;
+
+/**
+ * Sets the pose as ssc_body_set_pose does, enforcing the joint limits.
+ * @param rotations            4 floats (x y z w) per joint, joint_count joints; must not be NULL.
+ * @param joint_count          must equal ssc_model_joint_count.
+ * @param translation          3 floats (metres); NULL = zero.
+ * @param mode                 reject or clamp.
+ * @param out_violation_count  out, may be NULL: joints that were outside their limits (also written
+ *                             when the pose is rejected).
+ * @return SSC_ERROR_INVALID_ARGUMENT for bad input or a rejected pose; the body is unchanged then.
+ * Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_set_pose_limited(ssc_body* body, const float* rotations, uint32_t joint_count,
+                                             const float* translation, ssc_limit_mode mode,
+                                             uint32_t* out_violation_count);
+
+/* ---------------------------------------------------------------------------------------------- */
 /* Body measurements                                                                               */
 
 /**
@@ -504,6 +553,100 @@ SSC_API ssc_status ssc_body_measure(ssc_body* body, float* out, uint32_t capacit
 /** Measures one measurement given by name (as ssc_measurement_find); otherwise as ssc_body_measure.
  *  Threads: the body's thread. */
 SSC_API ssc_status ssc_body_measure_by_name(ssc_body* body, const char* name, float* out);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Semantic sliders                                                                                */
+
+/**
+ * Sliders set a body by what people understand (stature, mass, age, sex, muscularity, proportions)
+ * instead of anonymous shape coefficients. The model file stores them, learned over its training
+ * population: each slider is a direction in the shape space (coefficients per unit of the slider,
+ * the other sliders held), so moving one slider changes that slider's value and leaves the others'
+ * values where they were. A body's slider values are read from its shape by least squares; a
+ * shape made by sliders reads back exactly. A model may have none (count 0).
+ */
+typedef struct ssc_slider_info {
+    uint32_t struct_size;     /**< Set by the caller: sizeof(ssc_slider_info). */
+    const char* name;         /**< snake_case ("stature", "mass", "age", "sex", "muscle", ...). */
+    const char* unit;         /**< "m", "kg", "years", or "" for a fraction (sex: 0 female, 1 male). */
+    const char* description;  /**< One sentence. */
+    float mean;               /**< The training population's mean: the mean body's value. */
+    float minimum;            /**< 0.5th percentile of the population: a slider's useful range ... */
+    float maximum;            /**< ... to the 99.5th percentile. Values beyond extrapolate. */
+} ssc_slider_info;
+
+/** Number of sliders the model has. Threads: any. */
+SSC_API uint32_t ssc_model_slider_count(const ssc_model* model);
+
+/**
+ * Describes a slider.
+ * @param index  below ssc_model_slider_count.
+ * @param out    out: out->struct_size must be set; only that many bytes are written.
+ * Ownership: strings owned by the model. Threads: any.
+ */
+SSC_API ssc_status ssc_model_get_slider_info(const ssc_model* model, uint32_t index, ssc_slider_info* out);
+
+/** Finds a slider by name; SSC_ERROR_NOT_FOUND for a name the model lacks. Threads: any. */
+SSC_API ssc_status ssc_model_find_slider(const ssc_model* model, const char* name, uint32_t* out_index);
+
+/**
+ * The body's slider values (read from its shape), in slider order.
+ * @param out       capacity floats; at least ssc_model_slider_count.
+ * Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_get_sliders(const ssc_body* body, float* out, uint32_t capacity);
+
+/**
+ * Moves one slider to a value, keeping the rest of the body's shape (and the other sliders' values).
+ * @param index  below ssc_model_slider_count. @param value  finite, in the slider's unit.
+ * Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_set_slider(ssc_body* body, uint32_t index, float value);
+
+/**
+ * Replaces the body's shape by the one the slider values give (every slider, in slider order): the
+ * population's typical body with those values.
+ * @param values  count finite floats. @param count  must equal ssc_model_slider_count.
+ * Threads: the body's thread.
+ */
+SSC_API ssc_status ssc_body_set_sliders(ssc_body* body, const float* values, uint32_t count);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Bodies made to measure                                                                          */
+
+/** Options of ssc_body_make_to_measure. Initialise with ssc_made_to_measure_def_init. */
+typedef struct ssc_made_to_measure_def {
+    uint32_t struct_size;     /**< Set by ssc_made_to_measure_def_init. */
+    float sex;                /**< 0 female, 1 male; NaN (the default) = unknown. */
+    float age;                /**< Years; NaN (the default) = unknown. */
+    uint32_t max_iterations;  /**< Refinement iterations; default 15. */
+    float tolerance;          /**< Metres: stop when every requested length is this close; default 0.0005. */
+} ssc_made_to_measure_def;
+
+/** Fills def with the defaults; size = sizeof *def. Threads: any. */
+SSC_API void ssc_made_to_measure_def_init(ssc_made_to_measure_def* def, size_t size);
+
+/**
+ * Sets the body's shape to reproduce the requested measurements (any subset, each at most once).
+ * A regression learned over the training population (from the requested measurements, and sex and
+ * age when given) gives the start; Levenberg-Marquardt on the measurement functions refines it.
+ * On the default model, stature, chest, waist and hip girth of held-out bodies are reached within a
+ * millimetre (sscape train prints the figures).
+ * @param measurements  count ssc_measurement values.
+ * @param values        count finite positive targets, in the measurements' units (SI).
+ * @param count         at least 1.
+ * @param def           may be NULL (defaults).
+ * @param achieved      out, may be NULL: every measurement of the result (as ssc_body_measure).
+ * @param achieved_capacity  0 when achieved is NULL, else at least ssc_measurement_count.
+ * @param out_converged out, may be NULL: 1 when every requested value was reached within the tolerance.
+ *                      Not reaching it is not an error (the request may be impossible for a body).
+ * @return SSC_ERROR_INVALID_ARGUMENT for bad input, SSC_ERROR_NOT_FOUND when the model lacks what the
+ *         measurements need; the body is unchanged on error.
+ * Threads: the body's thread. Takes about 0.1 s on one core (the measurements are re-taken per step).
+ */
+SSC_API ssc_status ssc_body_make_to_measure(ssc_body* body, const uint32_t* measurements, const float* values,
+                                            uint32_t count, const ssc_made_to_measure_def* def, float* achieved,
+                                            uint32_t achieved_capacity, uint32_t* out_converged);
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Batch synthesis                                                                                 */

@@ -125,6 +125,43 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
         }
     }
 
+    if (const auto* limits = root->joint_limits()) {
+        for (const auto* l : *limits) {
+            JointLimit out;
+            out.joint = l->joint();
+            const auto* frame = need(l->frame(), "joint_limits.frame");
+            const auto* lower = need(l->lower(), "joint_limits.lower");
+            const auto* upper = need(l->upper(), "joint_limits.upper");
+            SSC_REQUIRE_MODEL(frame->size() == 9 && lower->size() == 3 && upper->size() == 3,
+                              "joint limit " + std::to_string(m.joint_limits.size()) + " needs 9 frame and 3 + 3 bound values");
+            std::copy(frame->begin(), frame->end(), out.frame);
+            std::copy(lower->begin(), lower->end(), out.lower);
+            std::copy(upper->begin(), upper->end(), out.upper);
+            m.joint_limits.push_back(out);
+        }
+    }
+    if (const auto* am = root->attributes()) {
+        for (const auto* at : *need(am->attributes(), "attributes.attributes")) {
+            Attribute out;
+            out.name = text(at->name());
+            out.unit = text(at->unit());
+            out.description = text(at->description());
+            out.mean = at->mean();
+            out.minimum = at->minimum();
+            out.maximum = at->maximum();
+            out.slider = at->slider();
+            m.attributes.attributes.push_back(std::move(out));
+        }
+        // Sizes are checked against the attribute count before anything is copied.
+        const auto* cov = need(am->covariance(), "attributes.covariance");
+        const auto* shape_cov = need(am->shape_covariance(), "attributes.shape_covariance");
+        const std::size_t A = m.attributes.attributes.size();
+        SSC_REQUIRE_MODEL(cov->size() == A * A, "attributes.covariance must hold A x A values");
+        SSC_REQUIRE_MODEL(shape_cov->size() == A * m.shape.basis.components, "attributes.shape_covariance must hold A x K values");
+        m.attributes.covariance.assign(cov->begin(), cov->end());
+        m.attributes.shape_covariance.assign(shape_cov->begin(), shape_cov->end());
+    }
+
     validate_model(m);
     return m;
 }

@@ -63,8 +63,22 @@ std::vector<unsigned char> write_model(const ModelData& m, const WriteOptions& o
     std::vector<flatbuffers::Offset<fb::VertexSet>> sets;
     for (const auto& s : m.vertex_sets) sets.push_back(fb::CreateVertexSet(fbb, str(s.name), vec(fbb, s.vertices)));
 
+    std::vector<flatbuffers::Offset<fb::JointLimit>> limits;
+    for (const auto& l : m.joint_limits)
+        limits.push_back(fb::CreateJointLimit(fbb, l.joint, fbb.CreateVector(l.frame, 9), fbb.CreateVector(l.lower, 3),
+                                              fbb.CreateVector(l.upper, 3)));
+    flatbuffers::Offset<fb::AttributeModel> attributes = 0;
+    if (!m.attributes.attributes.empty()) {
+        std::vector<flatbuffers::Offset<fb::Attribute>> list;
+        for (const auto& a : m.attributes.attributes)
+            list.push_back(fb::CreateAttribute(fbb, str(a.name), str(a.unit), str(a.description), a.mean, a.minimum, a.maximum,
+                                               a.slider));
+        attributes = fb::CreateAttributeModel(fbb, fbb.CreateVector(list), fbb.CreateVector(m.attributes.covariance),
+                                              fbb.CreateVector(m.attributes.shape_covariance));
+    }
+
     auto root = fb::CreateModel(fbb, meta, mesh, shape, skeleton, skin, fbb.CreateVector(landmarks),
-                                fbb.CreateVector(sets));
+                                fbb.CreateVector(sets), m.joint_limits.empty() ? 0 : fbb.CreateVector(limits), attributes);
     fb::FinishModelBuffer(fbb, root);
     return pack_container(fbb.GetBufferPointer(), fbb.GetSize(), options.zstd_level);
 }

@@ -153,6 +153,44 @@ void validate_model(const ModelData& m) {
     }
     require_unique_names(names, "vertex_sets");
 
+    // Joint limits: one per joint at most, a rotation frame, finite ordered bounds.
+    for (std::size_t i = 0; i < m.joint_limits.size(); ++i) {
+        const JointLimit& l = m.joint_limits[i];
+        const std::string what = "joint limit " + std::to_string(i);
+        SSC_REQUIRE_MODEL(l.joint < J, what + ": joint out of range");
+        SSC_REQUIRE_MODEL(i == 0 || m.joint_limits[i - 1].joint < l.joint, what + ": joints must be sorted and unique");
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) {
+                double dot = 0;
+                for (int k = 0; k < 3; ++k) dot += double(l.frame[3 * r + k]) * l.frame[3 * c + k];
+                SSC_REQUIRE_MODEL(std::isfinite(dot) && std::abs(dot - (r == c ? 1.0 : 0.0)) < 1e-3, what + ": frame is not a rotation");
+            }
+        for (int a = 0; a < 3; ++a)
+            SSC_REQUIRE_MODEL(std::isfinite(l.lower[a]) && std::isfinite(l.upper[a]) && l.lower[a] <= l.upper[a] &&
+                                  std::abs(l.lower[a]) <= 2 * M_PI && std::abs(l.upper[a]) <= 2 * M_PI,
+                              what + ": bounds must be finite, ordered and within one turn");
+    }
+
+    // Attributes: named, finite, a symmetric covariance with a positive diagonal.
+    const auto& am = m.attributes;
+    const std::size_t A = am.attributes.size();
+    names.clear();
+    for (const auto& a : am.attributes) {
+        names.push_back(a.name);
+        SSC_REQUIRE_MODEL(std::isfinite(a.mean) && std::isfinite(a.minimum) && std::isfinite(a.maximum) && a.minimum <= a.maximum,
+                          "attribute '" + a.name + "' needs a finite mean and an ordered range");
+    }
+    require_unique_names(names, "attributes");
+    require_size(am.covariance, A * A, "attributes.covariance");
+    require_size(am.shape_covariance, A * K, "attributes.shape_covariance");
+    require_finite(am.covariance, "attributes.covariance");
+    require_finite(am.shape_covariance, "attributes.shape_covariance");
+    for (std::size_t a = 0; a < A; ++a) {
+        SSC_REQUIRE_MODEL(am.covariance[a * A + a] > 0, "attributes.covariance has a diagonal entry <= 0");
+        for (std::size_t b = 0; b < a; ++b)
+            SSC_REQUIRE_MODEL(am.covariance[a * A + b] == am.covariance[b * A + a], "attributes.covariance is not symmetric");
+    }
+
     SSC_REQUIRE_MODEL(!m.metadata.units.empty() && m.metadata.units == "m", "metadata.units must be \"m\"");
 }
 

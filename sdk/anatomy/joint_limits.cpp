@@ -1,5 +1,6 @@
 #include "anatomy/joint_limits.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -41,21 +42,20 @@ const Range kRanges[] = {
 
 }  // namespace
 
-std::vector<JointLimit> joint_limits(const Model& model) {
-    const auto& sk = model.data().skeleton;
-    const uint32_t J = model.joint_count();
+std::vector<format::JointLimit> compute_joint_limits(const format::Skeleton& sk) {
+    const std::size_t J = sk.parents.size();
     std::vector<Matrix3d> W(J);  // rest world rotations
-    for (uint32_t j = 0; j < J; ++j) {
-        const float* q = &sk.rest_orientations[4 * std::size_t(j)];
+    for (std::size_t j = 0; j < J; ++j) {
+        const float* q = &sk.rest_orientations[4 * j];
         const Matrix3d R = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
-        W[j] = sk.parents[j] < 0 ? R : W[uint32_t(sk.parents[j])] * R;
+        W[j] = sk.parents[j] < 0 ? R : W[std::size_t(sk.parents[j])] * R;
     }
     auto find = [&](const std::string& name) -> int {
-        for (uint32_t j = 0; j < J; ++j)
+        for (std::size_t j = 0; j < J; ++j)
             if (sk.joint_names[j] == name) return int(j);
         return -1;
     };
-    std::vector<JointLimit> out(J);
+    std::vector<format::JointLimit> out;
     for (const Range& r : kRanges) {
         for (const char* side : {"", "_l", "_r"}) {
             const int j = find(std::string(r.name) + side);
@@ -78,11 +78,29 @@ std::vector<JointLimit> joint_limits(const Model& model) {
             A.col(2) = x.cross(bone);
             Matrix3d mirror = Matrix3d::Identity();
             if (right) mirror(1, 1) = mirror(2, 2) = -1;
-            JointLimit& l = out[std::size_t(j)];
-            l.limited = true;
-            l.to_anatomical = mirror * A.transpose() * W[std::size_t(j)];
-            l.lo = Vector3d(r.x_lo, r.y_lo, r.z_lo) * kDeg;
-            l.hi = Vector3d(r.x_hi, r.y_hi, r.z_hi) * kDeg;
+            const Matrix3d frame = mirror * A.transpose() * W[std::size_t(j)];
+            format::JointLimit l;
+            l.joint = uint32_t(j);
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b) l.frame[3 * a + b] = float(frame(a, b));
+            const double lo[3] = {r.x_lo, r.y_lo, r.z_lo}, hi[3] = {r.x_hi, r.y_hi, r.z_hi};
+            for (int a = 0; a < 3; ++a) l.lower[a] = float(lo[a] * kDeg), l.upper[a] = float(hi[a] * kDeg);
+            out.push_back(l);
+        }
+    }
+    std::sort(out.begin(), out.end(), [](const format::JointLimit& a, const format::JointLimit& b) { return a.joint < b.joint; });
+    return out;
+}
+
+std::vector<JointLimit> joint_limits(const Model& model) {
+    std::vector<JointLimit> out(model.joint_count());
+    for (const format::JointLimit& l : model.data().joint_limits) {
+        JointLimit& o = out[l.joint];
+        o.limited = true;
+        for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) o.to_anatomical(a, b) = l.frame[3 * a + b];
+            o.lo[a] = l.lower[a];
+            o.hi[a] = l.upper[a];
         }
     }
     return out;
@@ -91,6 +109,19 @@ std::vector<JointLimit> joint_limits(const Model& model) {
 Vector3d anatomical_angles(const JointLimit& limit, const Eigen::Quaterniond& q) {
     const Eigen::AngleAxisd aa(q.normalized());
     return limit.to_anatomical * (aa.angle() * aa.axis());
+}
+
+bool enforce_limit(const JointLimit& limit, Eigen::Quaterniond& q, bool clamp) {
+    if (!limit.limited) return false;
+    const Vector3d a = anatomical_angles(limit, q);
+    const Vector3d inside = a.cwiseMax(limit.lo).cwiseMin(limit.hi);
+    if ((a - inside).cwiseAbs().maxCoeff() <= 1e-5) return false;
+    if (clamp) {
+        const Vector3d r = limit.to_anatomical.transpose() * inside;  // the frame is a rotation
+        const double angle = r.norm();
+        q = angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, r / angle)) : Eigen::Quaterniond::Identity();
+    }
+    return true;
 }
 
 }  // namespace ssc::anatomy

@@ -20,6 +20,9 @@
 // flexion and extension 45°, lateral bending 45°, rotation 60°. Spinal motion is split over the
 // rig's spine joints, and every range gets a small margin (the rotation-vector components only
 // approximate the clinical angles at large rotations).
+//
+// Training computes the limits from this table and stores them in the model file; the runtime
+// reads them from there, so a model may carry its own.
 #pragma once
 
 #include "synthesis/model.hpp"
@@ -40,11 +43,19 @@ struct JointLimit {
     Vector3d lo = Vector3d::Zero(), hi = Vector3d::Zero();  // radians: flexion (x'), axial (y'), abduction (z')
 };
 
-// One entry per joint of the model; joints the table does not name (root, pelvis, fingers) are
-// not limited (the fitter's rotation prior holds the fingers).
+// The limits of the range-of-motion table above for a skeleton (training: they are stored in the
+// model file). Joints the table does not name (root, pelvis, fingers) get none (the fitter's
+// rotation prior holds the fingers). Sorted by joint.
+std::vector<format::JointLimit> compute_joint_limits(const format::Skeleton& skeleton);
+
+// One entry per joint of the model, from the limits its file stores (none: nothing limited).
 std::vector<JointLimit> joint_limits(const Model& model);
 
 // The anatomical components of a joint's local pose rotation.
 Vector3d anatomical_angles(const JointLimit& limit, const Eigen::Quaterniond& local_pose);
+
+// Whether a local pose rotation lies outside the limit (beyond a 1e-5 rad tolerance); with clamp,
+// also moves each anatomical angle into its range and rewrites the rotation.
+bool enforce_limit(const JointLimit& limit, Eigen::Quaterniond& local_pose, bool clamp);
 
 }  // namespace ssc::anatomy

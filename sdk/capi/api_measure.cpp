@@ -55,7 +55,7 @@ ssc_status ssc_body_measure(ssc_body* body, float* out, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(body, "body");
         check_output(out, capacity, measure::definitions().size(), 0, 4);
-        const auto values = measure::Measurer(body->body.model()).measure(body->body);
+        const auto values = body->model->measurer().measure(body->body);
         for (std::size_t i = 0; i < values.size(); ++i) out[i] = float(values[i]);
     });
 }
@@ -65,7 +65,7 @@ ssc_status ssc_body_measure_by_name(ssc_body* body, const char* name, float* out
         need(body, "body");
         need(out, "out");
         const uint32_t m = find(name);
-        *out = float(measure::Measurer(body->body.model()).measure(body->body)[m]);
+        *out = float(body->model->measurer().measure(body->body)[m]);
     });
 }
 

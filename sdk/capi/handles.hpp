@@ -2,15 +2,21 @@
 // holds its context, a body holds its model, so callers may release handles in any order.
 #pragma once
 
+#include "anatomy/joint_limits.hpp"
 #include "common/alloc.hpp"
 #include "common/thread_pool.hpp"
 #include "fitting/fitter.hpp"
+#include "measure/measurements.hpp"
+#include "semantics/attribute_model.hpp"
 #include "synthesis/body.hpp"
 #include "synthesis/model.hpp"
 
 #include <atomic>
 #include <cstdarg>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <vector>
 
 struct ssc_context {
     std::atomic<uint32_t> refs{1};
@@ -31,8 +37,23 @@ struct ssc_model {
     std::atomic<uint32_t> refs{1};
     ssc_context* context;  // holds one reference
     ssc::Model model;
+    ssc::semantics::AttributeModel attributes;   // sliders, made-to-measure regression
+    std::vector<ssc::anatomy::JointLimit> limits;  // per joint
 
-    ssc_model(ssc_context* ctx, ssc::format::ModelData data) : context(ctx), model(std::move(data), &ctx->allocator) {}
+    ssc_model(ssc_context* ctx, ssc::format::ModelData data)
+        : context(ctx), model(std::move(data), &ctx->allocator), attributes(model.data()), limits(ssc::anatomy::joint_limits(model)) {}
+
+    // Built on first use: its edge lists cost milliseconds that loading should not pay. Thread-safe;
+    // throws (SSC_ERROR_NOT_FOUND) for a model without the landmarks the definitions need, and
+    // tries again on the next call.
+    const ssc::measure::Measurer& measurer() const {
+        std::call_once(measurer_once_, [this] { measurer_ = std::make_unique<ssc::measure::Measurer>(model); });
+        return *measurer_;
+    }
+
+private:
+    mutable std::once_flag measurer_once_;
+    mutable std::unique_ptr<ssc::measure::Measurer> measurer_;
 };
 
 struct ssc_body {

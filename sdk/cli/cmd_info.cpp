@@ -39,6 +39,20 @@ int cmd_info(const std::vector<std::string>& args) {
         ssc_model_get_vertex_set(model, i, &name, &n);
         std::printf(" %s(%u)", name, n);
     }
+    uint32_t limited = 0;
+    for (uint32_t j = 0; j < ssc_model_joint_count(model); ++j) {
+        ssc_joint_limit l{};
+        check(ssc_model_get_joint_limit(model, j, &l), "joint limit");
+        limited += l.limited;
+    }
+    std::printf("\njoint limits: %u joints\nsliders:     %u", limited, ssc_model_slider_count(model));
+    for (uint32_t i = 0; i < ssc_model_slider_count(model); ++i) {
+        ssc_slider_info info{};
+        info.struct_size = sizeof info;
+        check(ssc_model_get_slider_info(model, i, &info), "slider");
+        std::printf("\n  %-12s %-6s mean %8.3f, population %.3f .. %.3f", info.name, *info.unit ? info.unit : "-", info.mean,
+                    info.minimum, info.maximum);
+    }
     const uint32_t K = ssc_model_shape_count(model);
     std::printf("\ncomponents:  %u\nstddev (m):", K);
     std::vector<float> sd(K);

@@ -16,10 +16,29 @@ namespace {
 struct Options {
     std::string model, out;
     std::vector<float> shape, translation;
-    std::string pose, png;
+    std::string pose, png, limits;
+    std::vector<std::pair<std::string, float>> sliders, measurements;  // NAME=VALUE lists
+    float sex = std::nanf(""), age = std::nanf("");
     uint32_t random = 0, seed = 1;
     bool normals = false;
 };
+
+// "name=value,name=value" (SI units).
+std::vector<std::pair<std::string, float>> parse_named(const std::string& text, const std::string& option) {
+    std::vector<std::pair<std::string, float>> out;
+    std::size_t at = 0;
+    while (at <= text.size()) {
+        const std::size_t end = std::min(text.find(',', at), text.size());
+        const std::string item = text.substr(at, end - at);
+        const std::size_t eq = item.find('=');
+        if (eq == std::string::npos || eq == 0) throw UsageError(option + ": '" + item + "' is not NAME=VALUE");
+        const std::vector<float> v = parse_floats(item.substr(eq + 1), option + " " + item.substr(0, eq));
+        if (v.size() != 1) throw UsageError(option + ": '" + item + "' needs one number");
+        out.emplace_back(item.substr(0, eq), v[0]);
+        at = end + 1;
+    }
+    return out;
+}
 
 bool is_glb(const std::string& path) {
     return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".glb") == 0 || path.compare(path.size() - 4, 4, ".GLB") == 0);
@@ -38,7 +57,20 @@ Options parse(const std::vector<std::string>& args) {
         else if (a == "--seed") o.seed = parse_count(value(), a);
         else if (a == "--normals") o.normals = true;
         else if (a == "--png") o.png = value();
-        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+        else if (a == "--sliders") o.sliders = parse_named(value(), a);
+        else if (a == "--measure") o.measurements = parse_named(value(), a);
+        else if (a == "--sex") {
+            const std::string& v = value();
+            if (v != "male" && v != "female") throw UsageError("--sex takes male or female");
+            o.sex = v == "male" ? 1.f : 0.f;
+        } else if (a == "--age") {
+            const std::vector<float> v = parse_floats(value(), a);
+            if (v.size() != 1) throw UsageError("--age takes one number (years)");
+            o.age = v[0];
+        } else if (a == "--limits") {
+            o.limits = value();
+            if (o.limits != "clamp" && o.limits != "reject") throw UsageError("--limits takes clamp or reject");
+        } else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
         else if (o.model.empty()) o.model = a;
         else throw UsageError("unexpected argument '" + a + "'");
     }
@@ -46,6 +78,8 @@ Options parse(const std::vector<std::string>& args) {
     if (!o.translation.empty() && o.translation.size() != 3) throw UsageError("--translation needs 3 numbers");
     if (o.random && !o.shape.empty()) throw UsageError("--random and --shape exclude each other");
     if (o.random > 10000) throw UsageError("--random is limited to 10000 bodies");
+    if (o.random && (!o.sliders.empty() || !o.measurements.empty())) throw UsageError("--random excludes --sliders and --measure");
+    if ((!std::isnan(o.sex) || !std::isnan(o.age)) && o.measurements.empty()) throw UsageError("--sex and --age go with --measure");
     if (!is_glb(o.out)) exporters::check_mesh_path(o.out);
     if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
         throw UsageError("--png needs a file name ending in .png");
@@ -124,6 +158,48 @@ std::string numbered(const std::string& out, uint32_t i, uint32_t n) {
     return with_suffix(out, buf);
 }
 
+// --sliders moves the named sliders from the given shape; --measure then makes the body to measure
+// and prints what it reached.
+void shape_by_meaning(ssc_model* model, ssc_body* body, const Options& o) {
+    for (const auto& [name, value] : o.sliders) {
+        uint32_t s = 0;
+        if (ssc_model_find_slider(model, name.c_str(), &s) != SSC_OK) {
+            std::string known;
+            for (uint32_t i = 0; i < ssc_model_slider_count(model); ++i) {
+                ssc_slider_info info{};
+                info.struct_size = sizeof info;
+                check(ssc_model_get_slider_info(model, i, &info), "slider");
+                known += std::string(i ? ", " : "") + info.name;
+            }
+            throw UsageError("--sliders: the model has no slider '" + name + "' (it has: " + (known.empty() ? "none" : known) + ")");
+        }
+        check(ssc_body_set_slider(body, s, value), "slider " + name);
+    }
+    if (o.measurements.empty()) return;
+    std::vector<uint32_t> which;
+    std::vector<float> values;
+    for (const auto& [name, value] : o.measurements) {
+        uint32_t m = 0;
+        if (ssc_measurement_find(name.c_str(), &m) != SSC_OK)
+            throw UsageError("--measure: no measurement '" + name + "' (sscape measure --definitions lists them)");
+        which.push_back(m);
+        values.push_back(value);
+    }
+    ssc_made_to_measure_def def;
+    ssc_made_to_measure_def_init(&def, sizeof def);
+    def.sex = o.sex;
+    def.age = o.age;
+    std::vector<float> achieved(ssc_measurement_count());
+    uint32_t converged = 0;
+    check(ssc_body_make_to_measure(body, which.data(), values.data(), uint32_t(which.size()), &def, achieved.data(),
+                                   uint32_t(achieved.size()), &converged),
+          "made to measure");
+    std::printf("%-18s %10s %10s\n", "made to measure", "requested", "achieved");
+    for (std::size_t i = 0; i < which.size(); ++i)
+        std::printf("%-18s %10.4f %10.4f\n", o.measurements[i].first.c_str(), values[i], achieved[which[i]]);
+    if (!converged) std::printf("note: not every request was reached within 0.5 mm (the combination may be unusual)\n");
+}
+
 }  // namespace
 
 int cmd_synth(const std::vector<std::string>& args) {
@@ -168,7 +244,16 @@ int cmd_synth(const std::vector<std::string>& args) {
         ~RestGuard() { ssc_body_destroy(b); }
     } rest_guard{rest_body};
     const std::vector<float> pose = parse_pose(model, o.pose);
-    check(ssc_body_set_pose(guard.b, pose.data(), J, o.translation.empty() ? nullptr : o.translation.data()), "pose");
+    const float* translation = o.translation.empty() ? nullptr : o.translation.data();
+    if (o.limits.empty()) {
+        check(ssc_body_set_pose(guard.b, pose.data(), J, translation), "pose");
+    } else {
+        uint32_t outside = 0;
+        check(ssc_body_set_pose_limited(guard.b, pose.data(), J, translation, o.limits == "clamp" ? SSC_LIMITS_CLAMP : SSC_LIMITS_REJECT,
+                                        &outside),
+              "pose");
+        if (outside) std::printf("pose: %u joint(s) clamped to their anatomical limits\n", outside);
+    }
 
     std::mt19937 rng(o.seed);
     std::normal_distribution<float> normal;
@@ -184,6 +269,11 @@ int cmd_synth(const std::vector<std::string>& args) {
             for (float& c : shape) do c = normal(rng); while (std::abs(c) > 2.5f);
         }
         check(ssc_body_set_shape(guard.b, shape.data(), uint32_t(shape.size())), "shape");
+        if (!o.sliders.empty() || !o.measurements.empty()) {
+            shape_by_meaning(model, guard.b, o);
+            shape.resize(K);
+            check(ssc_body_get_shape(guard.b, shape.data(), K), "shape");
+        }
         check(ssc_body_get_vertices(guard.b, verts.data(), V, 0), "vertices");
         if (o.normals) check(ssc_body_get_normals(guard.b, normals.data(), V, 0), "normals");
         exporters::MeshView mesh;

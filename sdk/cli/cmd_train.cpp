@@ -26,6 +26,7 @@ int cmd_train(const std::vector<std::string>& args) {
         else if (a == "--procrustes") spec.procrustes = true;
         else if (a == "--report") spec.report_prefix = value();
         else if (a == "--regressor-support") spec.regressor_support = parse_count(value(), a);
+        else if (a == "--made-to-measure") spec.made_to_measure_bodies = parse_count(value(), a);
         else throw UsageError("unknown option '" + a + "'");
     }
     if (out.empty()) throw UsageError("train needs -o OUT.sscape");
@@ -59,6 +60,14 @@ int cmd_train(const std::vector<std::string>& args) {
     for (const auto& q : report.quality)
         std::printf("%10u %11.3f%% %18.2f %16.2f\n", q.components, 100 * q.compactness, q.generalization * 1e3, q.specificity * 1e3);
     for (const auto& png : report.plots) std::printf("plot: %s\n", png.c_str());
+    if (const auto& mtm = report.made_to_measure; mtm.bodies > 0) {
+        std::printf("made to measure, %u held-out bodies (stature, chest, waist, hip requested with sex and age): "
+                    "%u converged, %.2f s per body\n", mtm.bodies, mtm.converged, mtm.mean_seconds);
+        std::printf("%-16s %14s %14s %22s\n", "measurement", "mean_error_mm", "worst_error_mm", "regression_start_mm");
+        for (std::size_t k = 0; k < mtm.measurements.size(); ++k)
+            std::printf("%-16s %14.2f %14.2f %22.2f\n", mtm.measurements[k].c_str(), mtm.mean_error[k] * 1e3, mtm.worst_error[k] * 1e3,
+                        mtm.start_mean_error[k] * 1e3);
+    }
     // Population measurements by sex, in centimetres.
     auto stats = [&](const std::vector<double>& v, int sex, double& mean, double& sd) {
         double s = 0, s2 = 0;

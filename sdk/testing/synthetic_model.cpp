@@ -1,5 +1,6 @@
 #include "synthetic_model.hpp"
 
+#include "anatomy/joint_limits.hpp"
 #include "common/error.hpp"
 
 #include <Eigen/Geometry>
@@ -214,6 +215,8 @@ SyntheticModel build_synthetic_model(const SyntheticSpec& spec) {
         }
         sk.regressor_offsets.push_back(uint32_t(sk.regressor_vertices.size()));
     }
+    // The anatomical table limits the joints it names (the humanoid's), as training does.
+    m.joint_limits = anatomy::compute_joint_limits(sk);
     for (uint32_t v = 0; v < V; ++v) {
         // Merge duplicate joints, keep the 4 largest (at most 3 here), normalise.
         float wsum = 0;

@@ -1,5 +1,6 @@
 #include "train.hpp"
 
+#include "anatomy/joint_limits.hpp"
 #include "common/error.hpp"
 #include "landmarks.hpp"
 #include "measure/girth.hpp"
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <map>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace ssc::training {
@@ -147,6 +149,7 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     sk.regressor_offsets.assign(reg.offsets.begin(), reg.offsets.end());
     sk.regressor_vertices.assign(reg.vertices.begin(), reg.vertices.end());
     sk.regressor_weights.assign(reg.weights.begin(), reg.weights.end());
+    m.joint_limits = anatomy::compute_joint_limits(sk);
 
     std::vector<uint16_t> sj;
     std::vector<float> sw;
@@ -174,6 +177,25 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
         lt.joints[a.game_rig.bones[j].name] = q;
     }
     m.landmarks = place_caesar_landmarks(lt);
+    format::validate_model(m);
+
+    say("measuring every training body for the attribute model (sliders, made to measure)");
+    m.attributes = learn_attribute_model(m, X, p, fit, people);
+    const uint32_t mtm = std::min(spec.made_to_measure_bodies, spec.heldout);
+    if (mtm > 0) {
+        say("making " + std::to_string(mtm) + " held-out bodies to measure");
+        report.made_to_measure = evaluate_made_to_measure(m, X, fit, mtm, people);
+        if (!spec.report_prefix.empty()) {
+            const std::string csv = spec.report_prefix + "made_to_measure.csv";
+            std::ofstream f(csv);
+            const auto& r = report.made_to_measure;
+            f << "# made to measure: " << r.bodies << " held-out bodies, stature/chest/waist/hip requested with sex and age; "
+              << r.converged << " converged\nmeasurement,mean_error_m,worst_error_m,regression_start_mean_error_m\n";
+            for (std::size_t k = 0; k < r.measurements.size(); ++k)
+                f << r.measurements[k] << "," << r.mean_error[k] << "," << r.worst_error[k] << "," << r.start_mean_error[k] << "\n";
+            if (!f) fail(SSC_ERROR_IO, "cannot write " + csv);
+        }
+    }
 
     say("measuring girths of every body");
     {

@@ -2,6 +2,7 @@
 // skin, vertex sets -> a model ready for the .sscape writer.
 #pragma once
 
+#include "attributes.hpp"
 #include "evaluate.hpp"
 #include "population.hpp"
 #include "sscape_format/model_data.hpp"
@@ -23,6 +24,7 @@ struct TrainSpec {
     std::string population_csv;     // where to write the sampled parameters ("" = don't)
     std::string report_prefix;      // quality CSV and plots go to prefix + "quality.csv" etc. ("" = don't)
     uint32_t specificity_samples = 200;
+    uint32_t made_to_measure_bodies = 200;  // held-out bodies the made-to-measure accuracy is measured on
 };
 
 struct TrainReport {
@@ -41,6 +43,7 @@ struct TrainReport {
     std::vector<double> chest, waist_iliac, waist_natural, hip;
     std::vector<double> bmi;                    // per body: volume x density / stature^2
     std::vector<std::string> plots;             // PNG files written
+    MadeToMeasureAccuracy made_to_measure;      // on held-out bodies
 };
 
 using Progress = std::function<void(const std::string&)>;

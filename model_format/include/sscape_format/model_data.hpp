@@ -67,6 +67,26 @@ struct VertexSet {
     Vec<uint32_t> vertices;
 };
 
+// See the schema (JointLimit) for the convention.
+struct JointLimit {
+    uint32_t joint = 0;
+    float frame[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major
+    float lower[3] = {0, 0, 0}, upper[3] = {0, 0, 0};  // radians
+};
+
+struct Attribute {
+    std::string name, unit, description;
+    float mean = 0, minimum = 0, maximum = 0;
+    bool slider = false;
+};
+
+// See the schema (AttributeModel). Empty when the model has none.
+struct AttributeModel {
+    std::vector<Attribute> attributes;
+    std::vector<float> covariance;        // A x A, row-major
+    std::vector<float> shape_covariance;  // A x K, row-major
+};
+
 struct ModelData {
     Metadata metadata;
     Mesh mesh;
@@ -75,6 +95,8 @@ struct ModelData {
     Skin skin;
     std::vector<Landmark> landmarks;
     std::vector<VertexSet> vertex_sets;
+    std::vector<JointLimit> joint_limits;  // sorted by joint, at most one per joint
+    AttributeModel attributes;
 
     uint32_t vertex_count() const { return mesh.vertex_count; }
     uint32_t joint_count() const { return static_cast<uint32_t>(skeleton.parents.size()); }
