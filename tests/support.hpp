@@ -7,6 +7,8 @@
 #include <sscape/sscape.h>
 
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace test {
@@ -50,6 +52,18 @@ inline BodyPtr body(ssc_model* m) {
     if (ssc_body_create(m, nullptr, &b) != SSC_OK) return nullptr;
     return BodyPtr(b);
 }
+
+// The default model and one body of it, released at scope end; throws (a test failure) when they
+// cannot be made.
+struct DefaultBody {
+    ModelPtr owned_model = default_model();
+    BodyPtr owned_body = owned_model ? test::body(owned_model.get()) : nullptr;
+    ssc_model* model = owned_model.get();
+    ssc_body* body = owned_body.get();
+    DefaultBody() {
+        if (!body) throw std::runtime_error(std::string("cannot make a body of the default model: ") + ssc_last_error());
+    }
+};
 
 // Posed (or rest) vertices of a body of model m, packed xyz.
 inline std::vector<float> posed(ssc_model* m, ssc_body* b) {

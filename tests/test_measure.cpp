@@ -29,18 +29,6 @@ void add_tube(std::vector<float>& xyz, std::vector<uint32_t>& tris, double cx, d
     }
 }
 
-struct DefaultBody {
-    ssc_model* model = nullptr;
-    ssc_body* body = nullptr;
-    DefaultBody() {
-        REQUIRE(ssc_model_load_default(nullptr, &model) == SSC_OK);
-        REQUIRE(ssc_body_create(model, nullptr, &body) == SSC_OK);
-    }
-    ~DefaultBody() {
-        ssc_body_destroy(body);
-        ssc_model_release(model);
-    }
-};
 
 }  // namespace
 
@@ -96,7 +84,7 @@ TEST_CASE("a multi-level sweep cuts the same sections as one plane at a time", "
 }
 
 TEST_CASE("measurements of the default model are plausible and scale like lengths, areas and volumes", "[measure]") {
-    DefaultBody b;
+    test::DefaultBody b;
     const Model& model = b.model->model;
     const measure::Measurer measurer(model);
     const auto& defs = measure::definitions();
@@ -152,7 +140,7 @@ TEST_CASE("measurements of the default model are plausible and scale like length
 }
 
 TEST_CASE("different shapes measure differently and the pose does not matter", "[measure]") {
-    DefaultBody b;
+    test::DefaultBody b;
     const uint32_t M = ssc_measurement_count();
     std::vector<float> mean(M), other(M), posed(M);
     REQUIRE(ssc_body_measure(b.body, mean.data(), M) == SSC_OK);
@@ -175,7 +163,7 @@ TEST_CASE("different shapes measure differently and the pose does not matter", "
 }
 
 TEST_CASE("the measurement API rejects bad input without writing", "[measure][capi]") {
-    DefaultBody b;
+    test::DefaultBody b;
     const uint32_t M = ssc_measurement_count();
     std::vector<float> out(M + 1, -7.f);
     CHECK(ssc_body_measure(b.body, out.data(), M - 1) == SSC_ERROR_BUFFER_TOO_SMALL);

@@ -1,5 +1,7 @@
 // Named poses: what they look like (arm and leg joint positions), that they respect the joint
 // limits, and the C API's handling of bad input.
+#include "support.hpp"
+
 #include "anatomy/joint_limits.hpp"
 #include "anatomy/named_poses.hpp"
 #include "capi/handles.hpp"
@@ -14,17 +16,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-struct Posed {
-    ssc_model* model = nullptr;
-    ssc_body* body = nullptr;
-    Posed() {
-        REQUIRE(ssc_model_load_default(nullptr, &model) == SSC_OK);
-        REQUIRE(ssc_body_create(model, nullptr, &body) == SSC_OK);
-    }
-    ~Posed() {
-        ssc_body_destroy(body);
-        ssc_model_release(model);
-    }
+struct Posed : test::DefaultBody {
     // World position of a joint in the named pose.
     Vector3d joint(const char* pose, const char* name) {
         const uint32_t J = ssc_model_joint_count(model);

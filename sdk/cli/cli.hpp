@@ -26,6 +26,22 @@ uint32_t parse_count(const std::string& text, const std::string& option);
 // The value after option args[i] (advancing i); UsageError when there is none.
 const std::string& option_value(const std::vector<std::string>& args, std::size_t& i);
 
+// The handles a command creates, released however it leaves (a body or fitter holds its own model
+// reference, so the order does not matter; every release accepts NULL).
+struct Handles {
+    ssc_model* model = nullptr;
+    ssc_body* body = nullptr;
+    ssc_fitter* fitter = nullptr;
+    explicit Handles(ssc_model* m) : model(m) {}
+    ~Handles() {
+        ssc_fitter_destroy(fitter);
+        ssc_body_destroy(body);
+        ssc_model_release(model);
+    }
+    Handles(const Handles&) = delete;
+    Handles& operator=(const Handles&) = delete;
+};
+
 // Loads MODEL, or the default model compiled into the library when path is empty.
 ssc_model* load_model(const std::string& path);
 

@@ -65,20 +65,13 @@ Options parse(const std::vector<std::string>& args) {
 int cmd_fit(const std::vector<std::string>& args) {
     const Options o = parse(args);
     ssc_model* model = load_model(o.model);
-    struct Guard {
-        ssc_model* m;
-        ssc_fitter* f = nullptr;
-        ~Guard() {
-            ssc_fitter_destroy(f);
-            ssc_model_release(m);
-        }
-    } guard{model};
+    Handles guard(model);
     ssc_fitter_def def;
     ssc_fitter_def_init(&def, sizeof def);
     def.fit_scale = o.scale;
     def.shape_count = o.components;
     if (o.iterations) def.max_iterations = o.iterations;
-    check(ssc_fitter_create(model, &def, &guard.f), "fitter");
+    check(ssc_fitter_create(model, &def, &guard.fitter), "fitter");
 
     // Landmarks matched by name, as CAESAR files spell them.
     std::unordered_map<std::string, uint32_t> by_name;
@@ -113,7 +106,7 @@ int cmd_fit(const std::vector<std::string>& args) {
             if (frame == 0) shown.push_back(r.position);
         }
         if (indices.size() < 3) throw UsageError(path + ": fewer than 3 usable landmarks");
-        check(ssc_fitter_add_landmarks(guard.f, frame, indices.data(), positions.data(), nullptr, uint32_t(indices.size())), path);
+        check(ssc_fitter_add_landmarks(guard.fitter, frame, indices.data(), positions.data(), nullptr, uint32_t(indices.size())), path);
         std::printf("%s: %zu landmarks (%u hand landmarks left out; --hands uses them)\n", path.c_str(), indices.size(), skipped_hands);
     }
     for (const auto& path : o.points) {
@@ -126,7 +119,7 @@ int cmd_fit(const std::vector<std::string>& args) {
         }
         for (const auto& n : pf.normals)
             for (int a = 0; a < 3; ++a) nrm.push_back(float(n[a]));
-        check(ssc_fitter_add_points(guard.f, frame, pts.data(), nrm.empty() ? nullptr : nrm.data(), nullptr, uint32_t(pf.points.size()), 0), path);
+        check(ssc_fitter_add_points(guard.fitter, frame, pts.data(), nrm.empty() ? nullptr : nrm.data(), nullptr, uint32_t(pf.points.size()), 0), path);
         std::printf("%s: %zu points%s\n", path.c_str(), pf.points.size(), pf.normals.empty() ? " (normals estimated)" : " with normals");
     }
     for (const auto& path : o.depth) {
@@ -144,7 +137,7 @@ int cmd_fit(const std::vector<std::string>& args) {
         if (img.has_pose) def.camera_to_world = pose;
         const uint32_t frame = frame_for();
         uint32_t added = 0;
-        check(ssc_fitter_add_depth_image(guard.f, frame, &def, &added), path);
+        check(ssc_fitter_add_depth_image(guard.fitter, frame, &def, &added), path);
         std::printf("%s: %u x %u depth image, %u points%s\n", path.c_str(), img.width, img.height, added,
                     img.has_pose ? "" : " (camera at the origin: the file gives no pose)");
         if (frame == 0 && !o.png.empty()) {
@@ -160,7 +153,7 @@ int cmd_fit(const std::vector<std::string>& args) {
     }
     ssc_fit_report report;
     report.struct_size = sizeof report;
-    check(ssc_fitter_solve(guard.f, nullptr, nullptr, &report), "fit");
+    check(ssc_fitter_solve(guard.fitter, nullptr, nullptr, &report), "fit");
     std::printf("fit: %u iterations, %s, %.1f ms; cost %.4g -> %.4g\n", report.iterations, report.converged ? "converged" : "iteration limit",
                 report.seconds * 1e3, report.initial_cost, report.final_cost);
     if (!o.landmarks.empty()) std::printf("landmark rms distance: %.2f mm\n", report.landmark_rms * 1e3);
@@ -171,9 +164,9 @@ int cmd_fit(const std::vector<std::string>& args) {
     std::vector<float> verts(3ull * V), shape(K), rotations(4ull * J), translation(3);
     float scale = 1;
     std::vector<uint32_t> tris(3ull * T);
-    check(ssc_fitter_get_vertices(guard.f, 0, verts.data(), V, 0), "vertices");
-    check(ssc_fitter_get_shape(guard.f, shape.data(), K), "shape");
-    check(ssc_fitter_get_pose(guard.f, 0, rotations.data(), J, translation.data(), &scale), "pose");
+    check(ssc_fitter_get_vertices(guard.fitter, 0, verts.data(), V, 0), "vertices");
+    check(ssc_fitter_get_shape(guard.fitter, shape.data(), K), "shape");
+    check(ssc_fitter_get_pose(guard.fitter, 0, rotations.data(), J, translation.data(), &scale), "pose");
     check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
     std::printf("scale %.4f, translation %.3f %.3f %.3f m\nshape:", scale, translation[0], translation[1], translation[2]);
     for (uint32_t k = 0; k < K; ++k) std::printf("%s%.3f", k ? "," : " ", shape[k]);
@@ -187,9 +180,9 @@ int cmd_fit(const std::vector<std::string>& args) {
     std::printf("wrote %s\n", o.out.c_str());
     // Further frames (--frames): the same shape in each frame's pose, OUT_frameN.EXT.
     std::vector<float> more(3ull * V);
-    for (uint32_t f = 1; f < ssc_fitter_frame_count(guard.f); ++f) {
+    for (uint32_t f = 1; f < ssc_fitter_frame_count(guard.fitter); ++f) {
         const std::string path = with_suffix(o.out, "_frame" + std::to_string(f));
-        check(ssc_fitter_get_vertices(guard.f, f, more.data(), V, 0), "vertices");
+        check(ssc_fitter_get_vertices(guard.fitter, f, more.data(), V, 0), "vertices");
         mesh.positions = more.data();
         exporters::write_mesh(path, mesh);
         std::printf("wrote %s\n", path.c_str());

@@ -72,17 +72,13 @@ const char* si_unit(ssc_unit u) {
 int cmd_measure(const std::vector<std::string>& args) {
     const Options o = parse(args);
     ssc_model* model = load_model(o.model);
-    struct Release {
-        ssc_model* m;
-        ssc_body* b = nullptr;
-        ~Release() { ssc_body_destroy(b); ssc_model_release(m); }
-    } guard{model};
+    Handles guard(model);
     const uint32_t K = ssc_model_shape_count(model), M = ssc_measurement_count();
     if (o.shape.size() > K) throw UsageError("--shape has " + std::to_string(o.shape.size()) + " values; the model has " + std::to_string(K) + " components");
     std::vector<const char*> names(M), definitions(M);
     std::vector<ssc_unit> units(M);
     for (uint32_t m = 0; m < M; ++m) check(ssc_measurement_get_info(m, &names[m], &units[m], &definitions[m]), "measurement info");
-    check(ssc_body_create(model, nullptr, &guard.b), "body");
+    check(ssc_body_create(model, nullptr, &guard.body), "body");
 
     std::mt19937 rng(o.seed);
     std::normal_distribution<float> normal;
@@ -103,8 +99,8 @@ int cmd_measure(const std::vector<std::string>& args) {
             shape.resize(K);  // standard normal, truncated at 2.5 SD as sscape synth --random
             for (float& c : shape) do c = normal(rng); while (std::abs(c) > 2.5f);
         }
-        check(ssc_body_set_shape(guard.b, shape.data(), uint32_t(shape.size())), "shape");
-        check(ssc_body_measure(guard.b, values.data(), M), "measure");
+        check(ssc_body_set_shape(guard.body, shape.data(), uint32_t(shape.size())), "shape");
+        check(ssc_body_measure(guard.body, values.data(), M), "measure");
         csv << i;
         for (uint32_t m = 0; m < M; ++m) csv << "," << values[m];
         csv << "\n";
@@ -124,10 +120,10 @@ int cmd_measure(const std::vector<std::string>& args) {
             const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model);
             std::vector<float> rest(3ull * V);
             std::vector<uint32_t> tris(3ull * T);
-            check(ssc_body_get_rest_vertices(guard.b, rest.data(), V, 0), "rest vertices");
+            check(ssc_body_get_rest_vertices(guard.body, rest.data(), V, 0), "rest vertices");
             check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
             std::vector<measure::Path> paths;
-            measure::Measurer(model->model).measure(guard.b->body, &paths);
+            model->measurer().measure(guard.body->body, &paths);
             render::write_measurement_picture(o.png, rest, tris, paths);
         }
     }

@@ -51,10 +51,7 @@ int cmd_simulate(const std::vector<std::string>& args) {
     if (spec.missing >= 1 || spec.outliers >= 1) throw UsageError("--missing and --outliers are fractions below 1");
     if (spec.points < 16 || spec.points > 10000000) throw UsageError("--points must be 16..10000000");
     ssc_model* model = load_model(model_path);
-    struct Guard {
-        ssc_model* m;
-        ~Guard() { ssc_model_release(m); }
-    } guard{model};
+    const Handles guard(model);
     const Model& m = model->model;
     std::mt19937 rng(seed);
     auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, pose_amount), Eigen::Vector3d::Zero());

@@ -205,11 +205,7 @@ void shape_by_meaning(ssc_model* model, ssc_body* body, const Options& o) {
 int cmd_synth(const std::vector<std::string>& args) {
     const Options o = parse(args);
     ssc_model* model = load_model(o.model);
-    struct Release {
-        ssc_model* m;
-        ssc_body* b = nullptr;
-        ~Release() { ssc_body_destroy(b); ssc_model_release(m); }
-    } guard{model};
+    Handles guard(model);
 
     const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model);
     const uint32_t K = ssc_model_shape_count(model), J = ssc_model_joint_count(model), U = ssc_model_uv_count(model);
@@ -221,14 +217,14 @@ int cmd_synth(const std::vector<std::string>& args) {
         check(ssc_model_get_uvs(model, uvs.data(), U), "uvs");
         check(ssc_model_get_triangle_uvs(model, tri_uvs.data(), T), "triangle uvs");
     }
-    check(ssc_body_create(model, nullptr, &guard.b), "body");
+    check(ssc_body_create(model, nullptr, &guard.body), "body");
     // For glTF: the skeleton, the skin, and a second body in the rest pose for bind-pose normals.
     const bool glb = is_glb(o.out);
     std::vector<int32_t> parents(J);
     std::vector<std::string> names(J);
     std::vector<uint16_t> skin_joints(glb ? 4ull * V : 0);
     std::vector<float> skin_weights(glb ? 4ull * V : 0);
-    ssc_body* rest_body = nullptr;
+    Handles rest_pose(nullptr);  // a second body in the rest pose (glTF)
     if (glb) {
         check(ssc_model_get_joint_parents(model, parents.data(), J), "parents");
         for (uint32_t j = 0; j < J; ++j) {
@@ -237,19 +233,15 @@ int cmd_synth(const std::vector<std::string>& args) {
             names[j] = name;
         }
         check(ssc_model_get_skin(model, skin_joints.data(), skin_weights.data(), V), "skin");
-        check(ssc_body_create(model, nullptr, &rest_body), "body");
+        check(ssc_body_create(model, nullptr, &rest_pose.body), "body");
     }
-    struct RestGuard {
-        ssc_body* b;
-        ~RestGuard() { ssc_body_destroy(b); }
-    } rest_guard{rest_body};
     const std::vector<float> pose = parse_pose(model, o.pose);
     const float* translation = o.translation.empty() ? nullptr : o.translation.data();
     if (o.limits.empty()) {
-        check(ssc_body_set_pose(guard.b, pose.data(), J, translation), "pose");
+        check(ssc_body_set_pose(guard.body, pose.data(), J, translation), "pose");
     } else {
         uint32_t outside = 0;
-        check(ssc_body_set_pose_limited(guard.b, pose.data(), J, translation, o.limits == "clamp" ? SSC_LIMITS_CLAMP : SSC_LIMITS_REJECT,
+        check(ssc_body_set_pose_limited(guard.body, pose.data(), J, translation, o.limits == "clamp" ? SSC_LIMITS_CLAMP : SSC_LIMITS_REJECT,
                                         &outside),
               "pose");
         if (outside) std::printf("pose: %u joint(s) clamped to their anatomical limits\n", outside);
@@ -268,14 +260,14 @@ int cmd_synth(const std::vector<std::string>& args) {
             shape.resize(K);
             for (float& c : shape) do c = normal(rng); while (std::abs(c) > 2.5f);
         }
-        check(ssc_body_set_shape(guard.b, shape.data(), uint32_t(shape.size())), "shape");
+        check(ssc_body_set_shape(guard.body, shape.data(), uint32_t(shape.size())), "shape");
         if (!o.sliders.empty() || !o.measurements.empty()) {
-            shape_by_meaning(model, guard.b, o);
+            shape_by_meaning(model, guard.body, o);
             shape.resize(K);
-            check(ssc_body_get_shape(guard.b, shape.data(), K), "shape");
+            check(ssc_body_get_shape(guard.body, shape.data(), K), "shape");
         }
-        check(ssc_body_get_vertices(guard.b, verts.data(), V, 0), "vertices");
-        if (o.normals) check(ssc_body_get_normals(guard.b, normals.data(), V, 0), "normals");
+        check(ssc_body_get_vertices(guard.body, verts.data(), V, 0), "vertices");
+        if (o.normals) check(ssc_body_get_normals(guard.body, normals.data(), V, 0), "normals");
         exporters::MeshView mesh;
         mesh.vertex_count = V;
         mesh.positions = verts.data();
@@ -288,11 +280,11 @@ int cmd_synth(const std::vector<std::string>& args) {
         const std::string path = numbered(o.out, i, n);
         if (glb) {
             std::vector<float> rest(3ull * V), rest_normals(3ull * V), world(16ull * J), inverse_bind(16ull * J);
-            check(ssc_body_set_shape(rest_body, shape.data(), uint32_t(shape.size())), "shape");
-            check(ssc_body_get_rest_vertices(guard.b, rest.data(), V, 0), "rest vertices");
-            check(ssc_body_get_normals(rest_body, rest_normals.data(), V, 0), "rest normals");
-            check(ssc_body_get_joint_transforms(guard.b, world.data(), J), "joint transforms");
-            check(ssc_body_get_inverse_bind_matrices(guard.b, inverse_bind.data(), J), "inverse binds");
+            check(ssc_body_set_shape(rest_pose.body, shape.data(), uint32_t(shape.size())), "shape");
+            check(ssc_body_get_rest_vertices(guard.body, rest.data(), V, 0), "rest vertices");
+            check(ssc_body_get_normals(rest_pose.body, rest_normals.data(), V, 0), "rest normals");
+            check(ssc_body_get_joint_transforms(guard.body, world.data(), J), "joint transforms");
+            check(ssc_body_get_inverse_bind_matrices(guard.body, inverse_bind.data(), J), "inverse binds");
             exporters::RiggedBody rb;
             rb.vertex_count = V;
             rb.rest_positions = rest.data();
