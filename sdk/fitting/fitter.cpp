@@ -626,7 +626,7 @@ private:
                 cost += rb.cost;
                 if (!H) continue;
                 nonzeros(kin, fd.landmark_points[i]);
-                kin.point_jacobian(fd.landmark_points[i], J3.data(), s);
+                kin.point_jacobian(fd.landmark_points[i], J3.data(), s, on.data());
                 add_block(f, std::sqrt(rb.weight) * Matrix3d::Identity(), rb.weight * e);
                 clear_rows();
             }
@@ -639,7 +639,7 @@ private:
                 cost += rb.cost + wt * rb.weight * 0.5 * e.squaredNorm();
                 if (!H) continue;
                 nonzeros(kin, p.model);
-                kin.point_jacobian(p.model, J3.data(), s);
+                kin.point_jacobian(p.model, J3.data(), s, on.data());
                 // Point-to-plane (n n^T) plus the weak point-to-point part: weight matrix
                 // M = w (n n^T + wt I), whose square root is sqrt(w) (a n n^T + b I) with
                 // b = sqrt(wt) and (a + b)^2 = 1 + wt (n unit).

@@ -173,36 +173,50 @@ Vector3d Kinematics::point(const SurfacePoint& p) const {
     return scale_ * out + translation_;
 }
 
-void Kinematics::point_jacobian(const SurfacePoint& p, double* J3, double factor) const {
+void Kinematics::point_jacobian(const SurfacePoint& p, double* J3, double factor, const uint8_t* active) const {
+    uint32_t shape_columns = K_;
+    if (active)
+        for (shape_columns = 0; shape_columns < K_ && active[shape_columns];) ++shape_columns;
     for (int b = 0; b < 3; ++b)
-        if (p.weight[b] != 0) vertex_jacobian(p.vertex[b], J3, factor * p.weight[b]);
+        if (p.weight[b] != 0) vertex_jacobian(p.vertex[b], J3, factor * p.weight[b], shape_columns, active);
 }
 
-void Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor) const {
+void Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor, uint32_t Ks, const uint8_t* active) const {
     const auto& skin = model_.data().skin;
     const uint32_t P = parameter_count();
     const Vector3d u = rest_vertex(v);
     const double f = factor * scale_;
     Vector3d blended = Vector3d::Zero();
+    // Shape: sum_j w_j (S_j B_v + dc_j) = (sum_j w_j S_j) B_v + sum_j w_j dc_j: the blended rotation
+    // multiplies the vertex's basis once, however many joints skin it.
+    Matrix3d S = Matrix3d::Zero();
+    for (int i = 0; i < 4; ++i) {
+        const double w = skin.weights[4 * std::size_t(v) + i];
+        if (w == 0) continue;
+        const uint16_t j = skin.joints[4 * std::size_t(v) + i];
+        S += (f * w) * skin_rot_[j];
+        const double* dc = &dskin_[std::size_t(j) * 3 * K_];
+        for (uint32_t a = 0; a < 3; ++a) {
+            double* row = J3 + std::size_t(a) * P;
+            for (uint32_t k = 0; k < Ks; ++k) row[k] += f * w * dc[a * K_ + k];
+        }
+    }
+    const double* B = &lin_.basis[std::size_t(v) * 3 * K_];
+    for (uint32_t a = 0; a < 3; ++a) {
+        double* row = J3 + std::size_t(a) * P;
+        for (uint32_t k = 0; k < Ks; ++k) row[k] += S(a, 0) * B[k] + S(a, 1) * B[K_ + k] + S(a, 2) * B[2 * K_ + k];
+    }
     for (int i = 0; i < 4; ++i) {
         const double w = skin.weights[4 * std::size_t(v) + i];
         if (w == 0) continue;
         const uint16_t j = skin.joints[4 * std::size_t(v) + i];
         const Vector3d x = skin_rot_[j] * u + skin_trans_[j];
         blended += w * x;
-        // Shape: w S_j B_v + w dc_j.
-        const double* B = &lin_.basis[std::size_t(v) * 3 * K_];
-        const double* dc = &dskin_[std::size_t(j) * 3 * K_];
-        const Matrix3d& S = skin_rot_[j];
-        for (uint32_t a = 0; a < 3; ++a) {
-            double* row = J3 + std::size_t(a) * P;
-            for (uint32_t k = 0; k < K_; ++k)
-                row[k] += f * w * (S(a, 0) * B[k] + S(a, 1) * B[K_ + k] + S(a, 2) * B[2 * K_ + k] + dc[a * K_ + k]);
-        }
         // Rotations of the joint and its ancestors: -w [x - q_k]_x.
         for (uint32_t k : lin_.chains[j]) {
-            const Matrix3d m = -(f * w) * skew(x - posed_joint_[k]);
             const uint32_t off = rotation_offset(k);
+            if (active && !active[off]) continue;
+            const Matrix3d m = -(f * w) * skew(x - posed_joint_[k]);
             for (uint32_t a = 0; a < 3; ++a)
                 for (uint32_t c = 0; c < 3; ++c) J3[std::size_t(a) * P + off + c] += m(a, c);
         }

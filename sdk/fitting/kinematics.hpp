@@ -70,8 +70,11 @@ public:
     Vector3d rest_vertex(uint32_t v) const;                  // unposed, current shape
     Vector3d point(const SurfacePoint& p) const;             // final (scaled, translated)
     // Adds d(final point)/d(parameters) (3 x parameter_count) times `factor` into J (3 rows,
-    // leading dimension = parameter_count, row-major) for the given point.
-    void point_jacobian(const SurfacePoint& p, double* J3, double factor = 1) const;
+    // leading dimension = parameter_count, row-major) for the given point. `active`, when given
+    // (parameter_count flags), skips the columns that are off: shape columns past the first off
+    // one (stages use a prefix of the components) and the rotations of joints that are off; the
+    // skipped entries are left as they were.
+    void point_jacobian(const SurfacePoint& p, double* J3, double factor = 1, const uint8_t* active = nullptr) const;
 
     // Posed joint positions (final frame).
     Vector3d joint_position(uint32_t j) const { return scale_ * posed_joint_[j] + translation_; }
@@ -85,7 +88,7 @@ public:
     void nonzeros(const SurfacePoint& p, std::vector<uint32_t>& out) const;
 
 private:
-    void vertex_jacobian(uint32_t v, double* J3, double factor) const;
+    void vertex_jacobian(uint32_t v, double* J3, double factor, uint32_t shape_columns, const uint8_t* active) const;
 
     const LinearModel& lin_;
     const Model& model_;
