@@ -273,7 +273,7 @@ private:
                     continue;
                 }
                 apply(delta);
-                update_kinematics();
+                update_kinematics(false);
                 new_cost = evaluate(st, nullptr, nullptr, frame_only);
                 if (new_cost < cost) {
                     improved = true;
@@ -451,10 +451,11 @@ private:
         return cost;
     }
 
-    void update_kinematics() {
+    // derivatives = false for cost-only evaluations (the trial steps), which need no Jacobians.
+    void update_kinematics(bool derivatives = true) {
         for (uint32_t f = 0; f < F_; ++f) {
             states_[f].shape = shape_;
-            kin_[f].update(states_[f]);
+            kin_[f].update(states_[f], derivatives);
         }
     }
 
@@ -560,7 +561,10 @@ private:
     VectorXd damped_step(const MatrixXd& H, const VectorXd& g, const std::vector<int>& cols, double mu) const {
         MatrixXd A = H(cols, cols);
         for (Eigen::Index i = 0; i < A.rows(); ++i) A(i, i) += mu * std::max(A(i, i), 1e-9) + 1e-12;
-        const VectorXd d = A.ldlt().solve(-g(cols));
+        // The damped matrix is positive definite: Cholesky (blocked, no pivoting) is the fast path;
+        // LDLT only if rounding says otherwise.
+        const Eigen::LLT<MatrixXd> llt(A);
+        const VectorXd d = llt.info() == Eigen::Success ? VectorXd(llt.solve(-g(cols))) : VectorXd(A.ldlt().solve(-g(cols)));
         VectorXd delta = VectorXd::Zero(H.rows());
         delta(cols) = d;
         return delta;

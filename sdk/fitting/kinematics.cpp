@@ -11,6 +11,8 @@
 // a_k = sum over those influences of w_a (S_a u + c_a - q_k).
 #include "fitting/kinematics.hpp"
 
+#include "common/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -96,7 +98,8 @@ FitState Kinematics::zero_state() const {
     return s;
 }
 
-void Kinematics::update(const FitState& s) {
+void Kinematics::update(const FitState& s, bool derivatives) {
+    derivatives_ = derivatives;
     const auto& parents = model_.data().skeleton.parents;
     std::copy(s.shape.begin(), s.shape.begin() + K_, shape_.begin());
     scale_ = s.scale;
@@ -125,7 +128,7 @@ void Kinematics::update(const FitState& s) {
             posed_joint_[j] = skin_rot_[up] * (p - rest_joint_[up]) + posed_joint_[up];
             const double* dpp = &lin_.joint_basis[std::size_t(up) * 3 * K_];
             const double* dqp = &dpos_[std::size_t(up) * 3 * K_];
-            for (uint32_t k = 0; k < K_; ++k) {
+            for (uint32_t k = 0; k < K_ && derivatives; ++k) {
                 const Vector3d diff(dp[k] - dpp[k], dp[K_ + k] - dpp[K_ + k], dp[2 * K_ + k] - dpp[2 * K_ + k]);
                 const Vector3d r = skin_rot_[up] * diff;
                 for (uint32_t a = 0; a < 3; ++a) dq[a * K_ + k] = r[a] + dqp[a * K_ + k];
@@ -135,7 +138,7 @@ void Kinematics::update(const FitState& s) {
         skin_rot_[j] = world_[j] * rest_world[j].transpose();
         skin_trans_[j] = posed_joint_[j] - skin_rot_[j] * p;
         double* dc = &dskin_[std::size_t(j) * 3 * K_];
-        for (uint32_t k = 0; k < K_; ++k) {
+        for (uint32_t k = 0; k < K_ && derivatives; ++k) {
             const Vector3d r = skin_rot_[j] * Vector3d(dp[k], dp[K_ + k], dp[2 * K_ + k]);
             for (uint32_t a = 0; a < 3; ++a) dc[a * K_ + k] = dq[a * K_ + k] - r[a];
         }
@@ -174,6 +177,7 @@ Vector3d Kinematics::point(const SurfacePoint& p) const {
 }
 
 void Kinematics::point_jacobian(const SurfacePoint& p, double* J3, double factor, const uint8_t* active) const {
+    if (!derivatives_) fail(SSC_ERROR_INTERNAL, "point_jacobian after an update without derivatives");
     uint32_t shape_columns = K_;
     if (active)
         for (shape_columns = 0; shape_columns < K_ && active[shape_columns];) ++shape_columns;

@@ -65,7 +65,9 @@ public:
     FitState zero_state() const;
 
     // Recomputes the skeleton for a state (cheap: joints only). Must precede the queries below.
-    void update(const FitState& s);
+    // Without derivatives (for cost-only evaluations) point_jacobian is unavailable until the next
+    // update with them.
+    void update(const FitState& s, bool derivatives = true);
 
     Vector3d rest_vertex(uint32_t v) const;                  // unposed, current shape
     Vector3d point(const SurfacePoint& p) const;             // final (scaled, translated)
@@ -96,6 +98,7 @@ private:
     // Current state.
     std::vector<double> shape_;
     double scale_ = 1;
+    bool derivatives_ = false;  // whether the last update computed the shape derivatives
     Vector3d translation_ = Vector3d::Zero();
     std::vector<Vector3d> rest_joint_, posed_joint_;
     std::vector<Matrix3d> world_, pre_pose_, skin_rot_;  // G_j, G_parent R_j, S_j = G_j W_j^T
