@@ -5,6 +5,7 @@
 #include "fitting/depth_image.hpp"
 #include "fitting/fitter.hpp"
 #include "anatomy/joint_limits.hpp"
+#include "anatomy/named_poses.hpp"
 #include "fitting/nearest.hpp"
 #include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
@@ -140,6 +141,25 @@ TEST_CASE("scan fits of a mildly posed body are accurate", "[fitting]") {
     INFO("mean vertex error " << err * 1e3 << " mm, point mean " << sol.report.point_mean * 1e3 << " mm");
     CHECK(err < 0.012);
     CHECK(sol.report.inlier_fraction > 0.6);
+}
+
+TEST_CASE("scan fits reach arms raised overhead and a seated pose from the rest-pose start", "[fitting]") {
+    // Beyond what the coarse stage's correspondences reach from the A-pose: the limb search must find them.
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    std::mt19937 rng(23);
+    for (const char* pose : {"arms_raised", "sitting"}) {
+        auto truth = simulation::make_body(m, simulation::random_shape(m, rng), anatomy::named_pose(m, pose), Eigen::Vector3d::Zero());
+        simulation::transform_body(truth, Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d(0, 0.1, 1.5));
+        fitting::Frame frame;
+        simulation::CloudSpec spec;
+        spec.points = 8000;
+        frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
+        const auto sol = fitting::fit(lin, {frame}, fitting::FitOptions{});
+        const double err = simulation::mean_vertex_error(simulation::fitted_vertices(m, sol.frames[0]), truth.vertices);
+        INFO(pose << ": mean vertex error " << err * 1e3 << " mm");
+        CHECK(err < 0.015);
+    }
 }
 
 TEST_CASE("the fitter rejects bad input with a message", "[fitting]") {

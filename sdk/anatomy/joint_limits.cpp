@@ -111,16 +111,18 @@ Vector3d anatomical_angles(const JointLimit& limit, const Eigen::Quaterniond& q)
     return limit.to_anatomical * (aa.angle() * aa.axis());
 }
 
+Eigen::Quaterniond rotation_from_angles(const JointLimit& limit, const Vector3d& angles) {
+    const Vector3d r = limit.to_anatomical.transpose() * angles;
+    const double angle = r.norm();
+    return angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, r / angle)) : Eigen::Quaterniond::Identity();
+}
+
 bool enforce_limit(const JointLimit& limit, Eigen::Quaterniond& q, bool clamp) {
     if (!limit.limited) return false;
     const Vector3d a = anatomical_angles(limit, q);
     const Vector3d inside = a.cwiseMax(limit.lo).cwiseMin(limit.hi);
     if ((a - inside).cwiseAbs().maxCoeff() <= 1e-5) return false;
-    if (clamp) {
-        const Vector3d r = limit.to_anatomical.transpose() * inside;  // the frame is a rotation
-        const double angle = r.norm();
-        q = angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, r / angle)) : Eigen::Quaterniond::Identity();
-    }
+    if (clamp) q = rotation_from_angles(limit, inside);
     return true;
 }
 

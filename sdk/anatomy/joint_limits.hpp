@@ -54,6 +54,10 @@ std::vector<JointLimit> joint_limits(const Model& model);
 // The anatomical components of a joint's local pose rotation.
 Vector3d anatomical_angles(const JointLimit& limit, const Eigen::Quaterniond& local_pose);
 
+// The local pose rotation with the given anatomical angles (radians): the inverse of
+// anatomical_angles (the frame is a rotation, so log(P) = frame^T angles).
+Eigen::Quaterniond rotation_from_angles(const JointLimit& limit, const Vector3d& angles);
+
 // Whether a local pose rotation lies outside the limit (beyond a 1e-5 rad tolerance); with clamp,
 // also moves each anatomical angle into its range and rewrites the rotation.
 bool enforce_limit(const JointLimit& limit, Eigen::Quaterniond& local_pose, bool clamp);

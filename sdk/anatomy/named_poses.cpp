@@ -56,10 +56,7 @@ std::vector<float> named_pose(const Model& model, const std::string& name) {
         for (const char* side : {"_l", "_r"}) {
             const int64_t j = model.find_joint(std::string(a.joint) + side);
             if (j < 0 || !limits[std::size_t(j)].limited) continue;
-            // c = T log(P) with T orthonormal, so log(P) = T^T c.
-            const Vector3d r = limits[std::size_t(j)].to_anatomical.transpose() * (kDeg * Vector3d(a.flexion, a.axial, a.abduction));
-            const double angle = r.norm();
-            const Eigen::Quaterniond p = angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, r / angle)) : Eigen::Quaterniond::Identity();
+            const Eigen::Quaterniond p = rotation_from_angles(limits[std::size_t(j)], kDeg * Vector3d(a.flexion, a.axial, a.abduction));
             float* out = &q[4 * std::size_t(j)];
             out[0] = float(p.x()), out[1] = float(p.y()), out[2] = float(p.z()), out[3] = float(p.w());
         }

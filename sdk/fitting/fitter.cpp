@@ -188,8 +188,14 @@ public:
         };
         bool cancelled = false, converged = false;
         uint32_t iteration = 0;
-        for (int si = 0; si < 3 && !cancelled; ++si)
+        for (int si = 0; si < 3 && !cancelled; ++si) {
             converged = run_stage(stages[si], 0xFFFFFFFFu, &progress, iteration, cancelled, &sol.report.initial_cost);
+            // Between the coarse and the fine stage: limbs the coarse stage could not reach.
+            if (si == 1 && !cancelled && search_limbs()) {
+                const Stage again{std::max<uint32_t>(1, stages[1].iterations / 2), true, false, stages[1].components, 0.10, 6.0, 0.3, 0.5, 1e-4};
+                run_stage(again, 0xFFFFFFFFu, &progress, iteration, cancelled);
+            }
+        }
         update_kinematics();
         // Report on the final state with the final stage's rules.
         const Stage& last = stages[2];
@@ -395,6 +401,61 @@ private:
         return best;
     }
 
+    // Arms and legs the coarse stage leaves in a wrong local minimum: correspondences reach 10 cm,
+    // so an arm raised above the head stays fitted to the torso from the rest pose, and a leg
+    // stepping far forward stays straight. For each limb of each frame with a cloud, candidate
+    // poses of its upper joint (a grid of anatomical angles: raised sideways and forwards, along
+    // the body, turned) and then of its middle joint (elbow or knee bends) are scored by
+    // explained(); the best is kept, the current pose being a candidate too. Returns whether any
+    // limb moved.
+    bool search_limbs() {
+        const auto limits = anatomy::joint_limits(lin_.model);
+        constexpr double d = M_PI / 180;
+        struct Limb {
+            const char *upper, *middle;
+            std::vector<Vector3d> upper_angles, middle_angles;  // radians (flexion, axial, abduction)
+        };
+        std::vector<Limb> limbs(2);
+        limbs[0] = {"upperarm", "lowerarm", {}, {}};
+        for (double abd : {40.0, 0.0, -47.0, -100.0, -132.0})  // along the body ... overhead
+            for (double flex : {0.0, -60.0, -110.0})           // in the frontal plane ... forward
+                for (double axial : {0.0, -70.0, 70.0})         // where a bent elbow points
+                    limbs[0].upper_angles.push_back(d * Vector3d(flex, axial, abd));
+        for (double flex : {40.0, -20.0, -80.0}) limbs[0].middle_angles.push_back(d * Vector3d(flex, 0, 0));  // straight ... bent
+        limbs[1] = {"thigh", "calf", {}, {}};
+        for (double flex : {0.0, -45.0, -90.0})
+            for (double abd : {0.0, -25.0}) limbs[1].upper_angles.push_back(d * Vector3d(flex, 0, abd));
+        for (double flex : {0.0, 45.0, 90.0, 120.0}) limbs[1].middle_angles.push_back(d * Vector3d(flex, 0, 0));
+        bool moved = false;
+        for (uint32_t f = 0; f < F_; ++f) {
+            if (frames_[f].points.empty()) continue;
+            // A wider cap than the start search's: a candidate limb a few centimetres off its points
+            // (the coarse grid) must still score better than one lying on the torso.
+            constexpr double cap = 0.15;
+            double best = explained(f, cap);
+            for (const Limb& limb : limbs)
+                for (const char* side : {"_l", "_r"}) {
+                    const int64_t ju = lin_.model.find_joint(std::string(limb.upper) + side);
+                    const int64_t jm = lin_.model.find_joint(std::string(limb.middle) + side);
+                    if (ju < 0 || jm < 0 || !limits[std::size_t(ju)].limited || !limits[std::size_t(jm)].limited) continue;
+                    for (const auto* joint : {&ju, &jm}) {
+                        const auto& angles = joint == &ju ? limb.upper_angles : limb.middle_angles;
+                        const FitState keep = states_[f];
+                        FitState best_state = keep;
+                        for (const Vector3d& a : angles) {
+                            states_[f] = keep;
+                            states_[f].pose[std::size_t(*joint)] = anatomy::rotation_from_angles(limits[std::size_t(*joint)], a);
+                            const double score = explained(f, cap);
+                            if (score < best) best = score, best_state = states_[f], moved = true;
+                        }
+                        states_[f] = best_state;
+                    }
+                }
+        }
+        update_kinematics();
+        return moved;
+    }
+
     // The posed positions of the area-sampled vertex subset (posed_ must be current).
     const std::vector<Vector3d>& posed_subset() {
         subset_posed_.resize(vertex_sample_.size());
@@ -406,8 +467,7 @@ private:
     // candidates: truncated squared distances both ways over fixed point sets, a point whose
     // nearest partner faces the other way counting as unexplained. Unlike the fit's cost (which
     // gates correspondences away), a candidate cannot look good by leaving data unexplained.
-    double explained(uint32_t f) {
-        constexpr double cap = 0.05;  // metres
+    double explained(uint32_t f, double cap = 0.05 /* metres */) {
         auto& fd = frames_[f];
         kin_[f].update(states_[f]);
         pose_frame(f);

@@ -11,7 +11,10 @@
 //           Geman-McClure loss and trimming;
 //   priors  Gaussian on shape (the model's own: coefficients are standard deviations) and on each
 //           joint's rotation, and soft walls at the anatomical joint limits (joint_limits.hpp);
-//           coarse-to-fine stages (rigid, then main joints and few components, then everything).
+//           coarse-to-fine stages (rigid, then main joints and few components, then everything);
+//   limbs   between the coarse and the fine stage, a search over anatomical poses of each arm and
+//           leg with clouds (raised overhead, forward, bent elbows and knees) that the coarse
+//           stage's short-reaching correspondences cannot find from the rest pose.
 #pragma once
 
 #include "fitting/kinematics.hpp"
