@@ -96,6 +96,18 @@ TEST_CASE("measurements of the default model are plausible and scale like length
     };
     std::vector<measure::Path> paths;
     const auto mean = measurer.measure(b.body->body, &paths);
+    // Measuring a subset gives the same values for it (the rest left 0).
+    for (const char* name : {"hip_girth", "underbust_girth", "calf_girth", "mass", "stature"}) {
+        std::vector<bool> only(defs.size(), false);
+        only[std::size_t(measure::find_measurement(name))] = true;
+        const auto some = measurer.measure(b.body->body, nullptr, &only);
+        CHECK(value(some, name) == value(mean, name));
+    }
+    {
+        std::vector<bool> only(defs.size(), false);
+        only[std::size_t(measure::find_measurement("stature"))] = true;
+        CHECK(value(measurer.measure(b.body->body, nullptr, &only), "hip_girth") == 0.0);
+    }
     REQUIRE(paths.size() == defs.size());
     // Adult ranges (metres, m^2, m^3, kg): loose, but each catches a wrong plane or part.
     CHECK(value(mean, "stature") == Approx(1.67).margin(0.1));

@@ -148,7 +148,10 @@ Measurer::Measurer(const Model& model) : model_(model) {
     neck_region_ = mesh_edges(tris, T, neck_region);
 }
 
-std::vector<double> Measurer::measure(const float* xyz, const float* joints, std::vector<Path>* paths) const {
+std::vector<double> Measurer::measure(const float* xyz, const float* joints, std::vector<Path>* paths,
+                                      const std::vector<bool>* only) const {
+    if (only && only->size() != std::size_t(kCount)) fail(SSC_ERROR_INTERNAL, "measure: 'only' needs one flag per measurement");
+    auto want = [&](int m) { return !only || (*only)[std::size_t(m)]; };
     const auto& d = model_.data();
     const uint32_t V = model_.vertex_count();
     const uint32_t* tris = d.mesh.triangles.data();
@@ -178,60 +181,66 @@ std::vector<double> Measurer::measure(const float* xyz, const float* joints, std
     path[kStature] = {{crown, Vector3d(crown.x(), floor, crown.z())}, false};
 
     const double bust = 0.5 * (lm[kThelionR].y() + lm[kThelionL].y());
-    girth(kChest, horizontal(bust), torso_);
+    if (want(kChest)) girth(kChest, horizontal(bust), torso_);
 
     // Underbust: the inframammary fold is the concave corner of the front profile below the bust
     // points, where the breast's underside meets the chest wall: the largest second difference of
     // the profile's forward reach (a flat chest has none to speak of and gets a level just below).
-    std::vector<double> front;
     const double step = 0.005;
-    for (const auto& section : horizontal_sections(xyz, torso_, bust, step, 31)) {  // bust - 0 .. bust - 15 cm
-        double reach = -1e30;
-        for (const Vector3d& p : section)
-            if (std::abs(p.x() - lm[kThelionR].x()) < 0.03 || std::abs(p.x() - lm[kThelionL].x()) < 0.03) reach = std::max(reach, p.z());
-        front.push_back(reach);
+    if (want(kUnderbust)) {
+        std::vector<double> front;
+        for (const auto& section : horizontal_sections(xyz, torso_, bust, step, 31)) {  // bust - 0 .. bust - 15 cm
+            double reach = -1e30;
+            for (const Vector3d& p : section)
+                if (std::abs(p.x() - lm[kThelionR].x()) < 0.03 || std::abs(p.x() - lm[kThelionL].x()) < 0.03) reach = std::max(reach, p.z());
+            front.push_back(reach);
+        }
+        double fold = bust - 0.04, corner = -1e30;
+        for (int i = 6; i <= 24; ++i) {  // 3 to 12 cm below, the profile 1 cm above and below
+            if (front[std::size_t(i - 2)] < -1e29 || front[std::size_t(i)] < -1e29 || front[std::size_t(i + 2)] < -1e29) continue;
+            const double bend = front[std::size_t(i - 2)] + front[std::size_t(i + 2)] - 2 * front[std::size_t(i)];
+            if (bend > corner) corner = bend, fold = bust - i * step;
+        }
+        girth(kUnderbust, horizontal(fold), torso_);
     }
-    double fold = bust - 0.04, corner = -1e30;
-    for (int i = 6; i <= 24; ++i) {  // 3 to 12 cm below, the profile 1 cm above and below
-        if (front[std::size_t(i - 2)] < -1e29 || front[std::size_t(i)] < -1e29 || front[std::size_t(i + 2)] < -1e29) continue;
-        const double bend = front[std::size_t(i - 2)] + front[std::size_t(i + 2)] - 2 * front[std::size_t(i)];
-        if (bend > corner) corner = bend, fold = bust - i * step;
-    }
-    girth(kUnderbust, horizontal(fold), torso_);
 
     const double rib = 0.5 * (lm[kRibR].y() + lm[kRibL].y()), crest = 0.5 * (lm[kCrestR].y() + lm[kCrestL].y());
-    girth(kWaist, horizontal(0.5 * (rib + crest)), torso_);
+    if (want(kWaist)) girth(kWaist, horizontal(0.5 * (rib + crest)), torso_);
 
     // Hip: the level where the buttocks reach farthest back (the body faces +z).
-    double hip = 0.5 * (lm[kCrotch].y() + crest), back = 1e30;
-    const int hip_levels = int(std::floor((crest - lm[kCrotch].y() - 0.02) / step)) + 1;
-    const auto hip_sections = horizontal_sections(xyz, trunk_legs_, crest, step, hip_levels);  // crest down to crotch + 2 cm
-    for (int i = hip_levels - 1; i >= 0; --i)  // upwards, so ties keep the lowest level
-        for (const Vector3d& p : hip_sections[std::size_t(i)])
-            if (p.z() < back) back = p.z(), hip = crest - i * step;
-    girth(kHip, horizontal(hip), trunk_legs_);
+    if (want(kHip)) {
+        double hip = 0.5 * (lm[kCrotch].y() + crest), back = 1e30;
+        const int hip_levels = int(std::floor((crest - lm[kCrotch].y() - 0.02) / step)) + 1;
+        const auto hip_sections = horizontal_sections(xyz, trunk_legs_, crest, step, hip_levels);  // crest down to crotch + 2 cm
+        for (int i = hip_levels - 1; i >= 0; --i)  // upwards, so ties keep the lowest level
+            for (const Vector3d& p : hip_sections[std::size_t(i)])
+                if (p.z() < back) back = p.z(), hip = crest - i * step;
+        girth(kHip, horizontal(hip), trunk_legs_);
+    }
 
     const Vector3d neck = at(joints, neck_), head = at(joints, head_);
-    girth(kNeck, Plane{0.5 * (neck + head), (head - neck).normalized()}, neck_region_, 0.10);
+    if (want(kNeck)) girth(kNeck, Plane{0.5 * (neck + head), (head - neck).normalized()}, neck_region_, 0.10);
 
-    girth(kThigh, horizontal(lm[kCrotch].y() - 0.03), right_leg_);
+    if (want(kThigh)) girth(kThigh, horizontal(lm[kCrotch].y() - 0.03), right_leg_);
 
-    double calf = 0;
-    std::vector<Vector3d> calf_path;
-    const double knee = lm[kKneeCreaseR].y();
-    const int calf_levels = int(std::floor((knee - lm[kMalleolusR].y()) / step)) + 1;
-    const auto calf_sections = horizontal_sections(xyz, right_leg_, knee, step, calf_levels);
-    for (int i = 0; i < calf_levels; ++i) {
-        std::vector<Vector3d> hull;
-        const double g = tape_girth(calf_sections[std::size_t(i)], horizontal(knee - i * step), &hull);
-        if (g > calf) calf = g, calf_path = hull;
+    if (want(kCalf)) {
+        double calf = 0;
+        std::vector<Vector3d> calf_path;
+        const double knee = lm[kKneeCreaseR].y();
+        const int calf_levels = int(std::floor((knee - lm[kMalleolusR].y()) / step)) + 1;
+        const auto calf_sections = horizontal_sections(xyz, right_leg_, knee, step, calf_levels);
+        for (int i = 0; i < calf_levels; ++i) {
+            std::vector<Vector3d> hull;
+            const double g = tape_girth(calf_sections[std::size_t(i)], horizontal(knee - i * step), &hull);
+            if (g > calf) calf = g, calf_path = hull;
+        }
+        out[kCalf] = calf;
+        path[kCalf] = {calf_path, true};
     }
-    out[kCalf] = calf;
-    path[kCalf] = {calf_path, true};
 
     const Vector3d shoulder = at(joints, upperarm_), elbow = at(joints, lowerarm_), wrist = at(joints, hand_);
-    girth(kUpperArm, Plane{0.5 * (lm[kAcromionR] + lm[kOlecranonR]), (elbow - shoulder).normalized()}, right_arm_, 0.10);
-    girth(kWrist, Plane{0.5 * (lm[kRadialR] + lm[kUlnarR]), (wrist - elbow).normalized()}, right_arm_, 0.06);
+    if (want(kUpperArm)) girth(kUpperArm, Plane{0.5 * (lm[kAcromionR] + lm[kOlecranonR]), (elbow - shoulder).normalized()}, right_arm_, 0.10);
+    if (want(kWrist)) girth(kWrist, Plane{0.5 * (lm[kRadialR] + lm[kUlnarR]), (wrist - elbow).normalized()}, right_arm_, 0.06);
 
     out[kInseam] = lm[kCrotch].y() - floor;
     path[kInseam] = {{lm[kCrotch], Vector3d(lm[kCrotch].x(), floor, lm[kCrotch].z())}, false};
@@ -242,27 +251,29 @@ std::vector<double> Measurer::measure(const float* xyz, const float* joints, std
 
     // Area, and volume from the centroid (exact for a closed surface; the reference point keeps the
     // error of the small openings at eyes and mouth small).
-    Vector3d centre = Vector3d::Zero();
-    for (uint32_t v = 0; v < V; ++v) centre += at(xyz, v);
-    centre /= double(V);
-    double area = 0, six_volume = 0;
-    for (std::size_t t = 0; t < T; ++t) {
-        const Vector3d a = at(xyz, tris[3 * t]) - centre, b = at(xyz, tris[3 * t + 1]) - centre, c = at(xyz, tris[3 * t + 2]) - centre;
-        area += 0.5 * (b - a).cross(c - a).norm();
-        six_volume += a.dot(b.cross(c));
+    if (want(kSurfaceArea) || want(kVolume) || want(kMass)) {
+        Vector3d centre = Vector3d::Zero();
+        for (uint32_t v = 0; v < V; ++v) centre += at(xyz, v);
+        centre /= double(V);
+        double area = 0, six_volume = 0;
+        for (std::size_t t = 0; t < T; ++t) {
+            const Vector3d a = at(xyz, tris[3 * t]) - centre, b = at(xyz, tris[3 * t + 1]) - centre, c = at(xyz, tris[3 * t + 2]) - centre;
+            area += 0.5 * (b - a).cross(c - a).norm();
+            six_volume += a.dot(b.cross(c));
+        }
+        out[kSurfaceArea] = area;
+        out[kVolume] = std::abs(six_volume) / 6.0;
+        out[kMass] = out[kVolume] * kBodyDensity;
     }
-    out[kSurfaceArea] = area;
-    out[kVolume] = std::abs(six_volume) / 6.0;
-    out[kMass] = out[kVolume] * kBodyDensity;
     if (paths) *paths = std::move(path);
     return out;
 }
 
-std::vector<double> Measurer::measure(Body& body, std::vector<Path>* paths) const {
+std::vector<double> Measurer::measure(Body& body, std::vector<Path>* paths, const std::vector<bool>* only) const {
     const uint32_t V = model_.vertex_count();
     std::vector<float> xyz(3 * std::size_t(V));
     kernels::planar_to_xyz(body.rest_planar(), V, xyz.data(), 12);
-    return measure(xyz.data(), body.rest_joints(), paths);
+    return measure(xyz.data(), body.rest_joints(), paths, only);
 }
 
 }  // namespace ssc::measure

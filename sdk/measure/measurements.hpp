@@ -55,9 +55,12 @@ public:
     // All measurements (definitions() order, SI units) of a body given by its rest-pose vertices
     // (packed xyz, 3V floats) and rest joint positions (3J floats). `paths`, when given, receives
     // one path per measurement (empty for area, volume and mass).
-    std::vector<double> measure(const float* xyz, const float* joints, std::vector<Path>* paths = nullptr) const;
+    // `only`, when given (one flag per measurement), limits the work to the flagged measurements;
+    // the others are returned as 0.
+    std::vector<double> measure(const float* xyz, const float* joints, std::vector<Path>* paths = nullptr,
+                                const std::vector<bool>* only = nullptr) const;
     // The same for a body's current shape (its pose does not matter).
-    std::vector<double> measure(Body& body, std::vector<Path>* paths = nullptr) const;
+    std::vector<double> measure(Body& body, std::vector<Path>* paths = nullptr, const std::vector<bool>* only = nullptr) const;
 
 private:
     const Model& model_;

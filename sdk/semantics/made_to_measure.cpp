@@ -59,10 +59,13 @@ MadeToMeasureResult make_to_measure(const Model& model, const measure::Measurer&
     Body body(model, nullptr);
     std::vector<float> cf(K);
     std::vector<double> all;
-    auto evaluate = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    // Iterations measure only what was requested; the start and the result are measured whole.
+    std::vector<bool> requested(defs.size(), false);
+    for (const MeasureTarget& t : targets) requested[std::size_t(t.measurement)] = true;
+    auto evaluate = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r, bool whole = false) {
         for (uint32_t k = 0; k < K; ++k) cf[k] = float(x(k));
         body.set_shape(cf.data(), K);
-        all = measurer.measure(body);
+        all = measurer.measure(body, nullptr, whole ? nullptr : &requested);
         r.resize(M);
         for (Eigen::Index i = 0; i < M; ++i) {
             const MeasureTarget& t = targets[std::size_t(i)];
@@ -76,9 +79,8 @@ MadeToMeasureResult make_to_measure(const Model& model, const measure::Measurer&
 
     MadeToMeasureResult out;
     Eigen::VectorXd r, trial_r;
-    double cost = evaluate(c, r);
+    double cost = evaluate(c, r, true);
     out.start = all;
-    std::vector<double> best = all;
     double mu = 1e-2;
     Eigen::MatrixXd Jm(M, K);
     for (out.iterations = 0; out.iterations < options.max_iterations && !within(r); ++out.iterations) {
@@ -97,7 +99,7 @@ MadeToMeasureResult make_to_measure(const Model& model, const measure::Measurer&
             const Eigen::VectorXd x = c - H.ldlt().solve(g);
             const double trial = evaluate(x, trial_r);
             if (trial < cost) {
-                c = x, r = trial_r, cost = trial, best = all;
+                c = x, r = trial_r, cost = trial;
                 mu = std::max(1e-6, mu / 3);
                 improved = true;
             } else {
@@ -107,7 +109,8 @@ MadeToMeasureResult make_to_measure(const Model& model, const measure::Measurer&
         if (!improved) break;
     }
     out.converged = within(r);
-    out.achieved = best;
+    evaluate(c, r, true);
+    out.achieved = all;
     out.coefficients.assign(cf.size(), 0.f);
     for (uint32_t k = 0; k < K; ++k) out.coefficients[k] = float(c(k));
     return out;
