@@ -126,18 +126,30 @@ TEST_CASE("landmark fits recover held-out bodies in any heading", "[fitting]") {
     CHECK(total / trials < 0.018);
 }
 
+namespace {
+
+// Turns and moves a true body, scans it (8000 points, the simulator's noise, holes and outliers) and
+// fits the scan with the default options; returns the solution and its mean vertex error.
+std::pair<fitting::FitSolution, double> fit_scan(const Model& m, const fitting::LinearModel& lin, simulation::TrueBody truth,
+                                                 double heading, const Eigen::Vector3d& shift, std::mt19937& rng) {
+    simulation::transform_body(truth, Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY()).toRotationMatrix(), shift);
+    fitting::Frame frame;
+    simulation::CloudSpec spec;
+    spec.points = 8000;
+    frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
+    auto sol = fitting::fit(lin, {frame}, fitting::FitOptions{});
+    const double err = simulation::mean_vertex_error(simulation::fitted_vertices(m, sol.frames[0]), truth.vertices);
+    return {std::move(sol), err};
+}
+
+}  // namespace
+
 TEST_CASE("scan fits of a mildly posed body are accurate", "[fitting]") {
     const Model& m = default_model().model();
     const fitting::LinearModel lin(m, m.component_count());
     std::mt19937 rng(21);
     auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, 0.4), Eigen::Vector3d::Zero());
-    simulation::transform_body(truth, Eigen::AngleAxisd(2.5, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d(0.2, 0.1, 1.5));
-    fitting::Frame frame;
-    simulation::CloudSpec spec;
-    spec.points = 8000;
-    frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
-    const auto sol = fitting::fit(lin, {frame}, fitting::FitOptions{});
-    const double err = simulation::mean_vertex_error(simulation::fitted_vertices(m, sol.frames[0]), truth.vertices);
+    const auto [sol, err] = fit_scan(m, lin, truth, 2.5, Eigen::Vector3d(0.2, 0.1, 1.5), rng);
     INFO("mean vertex error " << err * 1e3 << " mm, point mean " << sol.report.point_mean * 1e3 << " mm");
     CHECK(err < 0.012);
     CHECK(sol.report.inlier_fraction > 0.6);
@@ -149,14 +161,8 @@ TEST_CASE("scan fits reach arms raised overhead and a seated pose from the rest-
     const fitting::LinearModel lin(m, m.component_count());
     std::mt19937 rng(23);
     for (const char* pose : {"arms_raised", "sitting"}) {
-        auto truth = simulation::make_body(m, simulation::random_shape(m, rng), anatomy::named_pose(m, pose), Eigen::Vector3d::Zero());
-        simulation::transform_body(truth, Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d(0, 0.1, 1.5));
-        fitting::Frame frame;
-        simulation::CloudSpec spec;
-        spec.points = 8000;
-        frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
-        const auto sol = fitting::fit(lin, {frame}, fitting::FitOptions{});
-        const double err = simulation::mean_vertex_error(simulation::fitted_vertices(m, sol.frames[0]), truth.vertices);
+        const auto truth = simulation::make_body(m, simulation::random_shape(m, rng), anatomy::named_pose(m, pose), Eigen::Vector3d::Zero());
+        const double err = fit_scan(m, lin, truth, 0.7, Eigen::Vector3d(0, 0.1, 1.5), rng).second;
         INFO(pose << ": mean vertex error " << err * 1e3 << " mm");
         CHECK(err < 0.015);
     }

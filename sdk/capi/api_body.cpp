@@ -20,19 +20,7 @@ void check_finite(const float* v, std::size_t n, const char* what) {
 void set_pose(ssc_body* body, ssc_rotation_format format, const float* rotations, uint32_t joint_count,
               const float* translation) {
     need(body, "body");
-    const uint32_t J = body->body.model().joint_count();
-    std::vector<float> quats(4ull * J, 0.f);
-    if (rotations) {
-        SSC_REQUIRE_ARG(joint_count == J, "joint_count is " + std::to_string(joint_count) + "; the model has " +
-                                          std::to_string(J) + " joints");
-        std::string error;
-        SSC_REQUIRE_ARG(to_unit_quaternions(format, rotations, J, quats.data(), error), error);
-    } else {
-        SSC_REQUIRE_ARG(joint_count == 0 || joint_count == J, "joint_count must be 0 or the joint count when rotations is NULL");
-        for (uint32_t j = 0; j < J; ++j) quats[4 * j + 3] = 1.f;
-    }
-    if (translation) check_finite(translation, 3, "translation");
-    body->body.set_pose(quats.data(), translation);
+    body->body.set_pose(checked_pose(body, format, rotations, joint_count, translation).data(), translation);
 }
 
 // Copies n xyz triples (packed) to out at stride.
@@ -50,6 +38,27 @@ void copy_matrices(const ssc_body* body, float* out, const float* src) {
 }
 
 }  // namespace
+
+namespace ssc::capi {
+
+std::vector<float> checked_pose(const ssc_body* body, ssc_rotation_format format, const float* rotations, uint32_t joint_count,
+                                const float* translation) {
+    const uint32_t J = body->body.model().joint_count();
+    std::vector<float> quats(4ull * J, 0.f);
+    if (rotations) {
+        SSC_REQUIRE_ARG(joint_count == J, "joint_count is " + std::to_string(joint_count) + "; the model has " +
+                                          std::to_string(J) + " joints");
+        std::string error;
+        SSC_REQUIRE_ARG(to_unit_quaternions(format, rotations, J, quats.data(), error), error);
+    } else {
+        SSC_REQUIRE_ARG(joint_count == 0 || joint_count == J, "joint_count must be 0 or the joint count when rotations is NULL");
+        for (uint32_t j = 0; j < J; ++j) quats[4 * j + 3] = 1.f;
+    }
+    if (translation) check_finite(translation, 3, "translation");
+    return quats;
+}
+
+}  // namespace ssc::capi
 
 extern "C" {
 

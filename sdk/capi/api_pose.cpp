@@ -3,7 +3,6 @@
 #include "anatomy/named_poses.hpp"
 #include "guard.hpp"
 #include "handles.hpp"
-#include "synthesis/rotation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -65,13 +64,7 @@ ssc_status ssc_body_set_pose_limited(ssc_body* body, const float* rotations, uin
         need(rotations, "rotations");
         SSC_REQUIRE_ARG(mode == SSC_LIMITS_REJECT || mode == SSC_LIMITS_CLAMP, "mode is not an ssc_limit_mode value");
         const uint32_t J = body->body.model().joint_count();
-        SSC_REQUIRE_ARG(joint_count == J, "joint_count is " + std::to_string(joint_count) + "; the model has " + std::to_string(J) +
-                                              " joints");
-        std::vector<float> quats(4ull * J);
-        std::string error;
-        SSC_REQUIRE_ARG(to_unit_quaternions(SSC_ROTATION_QUATERNION, rotations, J, quats.data(), error), error);
-        if (translation)
-            for (int i = 0; i < 3; ++i) SSC_REQUIRE_ARG(std::isfinite(translation[i]), "translation is not finite");
+        std::vector<float> quats = checked_pose(body, SSC_ROTATION_QUATERNION, rotations, joint_count, translation);
         uint32_t violations = 0;
         std::string first;
         for (uint32_t j = 0; j < J; ++j) {

@@ -94,6 +94,11 @@ T* make(const Allocator& a, Args&&... args) {
     }
 }
 
+// A pose as set through the C API, checked (joint count, finite, non-zero quaternions, finite
+// translation) and converted to unit quaternions, 4 per joint; NULL rotations = identity.
+std::vector<float> checked_pose(const ssc_body* body, ssc_rotation_format format, const float* rotations, uint32_t joint_count,
+                                const float* translation);
+
 template <class T>
 void unmake(T* p) {
     const Allocator a = allocator_of(p);

@@ -1,5 +1,7 @@
 #include "attributes.hpp"
 
+#include "skeleton_fit.hpp"
+
 #include "common/error.hpp"
 #include "common/thread_pool.hpp"
 #include "measure/measurements.hpp"
@@ -41,16 +43,6 @@ std::vector<Column> columns() {
 }
 
 unsigned workers() { return std::max(1u, std::min(8u, std::thread::hardware_concurrency())); }
-
-// Rest joints of a mesh by the model's regressor.
-std::vector<float> regress_joints(const format::ModelData& m, const float* xyz) {
-    const auto& sk = m.skeleton;
-    std::vector<float> j(3 * sk.parents.size(), 0.f);
-    for (std::size_t b = 0; b < sk.parents.size(); ++b)
-        for (uint32_t e = sk.regressor_offsets[b]; e < sk.regressor_offsets[b + 1]; ++e)
-            for (int c = 0; c < 3; ++c) j[3 * b + std::size_t(c)] += sk.regressor_weights[e] * xyz[3 * std::size_t(sk.regressor_vertices[e]) + std::size_t(c)];
-    return j;
-}
 
 }  // namespace
 
@@ -139,7 +131,10 @@ MadeToMeasureAccuracy evaluate_made_to_measure(const format::ModelData& data, co
         try {
             const uint32_t b = first + uint32_t(i);
             const std::vector<float> xyz(X.row(b).data(), X.row(b).data() + X.cols());
-            const std::vector<double> truth = measurer.measure(xyz.data(), regress_joints(data, xyz.data()).data());
+            const auto& sk = data.skeleton;
+            const std::vector<float> joints = apply_regressor(sk.regressor_offsets.data(), sk.regressor_vertices.data(),
+                                                              sk.regressor_weights.data(), data.joint_count(), xyz.data());
+            const std::vector<double> truth = measurer.measure(xyz.data(), joints.data());
             std::vector<semantics::MeasureTarget> targets;
             for (int m : requested) targets.push_back({m, truth[std::size_t(m)]});
             semantics::MadeToMeasureOptions o;

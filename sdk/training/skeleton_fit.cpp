@@ -175,4 +175,13 @@ std::vector<float> game_rest_orientations(const mh::Assets& a, const std::vector
     return out;
 }
 
+std::vector<float> apply_regressor(const uint32_t* offsets, const uint32_t* vertices, const float* weights, std::size_t joints,
+                                   const float* xyz) {
+    std::vector<float> out(3 * joints, 0.f);
+    for (std::size_t j = 0; j < joints; ++j)
+        for (uint32_t e = offsets[j]; e < offsets[j + 1]; ++e)
+            for (std::size_t c = 0; c < 3; ++c) out[3 * j + c] += weights[e] * xyz[3 * std::size_t(vertices[e]) + c];
+    return out;
+}
+
 }  // namespace ssc::training

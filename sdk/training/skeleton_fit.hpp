@@ -15,6 +15,11 @@ namespace ssc::training {
 // body with all vertices (helpers included): 3 per bone, in game-rig order.
 std::vector<float> game_joint_positions(const mh::Assets& a, const std::vector<float>& xyz);
 
+// Joint positions (3 per joint) of a mesh (packed xyz) by a sparse regressor: offsets (J + 1) into
+// vertices and weights, joint = sum weight * vertex.
+std::vector<float> apply_regressor(const uint32_t* offsets, const uint32_t* vertices, const float* weights, std::size_t joints,
+                                   const float* xyz);
+
 struct Regressor {
     std::vector<uint32_t> offsets, vertices;
     std::vector<float> weights;

@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 #include "landmarks.hpp"
 #include "measure/girth.hpp"
+#include "measure/measurements.hpp"
 #include "render/raster.hpp"
 #include "pca.hpp"
 #include "skeleton_fit.hpp"
@@ -170,12 +171,8 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     lt.xyz.assign(p.mean.data(), p.mean.data() + p.mean.size());
     lt.triangles.assign(m.mesh.triangles.begin(), m.mesh.triangles.end());
     for (uint32_t v = 0; v < V; ++v) lt.vertex_bone.push_back(a.game_rig.bones[sj[4 * v]].name);
-    for (uint32_t j = 0; j < J; ++j) {
-        std::vector<float> q(3, 0.f);
-        for (uint32_t e = reg.offsets[j]; e < reg.offsets[j + 1]; ++e)
-            for (int c = 0; c < 3; ++c) q[c] += reg.weights[e] * lt.xyz[3 * reg.vertices[e] + c];
-        lt.joints[a.game_rig.bones[j].name] = q;
-    }
+    const std::vector<float> mean_joints = apply_regressor(reg.offsets.data(), reg.vertices.data(), reg.weights.data(), J, lt.xyz.data());
+    for (uint32_t j = 0; j < J; ++j) lt.joints[a.game_rig.bones[j].name].assign(&mean_joints[3 * j], &mean_joints[3 * j] + 3);
     m.landmarks = place_caesar_landmarks(lt);
     format::validate_model(m);
 
@@ -206,13 +203,8 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
             trunk_legs[v] = part == "torso" || part == "legs";
         }
         auto landmark_y = [&](const float* body, const std::string& name) {
-            for (const auto& l : m.landmarks) {
-                if (l.name != name) continue;
-                if (l.vertex != format::kNone) return double(body[3 * l.vertex + 1]);
-                const uint32_t* c = &m.mesh.triangles[3 * l.triangle];
-                return double(l.barycentric[0] * body[3 * c[0] + 1] + l.barycentric[1] * body[3 * c[1] + 1] +
-                              l.barycentric[2] * body[3 * c[2] + 1]);
-            }
+            for (uint32_t l = 0; l < m.landmarks.size(); ++l)
+                if (m.landmarks[l].name == name) return measure::landmark_position(m, l, body).y();
             fail(SSC_ERROR_INTERNAL, "no landmark " + name);
         };
         const std::size_t T = m.mesh.triangles.size() / 3;
