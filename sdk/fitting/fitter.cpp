@@ -1,6 +1,7 @@
 // The fitter: see fitter.hpp for the method. Parameters of all frames form one vector: the shared
 // shape first, then each frame's rotations, translation and log scale (kinematics.hpp layout).
 #include "fitting/fitter.hpp"
+#include "fitting/explained.hpp"
 
 #include "common/error.hpp"
 #include "common/rigid.hpp"
@@ -32,6 +33,15 @@ constexpr double kHuber = 2.0;
 // Weight of the point-to-point part next to point-to-plane: enough to stop sliding along flat
 // regions, small enough that the vertex spacing (about 1 cm) does not bias the fit.
 constexpr double kTangential = 0.1;
+// A stage's plateau (see run_stage): relative gain and iterations.
+constexpr double kPlateau = 2e-3;
+constexpr int kStall = 3;
+
+// Scan points and model points explained() scores (each a fixed random sample).
+constexpr std::size_t kExplainedSamples = 1000;
+// The limb search scores many more candidates, on half as many points.
+constexpr std::size_t kLimbSamples = 500;
+
 // Joint limits are soft walls: beyond a limit the cost grows as (excess / kLimitSigma)^2 / 2, so
 // 10 degrees past a limit costs as much as 75 scan points each 3 sigma off.
 constexpr double kLimitSigma = 0.02;
@@ -163,8 +173,7 @@ public:
 
     uint32_t parameters() const { return K_ + F_ * B_; }
 
-    FitSolution run(const std::vector<FitState>* start, const FitProgress& progress) {
-        const auto t0 = std::chrono::steady_clock::now();
+    FitSolution run(const std::vector<FitState>* start, const FitProgress& progress, std::chrono::steady_clock::time_point t0) {
         FitSolution sol;
         shape_.assign(K_, 0.0);
         states_.assign(F_, kin_[0].zero_state());
@@ -255,6 +264,11 @@ private:
     bool run_stage(const Stage& st, uint32_t frame_only, const FitProgress* progress, uint32_t& iteration, bool& cancelled,
                    double* first_cost = nullptr) {
         double mu = 1e-3;
+        // Correspondences are found again every iteration, so the cost keeps moving by a little
+        // even at the solution: a stage also ends when kStall iterations in a row fail to beat
+        // its best cost by a fraction kPlateau.
+        double best_cost = std::numeric_limits<double>::infinity();
+        int stalled = 0;
         for (uint32_t it = 0; it < st.iterations; ++it, ++iteration) {
             update_kinematics();
             find_pairs(st, frame_only);
@@ -272,7 +286,7 @@ private:
             const std::vector<FitState> states0 = states_;
             bool improved = false;
             double new_cost = cost;
-            for (int attempt = 0; attempt < 6 && !improved; ++attempt) {
+            for (int attempt = 0; attempt < 8 && !improved; ++attempt) {
                 const VectorXd delta = damped_step(H, g, cols, mu);
                 if (!delta.allFinite()) {
                     mu *= 10;
@@ -287,10 +301,17 @@ private:
                 } else {
                     shape_ = shape0;
                     states_ = states0;
-                    mu *= 4;
+                    mu *= 10;
                 }
             }
             if (!improved || cost - new_cost < st.tolerance * std::max(cost, 1e-12)) {
+                ++iteration;
+                return true;
+            }
+            if (new_cost < best_cost * (1 - kPlateau)) {
+                best_cost = new_cost;
+                stalled = 0;
+            } else if (++stalled >= kStall) {
                 ++iteration;
                 return true;
             }
@@ -403,11 +424,11 @@ private:
 
     // Arms and legs the coarse stage leaves in a wrong local minimum: correspondences reach 10 cm,
     // so an arm raised above the head stays fitted to the torso from the rest pose, and a leg
-    // stepping far forward stays straight. For each limb of each frame with a cloud, candidate
-    // poses of its upper joint (a grid of anatomical angles: raised sideways and forwards, along
-    // the body, turned) and then of its middle joint (elbow or knee bends) are scored by
-    // explained(); the best is kept, the current pose being a candidate too. Returns whether any
-    // limb moved.
+    // stepping far forward stays straight. For each limb of each frame with a cloud, a grid of
+    // anatomical poses of its upper joint (raised sideways and forwards, along the body, turned)
+    // times bends of its middle joint (elbow, knee) is scored by the explained() measure
+    // (LimbScore: only the limb re-posed), the current pose being a candidate too; the best few
+    // are refined by pattern search within the joint limits. Returns whether any limb moved.
     bool search_limbs() {
         const auto limits = anatomy::joint_limits(lin_.model);
         constexpr double d = M_PI / 180;
@@ -430,30 +451,90 @@ private:
         for (uint32_t f = 0; f < F_; ++f) {
             if (frames_[f].points.empty()) continue;
             // A wider cap than the start search's: a candidate limb a few centimetres off its points
-            // (the coarse grid) must still score better than one lying on the torso.
-            constexpr double cap = 0.15;
-            double best = explained(f, cap);
+            // (the coarse grid) must still score better than one lying on the torso. Model vertices
+            // left unexplained cost less (holes; see LimbScore): 8 cm, chosen on the benchmark's
+            // scans (15 cm let an arm raised over a hole curl onto the head instead).
+            constexpr double cap = 0.15, model_cap = 0.08;
             for (const Limb& limb : limbs)
                 for (const char* side : {"_l", "_r"}) {
                     const int64_t ju = lin_.model.find_joint(std::string(limb.upper) + side);
                     const int64_t jm = lin_.model.find_joint(std::string(limb.middle) + side);
                     if (ju < 0 || jm < 0 || !limits[std::size_t(ju)].limited || !limits[std::size_t(jm)].limited) continue;
-                    for (const auto* joint : {&ju, &jm}) {
-                        const auto& angles = joint == &ju ? limb.upper_angles : limb.middle_angles;
-                        const FitState keep = states_[f];
-                        FitState best_state = keep;
-                        for (const Vector3d& a : angles) {
-                            states_[f] = keep;
-                            states_[f].pose[std::size_t(*joint)] = anatomy::rotation_from_angles(limits[std::size_t(*joint)], a);
-                            const double score = explained(f, cap);
-                            if (score < best) best = score, best_state = states_[f], moved = true;
+                    kin_[f].update(states_[f], false);
+                    pose_frame(f);
+                    LimbScore limb_score(kin_[f], cloud_view(frames_[f]), vertex_sample_, posed_, posed_normals_, uint32_t(ju), cap, model_cap, kLimbSamples);
+                    const FitState keep = states_[f];
+                    const anatomy::JointLimit& lu = limits[std::size_t(ju)];
+                    const anatomy::JointLimit& lm = limits[std::size_t(jm)];
+                    auto score = [&](const Vector3d& au, const Vector3d& am) {
+                        states_[f] = keep;
+                        states_[f].pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, au);
+                        states_[f].pose[std::size_t(jm)] = anatomy::rotation_from_angles(lm, am);
+                        kin_[f].update(states_[f], false);
+                        return limb_score(kin_[f]);
+                    };
+                    struct Candidate {
+                        Vector3d upper, middle;
+                        double score;
+                    };
+                    // Upper and middle joint together: which way a bent elbow points depends on
+                    // both (an arm raised sideways with the forearm up or forward).
+                    std::vector<Vector3d> uppers{anatomy::anatomical_angles(lu, keep.pose[std::size_t(ju)])};
+                    std::vector<Vector3d> middles{anatomy::anatomical_angles(lm, keep.pose[std::size_t(jm)])};
+                    uppers.insert(uppers.end(), limb.upper_angles.begin(), limb.upper_angles.end());
+                    middles.insert(middles.end(), limb.middle_angles.begin(), limb.middle_angles.end());
+                    const double current = score(uppers[0], middles[0]);
+                    std::vector<Candidate> grid;
+                    for (const auto& au : uppers)
+                        for (const auto& am : middles) grid.push_back({au, am, score(au, am)});
+                    std::sort(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
+                    // The grid is coarse (20 to 60 degrees apart): refine the best few by pattern
+                    // search over the upper joint's three angles and the middle joint's bend, in
+                    // 16 degree steps, then the best two in 8 and 4 degree steps.
+                    auto refine = [&](Candidate& x, double step) {
+                        for (bool improved = true; improved;) {
+                            improved = false;
+                            for (int coord = 0; coord < 4; ++coord)
+                                for (double sign : {1.0, -1.0}) {
+                                    Candidate y = x;
+                                    double& angle = coord < 3 ? y.upper[coord] : y.middle[0];
+                                    const double lo = coord < 3 ? lu.lo[coord] : lm.lo[0], hi = coord < 3 ? lu.hi[coord] : lm.hi[0];
+                                    // Within the joint's range: the fit's limits would pull it back.
+                                    const double moved_to = std::clamp(angle + sign * step, lo, hi);
+                                    if (moved_to == angle) continue;
+                                    angle = moved_to;
+                                    y.score = score(y.upper, y.middle);
+                                    if (y.score < x.score) x = y, improved = true;
+                                }
                         }
-                        states_[f] = best_state;
+                    };
+                    grid.resize(std::min<std::size_t>(grid.size(), 6));
+                    for (Candidate& x : grid) refine(x, 16 * d);
+                    std::sort(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
+                    grid.resize(std::min<std::size_t>(grid.size(), 2));
+                    for (Candidate& x : grid) refine(x, 8 * d), refine(x, 4 * d);
+                    const Candidate best = *std::min_element(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
+                    FitState best_state = keep;
+                    if (best.score < current) {
+                        best_state.pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, best.upper);
+                        best_state.pose[std::size_t(jm)] = anatomy::rotation_from_angles(lm, best.middle);
+                        moved = true;
                     }
+                    states_[f] = best_state;
                 }
         }
         update_kinematics();
         return moved;
+    }
+
+    CloudView cloud_view(const FrameData& fd) const {
+        CloudView c;
+        c.points = &fd.points;
+        c.normals = &fd.normals;
+        c.oriented = fd.oriented;
+        c.index = fd.scan_index.get();
+        c.sample = &fd.scan_sample;
+        return c;
     }
 
     // The posed positions of the area-sampled vertex subset (posed_ must be current).
@@ -472,25 +553,19 @@ private:
         kin_[f].update(states_[f]);
         pose_frame(f);
         const PointIndex model_index(posed_subset());
-        auto faces_away = [&](const Vector3d& scan_n, const Vector3d& model_n) {
-            if (scan_n.squaredNorm() == 0) return false;
-            const double dot = scan_n.dot(model_n);
-            return (fd.oriented ? dot : std::abs(dot)) < 0.0;
-        };
+        const CloudView cloud = cloud_view(fd);
+        const double cap2 = cap * cap;
         double sum = 0;
-        const std::size_t n = std::min<std::size_t>(fd.scan_sample.size(), 1000);
+        const std::size_t n = std::min<std::size_t>(fd.scan_sample.size(), kExplainedSamples);
         for (std::size_t s = 0; s < n; ++s) {
             const uint32_t i = fd.scan_sample[s];
-            double d2;
-            const uint32_t v = vertex_sample_[model_index.nearest(fd.points[i], &d2)];
-            sum += faces_away(fd.normals[i], posed_normals_[v]) ? cap * cap : std::min(d2, cap * cap);
+            const uint32_t v = vertex_sample_[model_index.nearest(fd.points[i], nullptr)];
+            sum += explained_term(cloud, i, posed_[v], posed_normals_[v], cap2);
         }
-        const std::size_t m = std::min<std::size_t>(vertex_sample_.size(), 1000);
+        const std::size_t m = std::min<std::size_t>(vertex_sample_.size(), kExplainedSamples);
         for (std::size_t s = 0; s < m; ++s) {
             const uint32_t v = vertex_sample_[s];
-            double d2;
-            const uint32_t i = fd.scan_index->nearest(posed_[v], &d2);
-            sum += faces_away(fd.normals[i], posed_normals_[v]) ? cap * cap : std::min(d2, cap * cap);
+            sum += explained_term(cloud, fd.scan_index->nearest(posed_[v], nullptr), posed_[v], posed_normals_[v], cap2);
         }
         return sum;
     }
@@ -847,8 +922,10 @@ FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const 
     validate(lin, frames, options);
     if (start && !options.auto_start)
         SSC_REQUIRE_ARG_S(start->size() == frames.size(), "fit: " << start->size() << " start states for " << frames.size() << " frames");
+    // The reported time includes the setup (scan k-d trees, normal estimation).
+    const auto t0 = std::chrono::steady_clock::now();
     Solver solver(lin, frames, options);
-    return solver.run(start, progress);
+    return solver.run(start, progress, t0);
 }
 
 }  // namespace ssc::fitting

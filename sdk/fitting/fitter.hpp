@@ -13,8 +13,9 @@
 //           joint's rotation, and soft walls at the anatomical joint limits (joint_limits.hpp);
 //           coarse-to-fine stages (rigid, then main joints and few components, then everything);
 //   limbs   between the coarse and the fine stage, a search over anatomical poses of each arm and
-//           leg with clouds (raised overhead, forward, bent elbows and knees) that the coarse
-//           stage's short-reaching correspondences cannot find from the rest pose.
+//           leg with clouds (raised overhead, forward, bent elbows and knees; upper and middle
+//           joint together, the best refined) that the coarse stage's short-reaching
+//           correspondences cannot find from the rest pose (explained.hpp scores them).
 #pragma once
 
 #include "fitting/kinematics.hpp"

@@ -158,22 +158,33 @@ Vector3d Kinematics::rest_vertex(uint32_t v) const {
 }
 
 Vector3d Kinematics::point(const SurfacePoint& p) const {
-    const auto& skin = model_.data().skin;
     Vector3d out = Vector3d::Zero();
-    for (int b = 0; b < 3; ++b) {
-        if (p.weight[b] == 0) continue;
-        const uint32_t v = p.vertex[b];
-        const Vector3d u = rest_vertex(v);
-        Vector3d x = Vector3d::Zero();
-        for (int i = 0; i < 4; ++i) {
-            const float w = skin.weights[4 * std::size_t(v) + i];
-            if (w == 0) continue;
-            const uint16_t j = skin.joints[4 * std::size_t(v) + i];
-            x += double(w) * (skin_rot_[j] * u + skin_trans_[j]);
-        }
-        out += p.weight[b] * x;
-    }
+    for (int b = 0; b < 3; ++b)
+        if (p.weight[b] != 0) out += p.weight[b] * skinned(p.vertex[b], rest_vertex(p.vertex[b]));
     return scale_ * out + translation_;
+}
+
+Vector3d Kinematics::skinned(uint32_t v, const Vector3d& u) const {
+    const auto& skin = model_.data().skin;
+    Vector3d x = Vector3d::Zero();
+    for (int i = 0; i < 4; ++i) {
+        const float w = skin.weights[4 * std::size_t(v) + i];
+        const uint16_t j = skin.joints[4 * std::size_t(v) + i];
+        if (w != 0) x += double(w) * (skin_rot_[j] * u + skin_trans_[j]);
+    }
+    return x;
+}
+
+Vector3d Kinematics::posed_vertex(uint32_t v, const Vector3d& u) const { return scale_ * skinned(v, u) + translation_; }
+
+Matrix3d Kinematics::skin_rotation(uint32_t v) const {
+    const auto& skin = model_.data().skin;
+    Matrix3d m = Matrix3d::Zero();
+    for (int i = 0; i < 4; ++i) {
+        const float w = skin.weights[4 * std::size_t(v) + i];
+        if (w != 0) m += double(w) * skin_rot_[skin.joints[4 * std::size_t(v) + i]];
+    }
+    return m;
 }
 
 void Kinematics::point_jacobian(const SurfacePoint& p, double* J3, double factor, const uint8_t* active) const {

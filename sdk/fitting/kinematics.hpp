@@ -71,6 +71,11 @@ public:
 
     Vector3d rest_vertex(uint32_t v) const;                  // unposed, current shape
     Vector3d point(const SurfacePoint& p) const;             // final (scaled, translated)
+    // Vertex v posed from its unposed position u (rest_vertex(v), cached by callers that pose the
+    // same vertices many times), final frame; and its blended skinning rotation sum_j w_j S_j,
+    // which carries unposed normals to posed ones (up to normalisation).
+    Vector3d posed_vertex(uint32_t v, const Vector3d& u) const;
+    Matrix3d skin_rotation(uint32_t v) const;
     // Adds d(final point)/d(parameters) (3 x parameter_count) times `factor` into J (3 rows,
     // leading dimension = parameter_count, row-major) for the given point. `active`, when given
     // (parameter_count flags), skips the columns that are off: shape columns past the first off
@@ -90,6 +95,7 @@ public:
     void nonzeros(const SurfacePoint& p, std::vector<uint32_t>& out) const;
 
 private:
+    Vector3d skinned(uint32_t v, const Vector3d& u) const;  // linear blend skinning, before scale and translation
     void vertex_jacobian(uint32_t v, double* J3, double factor, uint32_t shape_columns, const uint8_t* active) const;
 
     const LinearModel& lin_;

@@ -1,0 +1,93 @@
+#include "fitting/explained.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace ssc::fitting {
+
+double explained_term(const CloudView& cloud, uint32_t i, const Vector3d& x, const Vector3d& n, double cap2) {
+    const Vector3d& scan_n = (*cloud.normals)[i];
+    if (scan_n.squaredNorm() != 0) {
+        const double dot = scan_n.dot(n);
+        if ((cloud.oriented ? dot : std::abs(dot)) < 0.0) return cap2;
+    }
+    return std::min(((*cloud.points)[i] - x).squaredNorm(), cap2);
+}
+
+LimbScore::LimbScore(const Kinematics& kin, const CloudView& cloud, const std::vector<uint32_t>& vertices,
+                     const std::vector<Vector3d>& posed, const std::vector<Vector3d>& posed_normals, uint32_t joint, double cap,
+                     double model_cap, std::size_t samples)
+    : cloud_(cloud), cap2_(cap * cap), model_cap2_(model_cap * model_cap) {
+    const Model& model = kin.model();
+    const auto& skin = model.data().skin;
+    const auto& parents = model.data().skeleton.parents;
+    // Joints at or below `joint` (parents precede children).
+    std::vector<uint8_t> below(model.joint_count(), 0);
+    for (uint32_t j = 0; j < below.size(); ++j) below[j] = j == joint || (parents[j] >= 0 && below[uint32_t(parents[j])]);
+    const std::size_t m = std::min(vertices.size(), samples);
+    std::vector<Vector3d> fixed;
+    std::vector<uint32_t> fixed_vertex;
+    for (std::size_t s = 0; s < vertices.size(); ++s) {
+        const uint32_t v = vertices[s];
+        bool moves = false;
+        for (int i = 0; i < 4; ++i) moves |= skin.weights[4 * std::size_t(v) + i] != 0 && below[skin.joints[4 * std::size_t(v) + i]];
+        if (moves) {
+            moving_.push_back(v);
+            moving_scored_.push_back(s < m);
+            unposed_.push_back(kin.rest_vertex(v));
+            rest_normal_.push_back(kin.skin_rotation(v).inverse() * posed_normals[v]);
+        } else {
+            fixed.push_back(posed[v]);
+            fixed_vertex.push_back(v);
+            if (s < m) fixed_sum_ += explained_term(cloud, cloud.index->nearest(posed[v], nullptr), posed[v], posed_normals[v], model_cap2_);
+        }
+    }
+    std::unique_ptr<PointIndex> index;
+    if (!fixed.empty()) index = std::make_unique<PointIndex>(fixed);
+    constexpr double kSettled = 0.01;  // metres: the limb could lower such a term by at most this squared
+    const std::size_t n = std::min(cloud.sample->size(), samples);
+    for (std::size_t s = 0; s < n; ++s) {
+        const uint32_t i = (*cloud.sample)[s];
+        double d2 = std::numeric_limits<double>::infinity(), term = cap2_;
+        if (index) {
+            const uint32_t k = index->nearest((*cloud.points)[i], &d2);
+            term = explained_term(cloud, i, fixed[k], posed_normals[fixed_vertex[k]], cap2_);
+        }
+        if (d2 < kSettled * kSettled && term < cap2_) {
+            fixed_sum_ += term;
+            continue;
+        }
+        open_.push_back(i);
+        fixed_d2_.push_back(d2);
+        fixed_term_.push_back(term);
+    }
+}
+
+double LimbScore::operator()(const Kinematics& kin) {
+    const std::size_t nm = moving_.size();
+    posed_.resize(nm);
+    normals_.resize(nm);
+    double sum = fixed_sum_;
+    for (std::size_t i = 0; i < nm; ++i) {
+        posed_[i] = kin.posed_vertex(moving_[i], unposed_[i]);
+        normals_[i] = (kin.skin_rotation(moving_[i]) * rest_normal_[i]).normalized();
+        if (moving_scored_[i]) sum += explained_term(cloud_, cloud_.index->nearest(posed_[i], nullptr), posed_[i], normals_[i], model_cap2_);
+    }
+    if (nm == 0) {
+        for (double t : fixed_term_) sum += t;
+        return sum;
+    }
+    // Each open scan point is explained by its nearest model vertex, fixed or moved.
+    const PointIndex index(posed_);
+    for (std::size_t s = 0; s < open_.size(); ++s) {
+        const uint32_t i = open_[s];
+        double d2;
+        const uint32_t k = index.nearest((*cloud_.points)[i], &d2);
+        sum += d2 < fixed_d2_[s] ? explained_term(cloud_, i, posed_[k], normals_[k], cap2_) : fixed_term_[s];
+    }
+    return sum;
+}
+
+}  // namespace ssc::fitting

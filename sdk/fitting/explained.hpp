@@ -1,0 +1,59 @@
+// How well a posed model explains a cloud: the measure that chooses between start candidates and
+// between limb poses (fitter.cpp). Unlike the fit's cost, which gates correspondences away, it
+// counts both ways over fixed point samples with truncated squared distances, so a candidate
+// cannot look good by leaving data unexplained.
+#pragma once
+
+#include "fitting/kinematics.hpp"
+#include "fitting/nearest.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace ssc::fitting {
+
+// What the measure reads of one frame's cloud. All referenced, none owned.
+struct CloudView {
+    const std::vector<Vector3d>* points = nullptr;
+    const std::vector<Vector3d>* normals = nullptr;  // zero where unknown
+    bool oriented = true;                            // normals carry their sign
+    const PointIndex* index = nullptr;               // over *points
+    const std::vector<uint32_t>* sample = nullptr;   // random order of the points; a prefix is scored
+};
+
+// The term of scan point i against a model point x with unit normal n: the squared distance,
+// capped at cap2; a pair whose normals face away from each other counts as unexplained (cap2).
+double explained_term(const CloudView& cloud, uint32_t i, const Vector3d& x, const Vector3d& n, double cap2);
+
+// The measure for poses of one limb (a joint and everything below it), re-posing only the
+// sampled model vertices the limb moves (about a sixth): the terms of the fixed rest are found
+// once, at construction. Scan points the fixed vertices already explain to within 1 cm count as
+// constant. Normals of moved vertices are the construction-time ones carried by the change of
+// their skinning rotation. Not thread-safe (scratch buffers).
+class LimbScore {
+public:
+    // kin: updated to the current state, whose posed vertices and normals are given (every model
+    // vertex). vertices: the model vertex sample (area-uniform); the first `samples` of it and of
+    // the cloud's sample are scored. cap: metres, for scan points; model_cap for model vertices,
+    // smaller because scans have holes: a limb lying in a hole is weak evidence against it,
+    // while every scan point should be explained.
+    LimbScore(const Kinematics& kin, const CloudView& cloud, const std::vector<uint32_t>& vertices,
+              const std::vector<Vector3d>& posed, const std::vector<Vector3d>& posed_normals, uint32_t joint, double cap,
+              double model_cap, std::size_t samples);
+
+    // The measure with kin updated to a candidate state (only the limb's joints differing).
+    double operator()(const Kinematics& kin);
+
+private:
+    CloudView cloud_;
+    double cap2_, model_cap2_;
+    std::vector<uint32_t> moving_;          // model vertices the limb moves
+    std::vector<uint8_t> moving_scored_;    // whether each is among the model-to-scan samples
+    std::vector<Vector3d> unposed_, rest_normal_;
+    std::vector<uint32_t> open_;            // scan points not settled by the fixed vertices
+    std::vector<double> fixed_d2_, fixed_term_;  // each one's nearest fixed vertex: distance^2, term
+    double fixed_sum_ = 0;                  // settled scan points and the fixed vertices' terms
+    std::vector<Vector3d> posed_, normals_;  // scratch
+};
+
+}  // namespace ssc::fitting
