@@ -168,6 +168,24 @@ TEST_CASE("scan fits reach arms raised overhead and a seated pose from the rest-
     }
 }
 
+TEST_CASE("a scan fit gives the same result on any number of worker threads", "[fitting]") {
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    std::mt19937 rng(29);
+    auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng), Eigen::Vector3d::Zero());
+    fitting::Frame frame;
+    simulation::CloudSpec spec;
+    spec.points = 4000;
+    frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
+    ThreadPool one(1), three(3);
+    const auto a = fitting::fit(lin, {frame}, fitting::FitOptions{}, nullptr, {}, &one);
+    const auto b = fitting::fit(lin, {frame}, fitting::FitOptions{}, nullptr, {}, &three);
+    REQUIRE(a.shape.size() == b.shape.size());
+    for (std::size_t k = 0; k < a.shape.size(); ++k) CHECK(a.shape[k] == b.shape[k]);
+    for (std::size_t j = 0; j < a.frames[0].pose.size(); ++j) CHECK(a.frames[0].pose[j].coeffs() == b.frames[0].pose[j].coeffs());
+    CHECK(a.report.iterations == b.report.iterations);
+}
+
 TEST_CASE("the fitter rejects bad input with a message", "[fitting]") {
     const Model& m = default_model().model();
     const fitting::LinearModel lin(m, 10);

@@ -849,7 +849,9 @@ typedef struct ssc_fit_report {
  * @param report    NULL or a report to fill (struct_size set by the caller).
  * @return SSC_ERROR_INVALID_ARGUMENT when a frame has too little data (fewer than 3 landmarks and
  *         16 points) or there are no frames.
- * Threads: the fitter's thread (runs on it; uses no other threads).
+ * Threads: the fitter's thread. With clouds, the search over arm and leg poses also runs on the
+ * worker threads of the model's context (ssc_context_def.worker_count; 1 = none); the results do
+ * not depend on their number.
  */
 SSC_API ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* user, ssc_fit_report* report);
 

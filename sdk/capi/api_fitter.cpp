@@ -241,7 +241,7 @@ ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* 
         fitting::FitProgress cb;
         if (progress) cb = [&](uint32_t it, double cost) { return progress(user, it, float(cost)) == 0; };
         fitter->solved = false;
-        fitter->solution = fitting::fit(fitter->linear, fitter->frames, fitter->options, nullptr, cb);
+        fitter->solution = fitting::fit(fitter->linear, fitter->frames, fitter->options, nullptr, cb, &fitter->model->context->pool);
         // Residuals: distance of each point to the fitted surface along the nearest vertex's normal.
         fitter->residuals.assign(fitter->frames.size(), {});
         Body body(fitter->model->model, nullptr);

@@ -133,8 +133,9 @@ struct FrameData {
 
 class Solver {
 public:
-    Solver(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& o)
-        : lin_(lin), o_(o), F_(uint32_t(frames.size())), K_(lin.K), B_(3 * lin.J + 4), body_(lin.model, nullptr) {
+    Solver(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& o, ThreadPool* pool)
+        : lin_(lin), o_(o), F_(uint32_t(frames.size())), K_(lin.K), B_(3 * lin.J + 4), body_(lin.model, nullptr),
+          pool_(pool ? pool : &inline_pool_) {
         const auto& d = lin.model.data();
         std::mt19937 rng(o.seed);
         frames_.resize(F_);
@@ -462,36 +463,47 @@ private:
                     if (ju < 0 || jm < 0 || !limits[std::size_t(ju)].limited || !limits[std::size_t(jm)].limited) continue;
                     kin_[f].update(states_[f], false);
                     pose_frame(f);
-                    LimbScore limb_score(kin_[f], cloud_view(frames_[f]), vertex_sample_, posed_, posed_normals_, uint32_t(ju), cap, model_cap, kLimbSamples);
                     const FitState keep = states_[f];
                     const anatomy::JointLimit& lu = limits[std::size_t(ju)];
                     const anatomy::JointLimit& lm = limits[std::size_t(jm)];
-                    auto score = [&](const Vector3d& au, const Vector3d& am) {
-                        states_[f] = keep;
-                        states_[f].pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, au);
-                        states_[f].pose[std::size_t(jm)] = anatomy::rotation_from_angles(lm, am);
-                        kin_[f].update(states_[f], false);
-                        return limb_score(kin_[f]);
+                    // Candidates are scored on the pool's threads, each with its own state,
+                    // kinematics and scorer; the results do not depend on the thread count.
+                    struct Worker {
+                        FitState state;
+                        Kinematics kin;
+                        LimbScore score;
+                    };
+                    const LimbScore limb_score(kin_[f], cloud_view(frames_[f]), vertex_sample_, posed_, posed_normals_, uint32_t(ju), cap,
+                                               model_cap, kLimbSamples);
+                    std::vector<Worker> workers(pool_->size(), Worker{keep, kin_[f], limb_score});
+                    auto score = [&](unsigned w, const Vector3d& au, const Vector3d& am) {
+                        Worker& k = workers[w];
+                        k.state.pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, au);
+                        k.state.pose[std::size_t(jm)] = anatomy::rotation_from_angles(lm, am);
+                        k.kin.update(k.state, false);
+                        return k.score(k.kin);
                     };
                     struct Candidate {
                         Vector3d upper, middle;
                         double score;
                     };
+                    auto by_score = [](const Candidate& x, const Candidate& y) { return x.score < y.score; };
                     // Upper and middle joint together: which way a bent elbow points depends on
                     // both (an arm raised sideways with the forearm up or forward).
                     std::vector<Vector3d> uppers{anatomy::anatomical_angles(lu, keep.pose[std::size_t(ju)])};
                     std::vector<Vector3d> middles{anatomy::anatomical_angles(lm, keep.pose[std::size_t(jm)])};
                     uppers.insert(uppers.end(), limb.upper_angles.begin(), limb.upper_angles.end());
                     middles.insert(middles.end(), limb.middle_angles.begin(), limb.middle_angles.end());
-                    const double current = score(uppers[0], middles[0]);
                     std::vector<Candidate> grid;
                     for (const auto& au : uppers)
-                        for (const auto& am : middles) grid.push_back({au, am, score(au, am)});
-                    std::sort(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
+                        for (const auto& am : middles) grid.push_back({au, am, 0});
+                    pool_->parallel_for(grid.size(), [&](std::size_t i, unsigned w) { grid[i].score = score(w, grid[i].upper, grid[i].middle); });
+                    const double current = grid[0].score;  // the current pose: first upper, first middle
+                    std::stable_sort(grid.begin(), grid.end(), by_score);
                     // The grid is coarse (20 to 60 degrees apart): refine the best few by pattern
                     // search over the upper joint's three angles and the middle joint's bend, in
                     // 16 degree steps, then the best two in 8 and 4 degree steps.
-                    auto refine = [&](Candidate& x, double step) {
+                    auto refine = [&](Candidate& x, double step, unsigned w) {
                         for (bool improved = true; improved;) {
                             improved = false;
                             for (int coord = 0; coord < 4; ++coord)
@@ -503,17 +515,17 @@ private:
                                     const double moved_to = std::clamp(angle + sign * step, lo, hi);
                                     if (moved_to == angle) continue;
                                     angle = moved_to;
-                                    y.score = score(y.upper, y.middle);
+                                    y.score = score(w, y.upper, y.middle);
                                     if (y.score < x.score) x = y, improved = true;
                                 }
                         }
                     };
                     grid.resize(std::min<std::size_t>(grid.size(), 6));
-                    for (Candidate& x : grid) refine(x, 16 * d);
-                    std::sort(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
+                    pool_->parallel_for(grid.size(), [&](std::size_t i, unsigned w) { refine(grid[i], 16 * d, w); });
+                    std::stable_sort(grid.begin(), grid.end(), by_score);
                     grid.resize(std::min<std::size_t>(grid.size(), 2));
-                    for (Candidate& x : grid) refine(x, 8 * d), refine(x, 4 * d);
-                    const Candidate best = *std::min_element(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
+                    pool_->parallel_for(grid.size(), [&](std::size_t i, unsigned w) { refine(grid[i], 8 * d, w), refine(grid[i], 4 * d, w); });
+                    const Candidate best = *std::min_element(grid.begin(), grid.end(), by_score);
                     FitState best_state = keep;
                     if (best.score < current) {
                         best_state.pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, best.upper);
@@ -858,6 +870,8 @@ private:
     std::vector<uint32_t> vertex_sample_;
     std::vector<Vector3d> posed_, posed_normals_, subset_posed_;
     Body body_;
+    ThreadPool inline_pool_{1};  // when the caller gives none
+    ThreadPool* pool_;
     std::vector<std::size_t> pair_candidates_;
     std::vector<double> joint_sigma_;
     std::vector<anatomy::JointLimit> limits_;  // empty when the options turn limits off
@@ -918,13 +932,13 @@ double joint_rotation_sigma(const std::string& name) {
 }
 
 FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,
-                const std::vector<FitState>* start, const FitProgress& progress) {
+                const std::vector<FitState>* start, const FitProgress& progress, ThreadPool* pool) {
     validate(lin, frames, options);
     if (start && !options.auto_start)
         SSC_REQUIRE_ARG_S(start->size() == frames.size(), "fit: " << start->size() << " start states for " << frames.size() << " frames");
     // The reported time includes the setup (scan k-d trees, normal estimation).
     const auto t0 = std::chrono::steady_clock::now();
-    Solver solver(lin, frames, options);
+    Solver solver(lin, frames, options, pool);
     return solver.run(start, progress, t0);
 }
 

@@ -18,6 +18,7 @@
 //           correspondences cannot find from the rest pose (explained.hpp scores them).
 #pragma once
 
+#include "common/thread_pool.hpp"
 #include "fitting/kinematics.hpp"
 
 #include <functional>
@@ -78,9 +79,10 @@ struct FitSolution {
 };
 
 // Fits frames to the model. `start` (optional, one per frame) is used when auto_start is false.
+// `pool` (optional) lends worker threads to the limb search; results do not depend on its size.
 // Throws ssc::Error on invalid input (no data, NaN, bad indices).
 FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,
-                const std::vector<FitState>* start = nullptr, const FitProgress& progress = {});
+                const std::vector<FitState>* start = nullptr, const FitProgress& progress = {}, ThreadPool* pool = nullptr);
 
 // Per-joint prior standard deviation of the rotation (radians): loose for the trunk and limbs,
 // tight for fingers and the toes, which sparse data rarely constrain.

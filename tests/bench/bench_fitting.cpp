@@ -3,7 +3,9 @@
 // mean vertex error (mean and worst over trials), time per fit (median).
 //
 //   sscape_fit_bench [--trials N] [--scenario landmarks|scan|depth|depth2|robust] [--components K]
-//                    [--max-points N] [--no-joint-limits]
+//                    [--max-points N] [--no-joint-limits] [--threads N]
+// --threads: worker threads lent to the fitter, caller included (default: one per core, as a
+// context's default; 1 = none).
 #include "fitting/fitter.hpp"
 #include "render/fit_picture.hpp"
 #include "simulation/depth_camera.hpp"
@@ -16,6 +18,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 
 #ifndef SSCAPE_DEFAULT_MODEL_PATH
 #error "SSCAPE_DEFAULT_MODEL_PATH must name the shipped default model"
@@ -83,6 +86,7 @@ int main(int argc, char** argv) {
     uint32_t components = 0xFFFFFFFFu;
     uint32_t max_points = 0;  // 0: the fitter's default
     bool limits = true;
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     for (int i = 1; i < argc; ++i) {
         auto value = [&]() { return i + 1 < argc ? argv[++i] : "0"; };
         if (!std::strcmp(argv[i], "--no-joint-limits")) limits = false;
@@ -90,7 +94,9 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--scenario")) only = value();
         else if (!std::strcmp(argv[i], "--components")) components = uint32_t(std::atoi(value()));
         else if (!std::strcmp(argv[i], "--max-points")) max_points = uint32_t(std::atoi(value()));
+        else if (!std::strcmp(argv[i], "--threads")) threads = unsigned(std::max(1, std::atoi(value())));
     }
+    ThreadPool pool(threads);
     auto options = [&]() {  // the fitter's defaults with the command line's changes
         fitting::FitOptions o;
         if (max_points) o.max_points = max_points;
@@ -99,7 +105,7 @@ int main(int argc, char** argv) {
     };
     const Model model(format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH), nullptr);
     const fitting::LinearModel lin(model, components);
-    std::printf("model: default, %u components used, %d trials per scenario\n", lin.K, trials);
+    std::printf("model: default, %u components used, %d trials per scenario, %u threads\n", lin.K, trials, threads);
 
     if (only.empty() || only == "landmarks") {
         Row r;
@@ -111,7 +117,7 @@ int main(int argc, char** argv) {
             fitting::Frame frame;
             frame.landmarks = simulation::simulate_landmarks(model, truth, 0.010, true, rng);
             fitting::FitOptions o = options();
-            const auto sol = fitting::fit(lin, {frame}, o);
+            const auto sol = fitting::fit(lin, {frame}, o, nullptr, {}, &pool);
             r.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[0]), truth.vertices));
             r.times.push_back(sol.report.seconds);
             r.converged += sol.report.converged;
@@ -132,7 +138,7 @@ int main(int argc, char** argv) {
             simulation::CloudSpec spec;
             frame.clouds.push_back(simulation::simulate_cloud(model, truth, spec, rng));
             fitting::FitOptions o = options();
-            const auto sol = fitting::fit(lin, {frame}, o);
+            const auto sol = fitting::fit(lin, {frame}, o, nullptr, {}, &pool);
             r.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[0]), truth.vertices));
             r.times.push_back(sol.report.seconds);
             r.converged += sol.report.converged;
@@ -188,7 +194,7 @@ int main(int argc, char** argv) {
                 convert += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
             }
             fitting::FitOptions o = options();
-            const auto sol = fitting::fit(lin, {frame}, o);
+            const auto sol = fitting::fit(lin, {frame}, o, nullptr, {}, &pool);
             const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
             r.errors.push_back(simulation::mean_vertex_error(fv, truth.vertices));
             r.times.push_back(sol.report.seconds + convert);  // back-projection counts: it is part of the job
@@ -231,7 +237,7 @@ int main(int argc, char** argv) {
             fitting::FitOptions o = options();
             o.auto_start = false;
             const std::vector<fitting::FitState> starts = {start};
-            const auto sol = fitting::fit(lin, {frame}, o, &starts);
+            const auto sol = fitting::fit(lin, {frame}, o, &starts, {}, &pool);
             const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
             double body = 0;
             std::size_t nb = 0;
