@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <random>
 
@@ -645,36 +646,48 @@ private:
             const std::size_t keep = list.size() - list.size() / 50;
             for (std::size_t i = 0; i < keep; ++i) fd.pairs.push_back(list[i].second);
         };
-        for (std::size_t s = 0; s < n_scan; ++s) {
+        // Queries run on the pool's threads in fixed chunks, merged in order: the same pairs for
+        // any thread count.
+        constexpr std::size_t kChunks = 8;
+        std::vector<std::vector<std::pair<double, Pair>>> chunks(kChunks);
+        std::vector<std::size_t> tried(kChunks, 0);
+        auto in_chunks = [&](std::size_t count, const std::function<void(std::size_t, std::vector<std::pair<double, Pair>>&)>& query) {
+            for (auto& c : chunks) c.clear();
+            pool_->parallel_for(kChunks, [&](std::size_t c, unsigned) {
+                for (std::size_t s = c * count / kChunks; s < (c + 1) * count / kChunks; ++s) query(s, chunks[c]);
+                tried[c] += (c + 1) * count / kChunks - c * count / kChunks;
+            });
+            found.clear();
+            for (const auto& c : chunks) found.insert(found.end(), c.begin(), c.end());
+        };
+        in_chunks(n_scan, [&](std::size_t s, std::vector<std::pair<double, Pair>>& out) {
             const uint32_t i = fd.scan_sample[s];
             double d2;
             const uint32_t nearest = model_index.nearest(fd.points[i], &d2);
             const uint32_t v = st.dense_model ? nearest : vertex_sample_[nearest];
-            ++pair_candidates_[f];
-            if (d2 > max2 || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) continue;
+            if (d2 > max2 || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) return;
             Pair p;
             p.model.vertex[0] = v;
             p.target = fd.points[i];
             p.normal = posed_normals_[v];  // the model's normal: always known and oriented
             p.weight = fd.confidence[i];
-            found.emplace_back(d2, p);
-        }
+            out.emplace_back(d2, p);
+        });
         trim_into(found);
-        found.clear();
-        for (std::size_t s = 0; s < n_model; ++s) {
+        in_chunks(n_model, [&](std::size_t s, std::vector<std::pair<double, Pair>>& out) {
             const uint32_t v = vertex_sample_[s];
             double d2;
             const uint32_t i = fd.scan_index->nearest(posed_[v], &d2);
-            ++pair_candidates_[f];
-            if (d2 > max2 || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) continue;
+            if (d2 > max2 || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) return;
             Pair p;
             p.model.vertex[0] = v;
             p.target = fd.points[i];
             p.normal = fd.normals[i].squaredNorm() > 0 ? fd.normals[i] : posed_normals_[v];
             p.weight = 0.5 * fd.confidence[i];  // the two directions share one budget
-            found.emplace_back(d2, p);
-        }
+            out.emplace_back(d2, p);
+        });
         trim_into(found);
+        for (std::size_t t : tried) pair_candidates_[f] += t;
     }
 
     // Global column of a frame-local parameter.
@@ -854,7 +867,7 @@ private:
             (*g)[k] += o_.shape_prior * shape_[k];
         }
         if (H) {
-            normal_.add_to_upper(*H);
+            normal_.add_to_upper(*H, *pool_);
             *H = H->selfadjointView<Eigen::Upper>();  // everything above filled the upper triangle
         }
         return cost;

@@ -25,19 +25,25 @@ void NormalEquations::add(const std::vector<uint32_t>& cols, const double* J, ui
     rows_of.insert(rows_of.end(), J, J + std::size_t(rows) * cols.size());
 }
 
-void NormalEquations::add_to_upper(Eigen::MatrixXd& H) {
+void NormalEquations::add_to_upper(Eigen::MatrixXd& H, ThreadPool& pool) {
     using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    for (std::size_t b = 0; b < used_; ++b) {
+    if (products_.size() < used_) products_.resize(used_);
+    pool.parallel_for(used_, [&](std::size_t b, unsigned) {
         const Bucket& bk = buckets_[b];
         const auto n = Eigen::Index(bk.cols.size());
-        if (n == 0 || bk.rows.empty()) continue;
+        Eigen::MatrixXd& product = products_[b];
+        product.resize(n, n);
+        product.setZero();
+        if (n == 0 || bk.rows.empty()) return;
         const Eigen::Map<const RowMajor> R(bk.rows.data(), Eigen::Index(bk.rows.size()) / n, n);
-        product_.resize(n, n);
-        product_.setZero();
-        product_.selfadjointView<Eigen::Upper>().rankUpdate(R.transpose());
+        product.selfadjointView<Eigen::Upper>().rankUpdate(R.transpose());
+    });
+    for (std::size_t b = 0; b < used_; ++b) {
+        const Bucket& bk = buckets_[b];
+        const Eigen::MatrixXd& product = products_[b];
         // cols is sorted, so the upper triangle of the block lands in H's upper triangle.
-        for (Eigen::Index c = 0; c < n; ++c)
-            for (Eigen::Index r = 0; r <= c; ++r) H(bk.cols[std::size_t(r)], bk.cols[std::size_t(c)]) += product_(r, c);
+        for (Eigen::Index c = 0; c < product.cols(); ++c)
+            for (Eigen::Index r = 0; r <= c; ++r) H(bk.cols[std::size_t(r)], bk.cols[std::size_t(c)]) += product(r, c);
     }
 }
 

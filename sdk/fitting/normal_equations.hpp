@@ -7,6 +7,8 @@
 // which runs at several times the speed.
 #pragma once
 
+#include "common/thread_pool.hpp"
+
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -24,8 +26,10 @@ public:
     // columns are the sorted global parameter indices `cols`.
     void add(const std::vector<uint32_t>& cols, const double* J, uint32_t rows);
 
-    // Adds the accumulated sum into the upper triangle of H (parameters x parameters).
-    void add_to_upper(Eigen::MatrixXd& H);
+    // Adds the accumulated sum into the upper triangle of H (parameters x parameters). The
+    // blocks' products run on the pool's threads; H receives them in a fixed order, so the sum
+    // does not depend on the thread count.
+    void add_to_upper(Eigen::MatrixXd& H, ThreadPool& pool);
 
 private:
     struct Bucket {
@@ -38,7 +42,7 @@ private:
     std::vector<Bucket> buckets_;
     std::size_t used_ = 0;  // buckets_[0, used_) belong to the current sum
     std::unordered_map<std::vector<uint32_t>, std::size_t, Hash> index_;
-    Eigen::MatrixXd product_;
+    std::vector<Eigen::MatrixXd> products_;  // per bucket
 };
 
 }  // namespace ssc::fitting
