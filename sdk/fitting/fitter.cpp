@@ -388,7 +388,7 @@ private:
             for (const auto& p : fd.points) plo = std::min(plo, (p - c).dot(e1)), phi = std::max(phi, (p - c).dot(e1));
             scale = (phi - plo) / std::max(hi - lo, 1e-6);
         }
-        // Each candidate gets a short rigid fit; the three cheapest a short coarse fit (pose and the
+        // Each candidate gets a short rigid fit; the two cheapest a short coarse fit (pose and the
         // main shape components), which tells front from back far better than the rigid cost does.
         const Stage probe{6, false, false, 0, 0.5, 10.0, 0.0, 0.15};
         const Stage coarse{8, true, false, std::min<uint32_t>(K_, 10), 0.15, 8.0, 0.0, 0.25};
@@ -409,7 +409,7 @@ private:
         std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
         FitState best = candidates[0].second;
         double best_cost = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < 3 && i < candidates.size(); ++i) {
+        for (std::size_t i = 0; i < 2 && i < candidates.size(); ++i) {
             std::fill(shape_.begin(), shape_.end(), 0.0);
             states_[f] = candidates[i].second;
             uint32_t iterations = 0;

@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
     };
     const Model model(format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH), nullptr);
     const fitting::LinearModel lin(model, components);
-    std::printf("model: default, %u components used, %d trials per scenario, %u threads\n", lin.K, trials, threads);
+    std::printf("model: default, %u components used, %d trials per scenario, threads: %u\n", lin.K, trials, threads);
 
     if (only.empty() || only == "landmarks") {
         Row r;
