@@ -15,7 +15,7 @@
 //   limbs   between the coarse and the fine stage, a search over anatomical poses of each arm and
 //           leg with clouds (raised overhead, forward, bent elbows and knees; upper and middle
 //           joint together, the best refined) that the coarse stage's short-reaching
-//           correspondences cannot find from the rest pose (explained.hpp scores them).
+//           correspondences cannot find from the rest pose (limb_search.hpp, scored by explained.hpp).
 #pragma once
 
 #include "common/thread_pool.hpp"

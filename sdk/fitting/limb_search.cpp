@@ -1,0 +1,127 @@
+#include "fitting/limb_search.hpp"
+
+#include "anatomy/joint_limits.hpp"
+#include "fitting/explained.hpp"
+#include "fitting/posed_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace ssc::fitting {
+
+namespace {
+
+// Scan and model points each candidate is scored on (a prefix of the frame's random samples).
+constexpr std::size_t kLimbSamples = 500;
+
+}  // namespace
+
+bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
+                  ThreadPool& pool) {
+    std::vector<Vector3d> posed, posed_normals;
+    const Model& model = kin.model();
+    const auto limits = anatomy::joint_limits(model);
+    constexpr double d = M_PI / 180;
+    struct Limb {
+        const char *upper, *middle;
+        std::vector<Vector3d> upper_angles, middle_angles;  // radians (flexion, axial, abduction)
+    };
+    std::vector<Limb> limbs(2);
+    limbs[0] = {"upperarm", "lowerarm", {}, {}};
+    for (double abd : {40.0, 0.0, -47.0, -100.0, -132.0})  // along the body ... overhead
+        for (double flex : {0.0, -60.0, -110.0})           // in the frontal plane ... forward
+            for (double axial : {0.0, -70.0, 70.0})         // where a bent elbow points
+                limbs[0].upper_angles.push_back(d * Vector3d(flex, axial, abd));
+    for (double flex : {40.0, -20.0, -80.0}) limbs[0].middle_angles.push_back(d * Vector3d(flex, 0, 0));  // straight ... bent
+    limbs[1] = {"thigh", "calf", {}, {}};
+    for (double flex : {0.0, -45.0, -90.0})
+        for (double abd : {0.0, -25.0}) limbs[1].upper_angles.push_back(d * Vector3d(flex, 0, abd));
+    for (double flex : {0.0, 45.0, 90.0, 120.0}) limbs[1].middle_angles.push_back(d * Vector3d(flex, 0, 0));
+    bool moved = false;
+    // A wider cap than the start search's: a candidate limb a few centimetres off its points (the
+    // coarse grid) must still score better than one lying on the torso. Model vertices left
+    // unexplained cost less (holes; see LimbScore): 8 cm, chosen on the benchmark's scans and the
+    // tests (15 cm let an arm raised over a hole curl onto the head instead).
+    constexpr double cap = 0.15, model_cap = 0.08;
+    for (const Limb& limb : limbs)
+        for (const char* side : {"_l", "_r"}) {
+            const int64_t ju = model.find_joint(std::string(limb.upper) + side);
+            const int64_t jm = model.find_joint(std::string(limb.middle) + side);
+            if (ju < 0 || jm < 0 || !limits[std::size_t(ju)].limited || !limits[std::size_t(jm)].limited) continue;
+            kin.update(state, false);
+            posed_surface(body, state, posed, &posed_normals);
+            const FitState keep = state;
+            const anatomy::JointLimit& lu = limits[std::size_t(ju)];
+            const anatomy::JointLimit& lm = limits[std::size_t(jm)];
+            // Candidates are scored on the pool's threads, each with its own state,
+            // kinematics and scorer; the results do not depend on the thread count.
+            struct Worker {
+                FitState state;
+                Kinematics kin;
+                LimbScore score;
+            };
+            const LimbScore limb_score(kin, cloud, vertex_sample, posed, posed_normals, uint32_t(ju), cap, model_cap, kLimbSamples);
+            std::vector<Worker> workers(pool.size(), Worker{keep, kin, limb_score});
+            auto score = [&](unsigned w, const Vector3d& au, const Vector3d& am) {
+                Worker& k = workers[w];
+                k.state.pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, au);
+                k.state.pose[std::size_t(jm)] = anatomy::rotation_from_angles(lm, am);
+                k.kin.update(k.state, false);
+                return k.score(k.kin);
+            };
+            struct Candidate {
+                Vector3d upper, middle;
+                double score;
+            };
+            auto by_score = [](const Candidate& x, const Candidate& y) { return x.score < y.score; };
+            // Upper and middle joint together: which way a bent elbow points depends on
+            // both (an arm raised sideways with the forearm up or forward).
+            std::vector<Vector3d> uppers{anatomy::anatomical_angles(lu, keep.pose[std::size_t(ju)])};
+            std::vector<Vector3d> middles{anatomy::anatomical_angles(lm, keep.pose[std::size_t(jm)])};
+            uppers.insert(uppers.end(), limb.upper_angles.begin(), limb.upper_angles.end());
+            middles.insert(middles.end(), limb.middle_angles.begin(), limb.middle_angles.end());
+            std::vector<Candidate> grid;
+            for (const auto& au : uppers)
+                for (const auto& am : middles) grid.push_back({au, am, 0});
+            pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) { grid[i].score = score(w, grid[i].upper, grid[i].middle); });
+            const double current = grid[0].score;  // the current pose: first upper, first middle
+            std::stable_sort(grid.begin(), grid.end(), by_score);
+            // The grid is coarse (20 to 60 degrees apart): refine the best few by pattern
+            // search over the upper joint's three angles and the middle joint's bend, in
+            // 16 degree steps, then the best two in 8 and 4 degree steps.
+            auto refine = [&](Candidate& x, double step, unsigned w) {
+                for (bool improved = true; improved;) {
+                    improved = false;
+                    for (int coord = 0; coord < 4; ++coord)
+                        for (double sign : {1.0, -1.0}) {
+                            Candidate y = x;
+                            double& angle = coord < 3 ? y.upper[coord] : y.middle[0];
+                            const double lo = coord < 3 ? lu.lo[coord] : lm.lo[0], hi = coord < 3 ? lu.hi[coord] : lm.hi[0];
+                            // Within the joint's range: the fit's limits would pull it back.
+                            const double moved_to = std::clamp(angle + sign * step, lo, hi);
+                            if (moved_to == angle) continue;
+                            angle = moved_to;
+                            y.score = score(w, y.upper, y.middle);
+                            if (y.score < x.score) x = y, improved = true;
+                        }
+                }
+            };
+            grid.resize(std::min<std::size_t>(grid.size(), 6));
+            pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) { refine(grid[i], 16 * d, w); });
+            std::stable_sort(grid.begin(), grid.end(), by_score);
+            grid.resize(std::min<std::size_t>(grid.size(), 2));
+            pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) { refine(grid[i], 8 * d, w), refine(grid[i], 4 * d, w); });
+            const Candidate best = *std::min_element(grid.begin(), grid.end(), by_score);
+            FitState best_state = keep;
+            if (best.score < current) {
+                best_state.pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, best.upper);
+                best_state.pose[std::size_t(jm)] = anatomy::rotation_from_angles(lm, best.middle);
+                moved = true;
+            }
+            state = best_state;
+        }
+    return moved;
+}
+
+}  // namespace ssc::fitting
