@@ -542,13 +542,12 @@ private:
         // any thread count.
         constexpr std::size_t kChunks = 8;
         std::vector<std::vector<std::pair<double, Pair>>> chunks(kChunks);
-        std::vector<std::size_t> tried(kChunks, 0);
         auto in_chunks = [&](std::size_t count, const std::function<void(std::size_t, std::vector<std::pair<double, Pair>>&)>& query) {
             for (auto& c : chunks) c.clear();
             pool_->parallel_for(kChunks, [&](std::size_t c, unsigned) {
                 for (std::size_t s = c * count / kChunks; s < (c + 1) * count / kChunks; ++s) query(s, chunks[c]);
-                tried[c] += (c + 1) * count / kChunks - c * count / kChunks;
             });
+            pair_candidates_[f] += count;
             found.clear();
             for (const auto& c : chunks) found.insert(found.end(), c.begin(), c.end());
         };
@@ -579,7 +578,6 @@ private:
             out.emplace_back(d2, p);
         });
         trim_into(found);
-        for (std::size_t t : tried) pair_candidates_[f] += t;
     }
 
     // Global column of a frame-local parameter.
