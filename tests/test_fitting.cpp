@@ -6,6 +6,7 @@
 #include "fitting/fitter.hpp"
 #include "anatomy/joint_limits.hpp"
 #include "anatomy/named_poses.hpp"
+#include "fitting/grid_index.hpp"
 #include "fitting/nearest.hpp"
 #include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
@@ -45,6 +46,35 @@ fitting::FitState random_state(const fitting::Kinematics& kin, const Model& m, s
 }
 
 }  // namespace
+
+TEST_CASE("the grid index finds the same nearest point within a radius as a brute-force search", "[fitting]") {
+    std::mt19937 rng(7);
+    std::normal_distribution<double> n(0, 1);
+    std::uniform_real_distribution<double> u(0, 1);
+    fitting::GridIndex grid(0.04);
+    for (int set = 0; set < 4; ++set) {
+        // Clustered points like a limb, plus a stray far point (which must not blow the grid up).
+        std::vector<Eigen::Vector3d> points(set == 3 ? 1 : 300);
+        for (auto& p : points) p = Eigen::Vector3d(0.05 * n(rng), 0.3 * u(rng), 0.05 * n(rng));
+        if (set == 2) points.push_back(Eigen::Vector3d(40, -3, 7));
+        grid.build(points);
+        for (int q = 0; q < 2000; ++q) {
+            const Eigen::Vector3d x(0.3 * n(rng), 0.4 * n(rng), 0.3 * n(rng));
+            const double radius = 0.01 + 0.2 * u(rng);
+            uint32_t want = fitting::GridIndex::kNone;
+            double best = radius * radius;
+            for (uint32_t i = 0; i < points.size(); ++i)
+                if ((points[i] - x).squaredNorm() < best) best = (points[i] - x).squaredNorm(), want = i;
+            double d2 = -1;
+            const uint32_t got = grid.nearest(x, radius, &d2);
+            REQUIRE(got == want);
+            if (got != fitting::GridIndex::kNone) CHECK(d2 == best);
+        }
+    }
+    const std::vector<Eigen::Vector3d> none;
+    grid.build(none);
+    CHECK(grid.nearest(Eigen::Vector3d::Zero(), 1.0, nullptr) == fitting::GridIndex::kNone);
+}
 
 TEST_CASE("fitter Jacobians match finite differences", "[fitting]") {
     const Model& m = default_model().model();

@@ -79,13 +79,14 @@ double LimbScore::operator()(const Kinematics& kin) {
         for (double t : fixed_term_) sum += t;
         return sum;
     }
-    // Each open scan point is explained by its nearest model vertex, fixed or moved.
-    const PointIndex index(posed_);
+    // Each open scan point is explained by its nearest model vertex, fixed or moved. Moved ones
+    // farther than the fixed one, or than the cap, would not change its term: the search stops there.
+    moved_index_.build(posed_);
     for (std::size_t s = 0; s < open_.size(); ++s) {
         const uint32_t i = open_[s];
-        double d2;
-        const uint32_t k = index.nearest((*cloud_.points)[i], &d2);
-        sum += d2 < fixed_d2_[s] ? explained_term(cloud_, i, posed_[k], normals_[k], cap2_) : fixed_term_[s];
+        const double radius = std::sqrt(std::min(fixed_d2_[s], cap2_));
+        const uint32_t k = moved_index_.nearest((*cloud_.points)[i], radius, nullptr);
+        sum += k != GridIndex::kNone ? explained_term(cloud_, i, posed_[k], normals_[k], cap2_) : fixed_term_[s];
     }
     return sum;
 }

@@ -4,6 +4,7 @@
 // cannot look good by leaving data unexplained.
 #pragma once
 
+#include "fitting/grid_index.hpp"
 #include "fitting/kinematics.hpp"
 #include "fitting/nearest.hpp"
 
@@ -19,6 +20,7 @@ struct CloudView {
     bool oriented = true;                            // normals carry their sign
     const PointIndex* index = nullptr;               // over *points
     const std::vector<uint32_t>* sample = nullptr;   // random order of the points; a prefix is scored
+    const std::vector<double>* confidence = nullptr; // per point in [0, 1]; null: all 1
 };
 
 // The term of scan point i against a model point x with unit normal n: the squared distance,
@@ -54,6 +56,7 @@ private:
     std::vector<double> fixed_d2_, fixed_term_;  // each one's nearest fixed vertex: distance^2, term
     double fixed_sum_ = 0;                  // settled scan points and the fixed vertices' terms
     std::vector<Vector3d> posed_, normals_;  // scratch
+    GridIndex moved_index_{0.04};            // over posed_ (the sample's spacing is about 2.5 cm)
 };
 
 }  // namespace ssc::fitting

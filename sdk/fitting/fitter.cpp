@@ -3,6 +3,8 @@
 #include "fitting/fitter.hpp"
 #include "fitting/explained.hpp"
 #include "fitting/limb_search.hpp"
+#include "fitting/rigid_start.hpp"
+#include "fitting/robust.hpp"
 
 #include "common/error.hpp"
 #include "common/rigid.hpp"
@@ -32,9 +34,12 @@ using Eigen::VectorXd;
 
 // Landmarks beyond this many sigmas count linearly (Huber): a misplaced landmark pulls, but boundedly.
 constexpr double kHuber = 2.0;
-// Weight of the point-to-point part next to point-to-plane: enough to stop sliding along flat
-// regions, small enough that the vertex spacing (about 1 cm) does not bias the fit.
-constexpr double kTangential = 0.1;
+// Model-to-scan pairs: how far (a fraction of the stage's gate) the scan point's own nearest model
+// point may lie from the vertex (find_frame_pairs).
+constexpr double kReciprocal = 0.5;
+// A start candidate whose short coarse fit ends with pose priors above this is implausible (one
+// joint 10 degrees past its limit costs about 38; plausible fits stay near 100 or below).
+constexpr double kImplausiblePose = 300;
 // A stage's plateau (see run_stage): relative gain and iterations.
 constexpr double kPlateau = 2e-3;
 constexpr int kStall = 3;
@@ -45,22 +50,6 @@ constexpr std::size_t kExplainedSamples = 1000;
 // Joint limits are soft walls: beyond a limit the cost grows as (excess / kLimitSigma)^2 / 2, so
 // 10 degrees past a limit costs as much as 75 scan points each 3 sigma off.
 constexpr double kLimitSigma = 0.02;
-
-struct Robust {
-    double cost, weight;  // rho(r) and rho'(r)/r (IRLS weight)
-};
-
-Robust huber(double r) {
-    const double a = std::abs(r);
-    if (a <= kHuber) return {0.5 * r * r, 1.0};
-    return {kHuber * a - 0.5 * kHuber * kHuber, kHuber / a};
-}
-
-// Geman-McClure with scale c: bounded influence, so gross outliers stop mattering.
-Robust geman_mcclure(double r, double c) {
-    const double c2 = c * c, d = c2 + r * r;
-    return {0.5 * c2 * r * r / d, (c2 / d) * (c2 / d)};
-}
 
 Matrix3d skew(const Vector3d& a) {
     Matrix3d m;
@@ -102,6 +91,19 @@ struct Pair {
     SurfacePoint model;
     Vector3d target, normal;  // normal: unit, or zero for point-to-point only
     double weight;            // confidence
+};
+
+// One residual block of the data: a landmark (Huber on the distance) or a correspondence
+// (point_plane). scale = sqrt(weight) / sigma; set and row: where its 3 rows go in the
+// normal equations.
+struct Block {
+    uint32_t frame;
+    const SurfacePoint* point;
+    const Vector3d* target;
+    const Vector3d* normal;  // null for a landmark
+    double scale;
+    uint32_t set;
+    std::size_t row;
 };
 
 // Coarse-to-fine stages: what moves, how far correspondences may reach, how robust the loss is.
@@ -184,6 +186,9 @@ public:
             for (auto& s : states_) s.shape.resize(K_, 0.0);
         } else {
             for (uint32_t f = 0; f < F_; ++f) states_[f] = initial_state(f);
+            // A single frame keeps the shape its start search fitted (several frames each fitted
+            // their own; they start from the mean).
+            if (F_ == 1 && searched_frames_ == 1) shape_ = states_[0].shape;
         }
         const uint32_t total = std::max<uint32_t>(o_.max_iterations, 3);
         const bool given_start = start && !o_.auto_start;
@@ -198,7 +203,9 @@ public:
         };
         bool cancelled = false, converged = false;
         uint32_t iteration = 0;
-        for (int si = 0; si < 3 && !cancelled; ++si) {
+        // Frames whose start search ended with a short coarse fit need no rigid stage.
+        const int first_stage = searched_frames_ == F_ ? 1 : 0;
+        for (int si = first_stage; si < 3 && !cancelled; ++si) {
             converged = run_stage(stages[si], 0xFFFFFFFFu, &progress, iteration, cancelled, &sol.report.initial_cost);
             // Between the coarse and the fine stage: limbs the coarse stage could not reach.
             if (si == 1 && !cancelled && search_limbs()) {
@@ -362,62 +369,34 @@ private:
             const Similarity T = align_points(src, dst, o_.fit_scale);
             return place(T.R, T.scale, T.t);
         }
-        // No landmarks: principal axes of the cloud. The longest is the body's up axis; its sign and
-        // the facing direction are unknown, so 8 candidates (2 up signs x 4 headings) are each given a
-        // short rigid fit and the cheapest wins.
-        Vector3d c = Vector3d::Zero();
-        for (const auto& p : fd.points) c += p;
-        c /= double(fd.points.size());
-        Matrix3d cov = Matrix3d::Zero();
-        for (const auto& p : fd.points) cov += (p - c) * (p - c).transpose();
-        Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
-        const Vector3d e1 = es.eigenvectors().col(2), e2 = es.eigenvectors().col(1), e3 = es.eigenvectors().col(0);
-        // Model centre and height (mean body, zero pose).
-        Vector3d mc = Vector3d::Zero();
-        double lo = 1e9, hi = -1e9;
-        for (uint32_t v = 0; v < lin_.V; v += 7) {
-            const Vector3d u = kin_[f].rest_vertex(v);
-            mc += u;
-            lo = std::min(lo, u.y()), hi = std::max(hi, u.y());
-        }
-        mc /= double((lin_.V + 6) / 7);
-        double scale = 1;
-        if (o_.fit_scale) {
-            double plo = 1e9, phi = -1e9;
-            for (const auto& p : fd.points) plo = std::min(plo, (p - c).dot(e1)), phi = std::max(phi, (p - c).dot(e1));
-            scale = (phi - plo) / std::max(hi - lo, 1e-6);
-        }
-        // Each candidate gets a short rigid fit; the two cheapest a short coarse fit (pose and the
-        // main shape components), which tells front from back far better than the rigid cost does.
-        const Stage probe{6, false, false, 0, 0.5, 10.0, 0.0, 0.15};
+        // No landmarks: the rigid start search (rigid_start.hpp) over the mean body at rest.
+        RigidStartOptions ro;
+        ro.fit_scale = o_.fit_scale;
+        ro.point_sigma = o_.point_sigma;
+        ro.points = std::size_t(0.15 * o_.max_points);
+        ro.samples = kExplainedSamples;
+        const std::vector<StartCandidate> found = rigid_start(rest_sample(), cloud_view(fd), ro, *pool_);
+        // The two best get a short coarse fit (pose and the main shape components), which tells
+        // front from back far better than the rigid measure does. When the better of them ends in
+        // an implausible pose (joints far past their limits: a wrong heading forced onto the
+        // data), the right heading was not among them: the next two are tried as well.
         const Stage coarse{8, true, false, std::min<uint32_t>(K_, 10), 0.15, 8.0, 0.0, 0.25};
-        std::vector<std::pair<double, FitState>> candidates;
-        for (int sign = 1; sign >= -1; sign -= 2)
-            for (int h = 0; h < 4; ++h) {
-                const double a = h * M_PI / 2;
-                Matrix3d R;
-                const Vector3d y = double(sign) * e1;
-                const Vector3d z = (std::cos(a) * e2 + std::sin(a) * e3).normalized();
-                R.col(0) = y.cross(z);
-                R.col(1) = y;
-                R.col(2) = z;
-                states_[f] = place(R, scale, c - scale * R * mc);
-                for (uint32_t it = 0; it < probe.iterations; ++it) rigid_step(f, probe);
-                candidates.emplace_back(explained(f), states_[f]);
-            }
-        std::sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-        FitState best = candidates[0].second;
-        double best_cost = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < 2 && i < candidates.size(); ++i) {
+        std::vector<FitState> candidates;
+        for (const StartCandidate& c : found) candidates.push_back(place(c.placement.R, c.placement.scale, c.placement.t));
+        ++searched_frames_;
+        FitState best = candidates[0];
+        double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
+        for (std::size_t i = 0; i < candidates.size(); ++i) {
+            if (i >= 2 && (i >= 4 || best_prior <= kImplausiblePose)) break;
             std::fill(shape_.begin(), shape_.end(), 0.0);
-            states_[f] = candidates[i].second;
+            states_[f] = candidates[i];
             uint32_t iterations = 0;
             bool cancelled = false;
             run_stage(coarse, f, nullptr, iterations, cancelled);
             update_kinematics();
             find_pairs(coarse, f);
             const double cost = explained(f);
-            if (cost < best_cost) best_cost = cost, best = states_[f];
+            if (cost < best_cost) best_cost = cost, best = states_[f], best_prior = pose_priors(f, nullptr, nullptr);
         }
         std::fill(shape_.begin(), shape_.end(), 0.0);
         return best;
@@ -432,8 +411,35 @@ private:
         return moved;
     }
 
+    // The vertex sample on the mean body at rest, for the rigid start search; built on first use.
+    RestSample rest_sample() {
+        RestSample r;
+        if (!rest_index_) {
+            const FitState zero = kin_[0].zero_state();
+            posed_surface(body_, zero, posed_, &posed_normals_);
+            for (uint32_t v : vertex_sample_) rest_points_.push_back(posed_[v]), rest_normals_.push_back(posed_normals_[v]);
+            rest_index_ = std::make_unique<PointIndex>(rest_points_);
+            // Centre and height of the whole surface, every 7th vertex.
+            rest_centre_.setZero();
+            rest_bottom_ = 1e9, rest_top_ = -1e9;
+            for (uint32_t v = 0; v < lin_.V; v += 7) {
+                rest_centre_ += posed_[v];
+                rest_bottom_ = std::min(rest_bottom_, posed_[v].y()), rest_top_ = std::max(rest_top_, posed_[v].y());
+            }
+            rest_centre_ /= double((lin_.V + 6) / 7);
+        }
+        r.centre = rest_centre_;
+        r.bottom = rest_bottom_;
+        r.top = rest_top_;
+        r.points = &rest_points_;
+        r.normals = &rest_normals_;
+        r.index = rest_index_.get();
+        return r;
+    }
+
     CloudView cloud_view(const FrameData& fd) const {
         CloudView c;
+        c.confidence = &fd.confidence;
         c.points = &fd.points;
         c.normals = &fd.normals;
         c.oriented = fd.oriented;
@@ -473,22 +479,6 @@ private:
             sum += explained_term(cloud, fd.scan_index->nearest(posed_[v], nullptr), posed_[v], posed_normals_[v], cap2);
         }
         return sum;
-    }
-
-    // One Gauss-Newton step of a single frame's rigid parameters (start search).
-    double rigid_step(uint32_t f, const Stage& st) {
-        kin_[f].update(states_[f]);
-        pose_frame(f);
-        find_frame_pairs(f, st);
-        MatrixXd H;
-        VectorXd g;
-        const double cost = evaluate(st, &H, &g, f);
-        std::vector<int> cols;
-        for (int c : solve_columns(st))
-            if (c < int(K_) || (uint32_t(c) - K_) / B_ == f) cols.push_back(c);
-        const VectorXd delta = damped_step(H, g, cols, 1e-3);
-        if (delta.allFinite()) apply(delta);
-        return cost;
     }
 
     // derivatives = false for cost-only evaluations (the trial steps), which need no Jacobians.
@@ -532,11 +522,8 @@ private:
         };
         std::vector<std::pair<double, Pair>> found;
         auto trim_into = [&](std::vector<std::pair<double, Pair>>& list) {
-            // Trimming: the farthest 2 % are dropped whatever the loss says (clutter); more would cut
-            // off the hands, whose correspondences start farthest, and leave them misplaced.
             std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-            const std::size_t keep = list.size() - list.size() / 50;
-            for (std::size_t i = 0; i < keep; ++i) fd.pairs.push_back(list[i].second);
+            for (std::size_t i = 0; i < kept_after_trimming(list.size()); ++i) fd.pairs.push_back(list[i].second);
         };
         // Queries run on the pool's threads in fixed chunks, merged in order: the same pairs for
         // any thread count.
@@ -570,6 +557,17 @@ private:
             double d2;
             const uint32_t i = fd.scan_index->nearest(posed_[v], &d2);
             if (d2 > max2 || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) return;
+            // Holes: a model vertex over a hole in the scan finds the nearest point at the hole's
+            // edge, which belongs to another part of the model and would drag this part onto it
+            // (a hand in a hole curls onto the wrist). Such a point's own nearest model point is
+            // far from the vertex: the pair is kept only if the two agree to within a fraction of
+            // the gate. (Both lie within the pair's distance of the scan point, so pairs closer
+            // than half that fraction pass without the query.)
+            const double agree2 = kReciprocal * kReciprocal * max2;
+            if (4 * d2 > agree2) {
+                const uint32_t back = model_index.nearest(fd.points[i], nullptr);
+                if ((posed_[st.dense_model ? back : vertex_sample_[back]] - posed_[v]).squaredNorm() > agree2) return;
+            }
             Pair p;
             p.model.vertex[0] = v;
             p.target = fd.points[i];
@@ -578,6 +576,21 @@ private:
             out.emplace_back(d2, p);
         });
         trim_into(found);
+    }
+
+    // The column set of a block's Jacobian (active columns only), cached per frame and vertex
+    // for single-vertex points.
+    uint32_t column_set(const Block& b) {
+        const bool single = b.point->weight[1] == 0 && b.point->weight[2] == 0;
+        uint32_t& cached = vertex_set_[b.frame][b.point->vertex[0]];
+        if (single && cached != kNoSet) return cached;
+        kin_[b.frame].nonzeros(*b.point, nonzeros_);
+        set_columns_.clear();
+        for (uint32_t c : nonzeros_)
+            if (set_active_[c]) set_columns_.push_back(column(b.frame, c));
+        const uint32_t set = normal_.column_set(set_columns_);
+        if (single) cached = set;
+        return set;
     }
 
     // Global column of a frame-local parameter.
@@ -590,7 +603,10 @@ private:
         const uint32_t j = r / 3;
         if (j == 0) return true;  // the root carries the global rotation
         if (st.all_joints) return true;
-        return st.body_joints && joint_sigma_[j] >= 0.3;
+        // Coarse stages move the trunk and limbs, not the wrists (nor fingers and toes): their far-
+        // reaching correspondences bent a hand over a hole in the scan onto the forearm's points,
+        // and the fine stage could not bend it back.
+        return st.body_joints && joint_sigma_[j] >= 0.5;
     }
 
     // The columns a step solves for: active in the stage and, for joint rotations and frame
@@ -629,126 +645,144 @@ private:
         }
     }
 
+    // The pose prior and the joint-limit walls of frame f; with H and g, their normal equations.
+    double pose_priors(uint32_t f, MatrixXd* H, VectorXd* g) const {
+        double cost = 0;
+        const Kinematics& kin = kin_[f];
+        // Pose prior: each joint's local rotation vector, over its sigma (not the root: free).
+        for (uint32_t j = 1; j < lin_.J; ++j) {
+            const double s = std::sqrt(o_.pose_prior) / joint_sigma_[j];
+            if (s == 0) continue;
+            const Vector3d r = log_rotation(states_[f].pose[j]);
+            cost += 0.5 * s * s * r.squaredNorm();
+            if (!H) continue;
+            const Matrix3d Jr = s * inverse_left_jacobian(r) * kin.local_from_world(j);
+            const uint32_t c0 = column(f, kin.rotation_offset(j));
+            const Matrix3d JtJ = Jr.transpose() * Jr;
+            const Vector3d Jtr = Jr.transpose() * (s * r);
+            for (int a = 0; a < 3; ++a) {
+                (*g)[c0 + a] += Jtr[a];
+                for (int b = a; b < 3; ++b) (*H)(c0 + a, c0 + b) += JtJ(a, b);
+            }
+        }
+        // Joint limits: a quadratic wall per anatomical component beyond its range.
+        for (uint32_t j = 1; j < lin_.J && !limits_.empty(); ++j) {
+            const anatomy::JointLimit& lim = limits_[j];
+            if (!lim.limited) continue;
+            const Vector3d r = log_rotation(states_[f].pose[j]);
+            const Vector3d c = lim.to_anatomical * r;
+            Vector3d e = Vector3d::Zero();
+            for (int a = 0; a < 3; ++a) {
+                if (c[a] > lim.hi[a]) e[a] = (c[a] - lim.hi[a]) / kLimitSigma;
+                else if (c[a] < lim.lo[a]) e[a] = (c[a] - lim.lo[a]) / kLimitSigma;
+            }
+            if (e.isZero()) continue;
+            cost += 0.5 * e.squaredNorm();
+            if (!H) continue;
+            // Rows of the active components only: d c / d w = M J_l^-1(r) A^T, over the sigma.
+            Matrix3d Jc = lim.to_anatomical * inverse_left_jacobian(r) * kin.local_from_world(j) / kLimitSigma;
+            for (int a = 0; a < 3; ++a)
+                if (e[a] == 0) Jc.row(a).setZero();
+            const uint32_t c0 = column(f, kin.rotation_offset(j));
+            const Matrix3d JtJ = Jc.transpose() * Jc;
+            const Vector3d Jte = Jc.transpose() * e;
+            for (int a = 0; a < 3; ++a) {
+                (*g)[c0 + a] += Jte[a];
+                for (int b = a; b < 3; ++b) (*H)(c0 + a, c0 + b) += JtJ(a, b);
+            }
+        }
+        return cost;
+    }
+
     // Cost of the current state with the current correspondences; with H and g, the normal
     // equations of its linearisation. frame_only < F_ restricts the data to one frame.
     double evaluate(const Stage& st, MatrixXd* H, VectorXd* g, uint32_t frame_only = 0xFFFFFFFFu) {
         const uint32_t P = parameters();
+        const uint32_t PL = K_ + B_;
+        // Only active parameters get rows: the rigid and coarse stages cost a fraction of the full one.
+        std::vector<uint8_t> on(PL);
+        for (uint32_t i = 0; i < PL; ++i) on[i] = active(st, i);
+        if (on != set_active_) {  // column sets follow the active parameters
+            normal_.clear();
+            set_active_ = on;
+            vertex_set_.assign(F_, std::vector<uint32_t>(lin_.V, kNoSet));
+        }
+        blocks_.clear();
+        for (uint32_t f = 0; f < F_; ++f) {
+            if (frame_only < F_ && f != frame_only) continue;
+            const auto& fd = frames_[f];
+            for (std::size_t i = 0; i < fd.landmark_points.size(); ++i)
+                blocks_.push_back({f, &fd.landmark_points[i], &fd.landmark_targets[i], nullptr,
+                                   std::sqrt(fd.landmark_weights[i]) / o_.landmark_sigma, 0, 0});
+            for (const auto& p : fd.pairs) blocks_.push_back({f, &p.model, &p.target, &p.normal, std::sqrt(p.weight) / o_.point_sigma, 0, 0});
+        }
         if (H) {
             H->setZero(P, P);
             g->setZero(P);
             touched_.assign(P, 0);
+            normal_.reset();
+            for (Block& b : blocks_) {
+                b.set = column_set(b);
+                b.row = normal_.reserve(b.set, 3);
+                if (b.row == 0)
+                    for (uint32_t c : normal_.columns(b.set)) touched_[c] = 1;
+            }
+            normal_.allocate();
         }
+        // The blocks run on the pool's threads in fixed chunks whose sums are merged in order:
+        // the same result for any thread count.
+        constexpr std::size_t kChunks = 8;
+        double chunk_cost[kChunks] = {};
+        if (H) chunk_g_.assign(kChunks, VectorXd::Zero(P));
+        if (jacobian_scratch_.size() != pool_->size() || jacobian_scratch_[0].size() != 3 * std::size_t(PL))
+            jacobian_scratch_.assign(pool_->size(), std::vector<double>(3 * std::size_t(PL), 0.0));
+        const std::size_t n_blocks = blocks_.size();
+        pool_->parallel_for(kChunks, [&](std::size_t c, unsigned worker) {
+            double* J3 = jacobian_scratch_[worker].data();
+            double sum = 0;
+            for (std::size_t i = c * n_blocks / kChunks; i < (c + 1) * n_blocks / kChunks; ++i) {
+                const Block& b = blocks_[i];
+                const Kinematics& kin = kin_[b.frame];
+                // With H the Jacobian comes first: it computes the point on the way.
+                const Vector3d x = H ? kin.point_jacobian(*b.point, J3, b.scale, on.data()) : kin.point(*b.point);
+                const Vector3d e = b.scale * (x - *b.target);
+                Matrix3d L;
+                Vector3d m;
+                if (b.normal) {
+                    const PointPlaneTerm term = point_plane(e, *b.normal, st.gm_scale, H != nullptr);
+                    sum += term.cost;
+                    L = term.L, m = term.m;
+                } else {
+                    const Robust rb = huber(e.norm(), kHuber);
+                    sum += rb.cost;
+                    L = std::sqrt(rb.weight) * Matrix3d::Identity(), m = rb.weight * e;
+                }
+                if (!H) continue;
+                // The block's rows (L J, J the Jacobian of e) on its column set, and J^T m into g.
+                const std::vector<uint32_t>& cols = normal_.columns(b.set);
+                const std::size_t n = cols.size();
+                double* rows = normal_.rows(b.set, b.row);
+                VectorXd& gc = chunk_g_[c];
+                for (std::size_t a = 0; a < n; ++a) {
+                    const uint32_t l = cols[a] < K_ ? cols[a] : cols[a] - b.frame * B_;  // local column
+                    const Vector3d j(J3[l], J3[PL + l], J3[2 * std::size_t(PL) + l]);
+                    const Vector3d lj = L * j;
+                    rows[a] = lj[0], rows[n + a] = lj[1], rows[2 * n + a] = lj[2];
+                    gc[cols[a]] += j.dot(m);
+                    J3[l] = J3[PL + l] = J3[2 * std::size_t(PL) + l] = 0;
+                }
+                // Translation and scale are written whether active or not.
+                for (uint32_t l = K_ + 3 * lin_.J; l < PL; ++l) J3[l] = J3[PL + l] = J3[2 * std::size_t(PL) + l] = 0;
+            }
+            chunk_cost[c] = sum;
+        });
         double cost = 0;
-        const uint32_t PL = K_ + B_;
-        std::vector<double> J3(3 * std::size_t(PL), 0.0);
-        std::vector<uint32_t> nz;
-        // Only active parameters get rows: the rigid and coarse stages cost a fraction of the full one.
-        std::vector<uint8_t> on(PL);
-        for (uint32_t i = 0; i < PL; ++i) on[i] = active(st, i);
-        auto nonzeros = [&](const Kinematics& kin, const SurfacePoint& sp) {
-            kin.nonzeros(sp, nz);
-            nz.erase(std::remove_if(nz.begin(), nz.end(), [&](uint32_t c) { return !on[c]; }), nz.end());
-        };
-        // Adds (L J)^T (L J) to H and J^T m to g for a 3-row residual block whose Jacobian J3
-        // lives on the local columns nz; L is the square root of the block's weight matrix.
-        std::vector<uint32_t> cols;
-        std::vector<double> rows;
-        if (H) normal_.reset();
-        auto add_block = [&](uint32_t f, const Matrix3d& L, const Vector3d& mr) {
-            const std::size_t n = nz.size();
-            cols.resize(n);
-            rows.resize(3 * n);
-            for (std::size_t a = 0; a < n; ++a) {
-                cols[a] = column(f, nz[a]);
-                const Vector3d j(J3[nz[a]], J3[PL + nz[a]], J3[2 * std::size_t(PL) + nz[a]]);
-                const Vector3d lj = L * j;
-                for (int r = 0; r < 3; ++r) rows[std::size_t(r) * n + a] = lj[r];
-                touched_[cols[a]] = 1;
-                (*g)[cols[a]] += j.dot(mr);
-            }
-            normal_.add(cols, rows.data(), 3);
-        };
-        auto clear_rows = [&]() { std::fill(J3.begin(), J3.end(), 0.0); };
-        for (uint32_t f = 0; f < F_; ++f) {
-            if (frame_only < F_ && f != frame_only) continue;
-            const auto& fd = frames_[f];
-            const Kinematics& kin = kin_[f];
-            for (std::size_t i = 0; i < fd.landmark_points.size(); ++i) {
-                const double s = std::sqrt(fd.landmark_weights[i]) / o_.landmark_sigma;
-                const Vector3d e = s * (kin.point(fd.landmark_points[i]) - fd.landmark_targets[i]);
-                const Robust rb = huber(e.norm());
-                cost += rb.cost;
-                if (!H) continue;
-                nonzeros(kin, fd.landmark_points[i]);
-                kin.point_jacobian(fd.landmark_points[i], J3.data(), s, on.data());
-                add_block(f, std::sqrt(rb.weight) * Matrix3d::Identity(), rb.weight * e);
-                clear_rows();
-            }
-            for (const auto& p : fd.pairs) {
-                const double s = std::sqrt(p.weight) / o_.point_sigma;
-                const Vector3d e = s * (kin.point(p.model) - p.target);
-                const double rn = p.normal.dot(e);
-                const Robust rb = geman_mcclure(rn, st.gm_scale);
-                const double wt = kTangential * kTangential;
-                cost += rb.cost + wt * rb.weight * 0.5 * e.squaredNorm();
-                if (!H) continue;
-                nonzeros(kin, p.model);
-                kin.point_jacobian(p.model, J3.data(), s, on.data());
-                // Point-to-plane (n n^T) plus the weak point-to-point part: weight matrix
-                // M = w (n n^T + wt I), whose square root is sqrt(w) (a n n^T + b I) with
-                // b = sqrt(wt) and (a + b)^2 = 1 + wt (n unit).
-                const double b = std::sqrt(wt), a = std::sqrt(1 + wt) - b;
-                const Matrix3d L = std::sqrt(rb.weight) * (a * p.normal * p.normal.transpose() + b * Matrix3d::Identity());
-                add_block(f, L, rb.weight * (rn * p.normal + wt * e));
-                clear_rows();
-            }
-            // Pose prior: each joint's local rotation vector, over its sigma (not the root: free).
-            for (uint32_t j = 1; j < lin_.J; ++j) {
-                const double s = std::sqrt(o_.pose_prior) / joint_sigma_[j];
-                if (s == 0) continue;
-                const Vector3d r = log_rotation(states_[f].pose[j]);
-                cost += 0.5 * s * s * r.squaredNorm();
-                if (!H) continue;
-                const Matrix3d Jr = s * inverse_left_jacobian(r) * kin.local_from_world(j);
-                const uint32_t c0 = column(f, kin.rotation_offset(j));
-                const Matrix3d JtJ = Jr.transpose() * Jr;
-                const Vector3d Jtr = Jr.transpose() * (s * r);
-                for (int a = 0; a < 3; ++a) {
-                    (*g)[c0 + a] += Jtr[a];
-                    for (int b = a; b < 3; ++b) (*H)(c0 + a, c0 + b) += JtJ(a, b);
-                }
-            }
+        for (std::size_t c = 0; c < kChunks; ++c) {
+            cost += chunk_cost[c];
+            if (H) *g += chunk_g_[c];
         }
-        // Joint limits: a quadratic wall per anatomical component beyond its range.
-        for (uint32_t f = 0; f < F_ && !limits_.empty(); ++f) {
-            if (frame_only < F_ && f != frame_only) continue;
-            const Kinematics& kin = kin_[f];
-            for (uint32_t j = 1; j < lin_.J; ++j) {
-                const anatomy::JointLimit& lim = limits_[j];
-                if (!lim.limited) continue;
-                const Vector3d r = log_rotation(states_[f].pose[j]);
-                const Vector3d c = lim.to_anatomical * r;
-                Vector3d e = Vector3d::Zero();
-                for (int a = 0; a < 3; ++a) {
-                    if (c[a] > lim.hi[a]) e[a] = (c[a] - lim.hi[a]) / kLimitSigma;
-                    else if (c[a] < lim.lo[a]) e[a] = (c[a] - lim.lo[a]) / kLimitSigma;
-                }
-                if (e.isZero()) continue;
-                cost += 0.5 * e.squaredNorm();
-                if (!H) continue;
-                // Rows of the active components only: d c / d w = M J_l^-1(r) A^T, over the sigma.
-                Matrix3d Jc = lim.to_anatomical * inverse_left_jacobian(r) * kin.local_from_world(j) / kLimitSigma;
-                for (int a = 0; a < 3; ++a)
-                    if (e[a] == 0) Jc.row(a).setZero();
-                const uint32_t c0 = column(f, kin.rotation_offset(j));
-                const Matrix3d JtJ = Jc.transpose() * Jc;
-                const Vector3d Jte = Jc.transpose() * e;
-                for (int a = 0; a < 3; ++a) {
-                    (*g)[c0 + a] += Jte[a];
-                    for (int b = a; b < 3; ++b) (*H)(c0 + a, c0 + b) += JtJ(a, b);
-                }
-            }
-        }
+        for (uint32_t f = 0; f < F_; ++f)
+            if (frame_only >= F_ || f == frame_only) cost += pose_priors(f, H, g);
         // Shape prior: the coefficients are standard deviations of the training population.
         for (uint32_t k = 0; k < K_; ++k) {
             cost += 0.5 * o_.shape_prior * shape_[k] * shape_[k];
@@ -770,8 +804,13 @@ private:
     std::vector<Kinematics> kin_;
     std::vector<double> shape_;
     std::vector<FitState> states_;
+    uint32_t searched_frames_ = 0;  // frames started by the cloud start search (with its coarse fit)
     std::vector<uint32_t> vertex_sample_;
     std::vector<Vector3d> posed_, posed_normals_, subset_posed_;
+    std::vector<Vector3d> rest_points_, rest_normals_;  // see rest_sample()
+    std::unique_ptr<PointIndex> rest_index_;
+    Vector3d rest_centre_ = Vector3d::Zero();
+    double rest_bottom_ = 0, rest_top_ = 0;
     Body body_;
     ThreadPool inline_pool_{1};  // when the caller gives none
     ThreadPool* pool_;
@@ -779,6 +818,13 @@ private:
     std::vector<double> joint_sigma_;
     std::vector<anatomy::JointLimit> limits_;  // empty when the options turn limits off
     NormalEquations normal_;  // data blocks of the H being built
+    static constexpr uint32_t kNoSet = 0xFFFFFFFFu;
+    std::vector<Block> blocks_;
+    std::vector<uint8_t> set_active_;                // the active local parameters the column sets were made for
+    std::vector<std::vector<uint32_t>> vertex_set_;  // per frame and vertex: its column set, or kNoSet
+    std::vector<uint32_t> nonzeros_, set_columns_;   // column_set() scratch
+    std::vector<VectorXd> chunk_g_;                  // evaluate(): per chunk gradient
+    std::vector<std::vector<double>> jacobian_scratch_;  // evaluate(): per worker, 3 rows of local columns, kept zero
     std::vector<uint8_t> touched_;  // columns some data row reached in the last evaluate() with H
 };
 

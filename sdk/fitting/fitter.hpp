@@ -3,15 +3,19 @@
 //
 // Method (each choice is explained where it is made in fitter.cpp):
 //   start   rigid alignment with scale from landmarks (Umeyama) when a frame has any; otherwise
-//           from the cloud's principal axes, trying the plausible facing directions;
+//           from the cloud's principal axes, trying the plausible facing directions
+//           (rigid_start.hpp), the best two (four when those end in implausible poses) given a
+//           short coarse fit;
 //   solve   Levenberg-Marquardt over shape, per-joint rotations, translation and optional scale, with
 //           the analytic Jacobians of kinematics.hpp;
 //   data    landmarks (robust Huber loss), clouds with correspondences both ways (nanoflann k-d
-//           trees), point-to-plane where normals exist, normal-compatibility and distance tests,
-//           Geman-McClure loss and trimming;
+//           trees), point-to-plane where normals exist, normal-compatibility and distance tests
+//           (model-to-scan pairs must agree with the scan point's own nearest model point, so
+//           holes do not drag the model), Geman-McClure loss and trimming (robust.hpp);
 //   priors  Gaussian on shape (the model's own: coefficients are standard deviations) and on each
 //           joint's rotation, and soft walls at the anatomical joint limits (joint_limits.hpp);
-//           coarse-to-fine stages (rigid, then main joints and few components, then everything);
+//           coarse-to-fine stages (rigid, then trunk and limbs with few components, then
+//           everything); a frame started by the cloud search skips the rigid stage;
 //   limbs   between the coarse and the fine stage, a search over anatomical poses of each arm and
 //           leg with clouds (raised overhead, forward, bent elbows and knees; upper and middle
 //           joint together, the best refined) that the coarse stage's short-reaching
@@ -79,7 +83,8 @@ struct FitSolution {
 };
 
 // Fits frames to the model. `start` (optional, one per frame) is used when auto_start is false.
-// `pool` (optional) lends worker threads to the limb search; results do not depend on its size.
+// `pool` (optional) lends worker threads (start candidates, correspondences, normal equations, limb
+// search); results do not depend on its size.
 // Throws ssc::Error on invalid input (no data, NaN, bad indices).
 FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,
                 const std::vector<FitState>* start = nullptr, const FitProgress& progress = {}, ThreadPool* pool = nullptr);

@@ -26,6 +26,17 @@ Matrix3d skew(const Vector3d& a) {
     return m;
 }
 
+// sum_k q[k] w[k]. Eight independent partial sums: a single running sum is one long dependency
+// chain the compiler may not reorder (strict floating point), and was the fitter's largest cost.
+double dot_quantized(const int16_t* q, const double* w, uint32_t n) {
+    double acc[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    std::size_t k = 0;
+    for (; k + 8 <= n; k += 8)
+        for (std::size_t i = 0; i < 8; ++i) acc[i] += double(q[k + i]) * w[k + i];
+    for (; k < n; ++k) acc[0] += double(q[k]) * w[k];
+    return ((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7]));
+}
+
 Eigen::Quaterniond exp_rotation(const Vector3d& w) {
     const double angle = w.norm();
     if (angle < 1e-12) return Eigen::Quaterniond(1, 0.5 * w.x(), 0.5 * w.y(), 0.5 * w.z()).normalized();
@@ -37,12 +48,12 @@ Eigen::Quaterniond exp_rotation(const Vector3d& w) {
 LinearModel::LinearModel(const Model& m, uint32_t components)
     : model(m), K(std::min(components, m.component_count())), J(m.joint_count()), V(m.vertex_count()) {
     const auto& d = m.data();
-    const float* step = m.basis_step();
+    const float* step_in = m.basis_step();
+    step.assign(step_in, step_in + K);
     basis.resize(std::size_t(V) * 3 * K);
     for (uint32_t k = 0; k < K; ++k)
         for (uint32_t a = 0; a < 3; ++a)
-            for (uint32_t v = 0; v < V; ++v)
-                basis[(std::size_t(v) * 3 + a) * K + k] = double(step[k]) * d.shape.basis.q[(std::size_t(k) * 3 + a) * V + v];
+            for (uint32_t v = 0; v < V; ++v) basis[(std::size_t(v) * 3 + a) * K + k] = d.shape.basis.q[(std::size_t(k) * 3 + a) * V + v];
     joint_basis.resize(std::size_t(J) * 3 * K);
     joint_mean.resize(J);
     for (uint32_t j = 0; j < J; ++j)
@@ -70,6 +81,7 @@ Kinematics::Kinematics(const LinearModel& lin) : lin_(lin), model_(lin.model), K
     dpos_.assign(std::size_t(J_) * 3 * K_, 0.0);
     dskin_.assign(std::size_t(J_) * 3 * K_, 0.0);
     shape_.assign(K_, 0.0);
+    weighted_shape_.assign(K_, 0.0);
 }
 
 void Kinematics::nonzeros(const SurfacePoint& p, std::vector<uint32_t>& out) const {
@@ -102,6 +114,7 @@ void Kinematics::update(const FitState& s, bool derivatives) {
     derivatives_ = derivatives;
     const auto& parents = model_.data().skeleton.parents;
     std::copy(s.shape.begin(), s.shape.begin() + K_, shape_.begin());
+    for (uint32_t k = 0; k < K_; ++k) weighted_shape_[k] = lin_.step[k] * shape_[k];
     scale_ = s.scale;
     translation_ = s.translation;
     std::vector<Matrix3d> rest_world(J_);
@@ -148,12 +161,7 @@ void Kinematics::update(const FitState& s, bool derivatives) {
 Vector3d Kinematics::rest_vertex(uint32_t v) const {
     const float* mean = &model_.data().shape.mean[3 * std::size_t(v)];
     Vector3d u(mean[0], mean[1], mean[2]);
-    for (uint32_t a = 0; a < 3; ++a) {
-        const double* b = &lin_.basis[(std::size_t(v) * 3 + a) * K_];
-        double acc = 0;
-        for (uint32_t k = 0; k < K_; ++k) acc += b[k] * shape_[k];
-        u[a] += acc;
-    }
+    for (uint32_t a = 0; a < 3; ++a) u[a] += dot_quantized(&lin_.basis[(std::size_t(v) * 3 + a) * K_], weighted_shape_.data(), K_);
     return u;
 }
 
@@ -187,16 +195,18 @@ Matrix3d Kinematics::skin_rotation(uint32_t v) const {
     return m;
 }
 
-void Kinematics::point_jacobian(const SurfacePoint& p, double* J3, double factor, const uint8_t* active) const {
+Vector3d Kinematics::point_jacobian(const SurfacePoint& p, double* J3, double factor, const uint8_t* active) const {
     if (!derivatives_) fail(SSC_ERROR_INTERNAL, "point_jacobian after an update without derivatives");
     uint32_t shape_columns = K_;
     if (active)
         for (shape_columns = 0; shape_columns < K_ && active[shape_columns];) ++shape_columns;
+    Vector3d out = Vector3d::Zero();
     for (int b = 0; b < 3; ++b)
-        if (p.weight[b] != 0) vertex_jacobian(p.vertex[b], J3, factor * p.weight[b], shape_columns, active);
+        if (p.weight[b] != 0) out += p.weight[b] * vertex_jacobian(p.vertex[b], J3, factor * p.weight[b], shape_columns, active);
+    return scale_ * out + translation_;
 }
 
-void Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor, uint32_t Ks, const uint8_t* active) const {
+Vector3d Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor, uint32_t Ks, const uint8_t* active) const {
     const auto& skin = model_.data().skin;
     const uint32_t P = parameter_count();
     const Vector3d u = rest_vertex(v);
@@ -210,16 +220,22 @@ void Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor, uint32_t
         if (w == 0) continue;
         const uint16_t j = skin.joints[4 * std::size_t(v) + i];
         S += (f * w) * skin_rot_[j];
-        const double* dc = &dskin_[std::size_t(j) * 3 * K_];
-        for (uint32_t a = 0; a < 3; ++a) {
-            double* row = J3 + std::size_t(a) * P;
-            for (uint32_t k = 0; k < Ks; ++k) row[k] += f * w * dc[a * K_ + k];
+        const double fw = f * w;
+        for (std::size_t a = 0; a < 3; ++a) {
+            // Plain pointers and size_t indices: the loops below vectorize only when the compiler
+            // can see they are simple strides.
+            double* row = J3 + a * P;
+            const double* dc = &dskin_[(std::size_t(j) * 3 + a) * K_];
+            for (std::size_t k = 0; k < Ks; ++k) row[k] += fw * dc[k];
         }
     }
-    const double* B = &lin_.basis[std::size_t(v) * 3 * K_];
-    for (uint32_t a = 0; a < 3; ++a) {
-        double* row = J3 + std::size_t(a) * P;
-        for (uint32_t k = 0; k < Ks; ++k) row[k] += S(a, 0) * B[k] + S(a, 1) * B[K_ + k] + S(a, 2) * B[2 * K_ + k];
+    const int16_t* B = &lin_.basis[std::size_t(v) * 3 * K_];
+    const double* step = lin_.step.data();
+    for (std::size_t a = 0; a < 3; ++a) {
+        double* row = J3 + a * P;
+        const double s0 = S(Eigen::Index(a), 0), s1 = S(Eigen::Index(a), 1), s2 = S(Eigen::Index(a), 2);
+        const int16_t *b0 = B, *b1 = B + K_, *b2 = B + 2 * std::size_t(K_);
+        for (std::size_t k = 0; k < Ks; ++k) row[k] += (s0 * double(b0[k]) + s1 * double(b1[k]) + s2 * double(b2[k])) * step[k];
     }
     for (int i = 0; i < 4; ++i) {
         const double w = skin.weights[4 * std::size_t(v) + i];
@@ -241,6 +257,7 @@ void Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor, uint32_t
         J3[std::size_t(a) * P + t + a] += factor;
         J3[std::size_t(a) * P + scale_offset()] += factor * scale_ * blended[a];
     }
+    return blended;
 }
 
 void Kinematics::apply(const double* delta, FitState& s) const {

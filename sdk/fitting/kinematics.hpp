@@ -42,7 +42,11 @@ struct LinearModel {
     LinearModel(const Model& model, uint32_t components);
     const Model& model;
     uint32_t K, J, V;
-    std::vector<double> basis;        // metres per standard deviation: [v][axis][k]
+    // The shape basis as the model stores it (quantized), laid out per vertex: [v][axis][k], each
+    // value times step[k] in metres per standard deviation. A quarter of the memory of doubles,
+    // which matters because fits read it at random vertices.
+    std::vector<int16_t> basis;
+    std::vector<double> step;  // [k]
     std::vector<double> joint_basis;  // [j][axis][k]
     std::vector<Vector3d> joint_mean;
     std::vector<Matrix3d> rest_orient;  // R_j (local rest orientation)
@@ -80,8 +84,8 @@ public:
     // leading dimension = parameter_count, row-major) for the given point. `active`, when given
     // (parameter_count flags), skips the columns that are off: shape columns past the first off
     // one (stages use a prefix of the components) and the rotations of joints that are off; the
-    // skipped entries are left as they were.
-    void point_jacobian(const SurfacePoint& p, double* J3, double factor = 1, const uint8_t* active = nullptr) const;
+    // skipped entries are left as they were. Returns point(p), which it computes on the way.
+    Vector3d point_jacobian(const SurfacePoint& p, double* J3, double factor = 1, const uint8_t* active = nullptr) const;
 
     // Posed joint positions (final frame).
     Vector3d joint_position(uint32_t j) const { return scale_ * posed_joint_[j] + translation_; }
@@ -96,13 +100,15 @@ public:
 
 private:
     Vector3d skinned(uint32_t v, const Vector3d& u) const;  // linear blend skinning, before scale and translation
-    void vertex_jacobian(uint32_t v, double* J3, double factor, uint32_t shape_columns, const uint8_t* active) const;
+    // Returns the skinned vertex (before scale and translation).
+    Vector3d vertex_jacobian(uint32_t v, double* J3, double factor, uint32_t shape_columns, const uint8_t* active) const;
 
     const LinearModel& lin_;
     const Model& model_;
     uint32_t K_, J_, V_;
     // Current state.
     std::vector<double> shape_;
+    std::vector<double> weighted_shape_;  // step[k] * shape_[k]: multiplies the quantized basis
     double scale_ = 1;
     bool derivatives_ = false;  // whether the last update computed the shape derivatives
     Vector3d translation_ = Vector3d::Zero();

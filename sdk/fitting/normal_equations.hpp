@@ -5,6 +5,10 @@
 // columns and was the fitter's largest cost. Blocks with the same column set (every point
 // skinned by the same joints) are stacked instead and multiplied once as a dense matrix product,
 // which runs at several times the speed.
+//
+// Use: name each block's column set (column_set, cached by callers: a vertex keeps its set while
+// the active parameters stay the same), reserve its rows, allocate, then fill the rows (from any
+// threads, each block its own rows) and add the products to H.
 #pragma once
 
 #include "common/thread_pool.hpp"
@@ -19,30 +23,40 @@ namespace ssc::fitting {
 
 class NormalEquations {
 public:
-    // Starts a new sum (buffers are kept for reuse).
+    // Forgets every column set (their ids become invalid) and the rows.
+    void clear();
+    // Starts a new sum: drops the rows, keeps the column sets and their ids.
     void reset();
 
-    // Adds J^T J for a block of `rows` residual rows (row-major, rows x cols.size()) whose
-    // columns are the sorted global parameter indices `cols`.
-    void add(const std::vector<uint32_t>& cols, const double* J, uint32_t rows);
+    // The id of a column set (sorted global parameter indices), added if new.
+    uint32_t column_set(const std::vector<uint32_t>& cols);
+    const std::vector<uint32_t>& columns(uint32_t set) const { return sets_[set].cols; }
 
-    // Adds the accumulated sum into the upper triangle of H (parameters x parameters). The
-    // blocks' products run on the pool's threads; H receives them in a fixed order, so the sum
-    // does not depend on the thread count.
+    // Reserves `rows` rows on a column set; returns their first row, for rows() after allocate().
+    std::size_t reserve(uint32_t set, uint32_t rows);
+    // Makes room for every reservation of this sum. Contents are undefined until written.
+    void allocate();
+    // Row `row` of a column set: row-major, columns(set).size() wide. Each reserved row must be
+    // written once; different rows may be written by different threads.
+    double* rows(uint32_t set, std::size_t row) { return sets_[set].rows.data() + row * sets_[set].cols.size(); }
+
+    // Adds the sum into the upper triangle of H (parameters x parameters). The products run on the
+    // pool's threads; H receives them in a fixed order, so the sum does not depend on the thread
+    // count.
     void add_to_upper(Eigen::MatrixXd& H, ThreadPool& pool);
 
 private:
-    struct Bucket {
+    struct Set {
         std::vector<uint32_t> cols;
-        std::vector<double> rows;  // row-major, cols.size() wide
+        std::size_t reserved = 0;   // rows
+        std::vector<double> rows;   // row-major, cols.size() wide
+        Eigen::MatrixXd product;
     };
     struct Hash {
         std::size_t operator()(const std::vector<uint32_t>& v) const;
     };
-    std::vector<Bucket> buckets_;
-    std::size_t used_ = 0;  // buckets_[0, used_) belong to the current sum
-    std::unordered_map<std::vector<uint32_t>, std::size_t, Hash> index_;
-    std::vector<Eigen::MatrixXd> products_;  // per bucket
+    std::vector<Set> sets_;
+    std::unordered_map<std::vector<uint32_t>, uint32_t, Hash> index_;
 };
 
 }  // namespace ssc::fitting
