@@ -461,8 +461,8 @@ private:
     // gates correspondences away), a candidate cannot look good by leaving data unexplained.
     double explained(uint32_t f, double cap = 0.05 /* metres */) {
         auto& fd = frames_[f];
-        kin_[f].update(states_[f]);
-        pose_frame(f);
+        kin_[f].update(states_[f], false);
+        pose_frame(f, false);
         const PointIndex model_index(posed_subset());
         const CloudView cloud = cloud_view(fd);
         const double cap2 = cap * cap;
@@ -489,14 +489,33 @@ private:
         }
     }
 
-    // Posed vertices and normals of frame f (for correspondences).
-    void pose_frame(uint32_t f) { posed_surface(body_, states_[f], posed_, &posed_normals_); }
+    // Posed vertices and normals of frame f: every vertex (the synthesis kernels), or only the
+    // vertex sample, posed by kin_[f] (which must be current) with its rest normals carried by the
+    // skinning rotation. The sample is a quarter of the vertices and needs no normals pass: enough
+    // for the coarse stages and the explained measure, which use the sample only.
+    void pose_frame(uint32_t f, bool every_vertex) {
+        if (every_vertex) {
+            posed_surface(body_, states_[f], posed_, &posed_normals_);
+            return;
+        }
+        rest_sample();  // the rest normals (built on first use)
+        const Kinematics& kin = kin_[f];
+        constexpr std::size_t kChunks = 8;
+        const std::size_t n = vertex_sample_.size();
+        pool_->parallel_for(kChunks, [&](std::size_t c, unsigned) {
+            for (std::size_t s = c * n / kChunks; s < (c + 1) * n / kChunks; ++s) {
+                const uint32_t v = vertex_sample_[s];
+                posed_[v] = kin.posed_vertex(v, kin.rest_vertex(v));
+                posed_normals_[v] = (kin.skin_rotation(v) * rest_normals_[s]).normalized();
+            }
+        });
+    }
 
     void find_pairs(const Stage& st, uint32_t frame_only = 0xFFFFFFFFu) {
         pair_candidates_.assign(F_, 0);
         for (uint32_t f = 0; f < F_; ++f) {
             if (frames_[f].points.empty() || (frame_only < F_ && f != frame_only)) continue;
-            pose_frame(f);
+            pose_frame(f, st.dense_model);
             find_frame_pairs(f, st);
         }
     }
