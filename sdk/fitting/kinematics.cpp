@@ -26,6 +26,16 @@ Matrix3d skew(const Vector3d& a) {
     return m;
 }
 
+// sum_k a[k] b[k], with partial sums as dot_quantized below.
+double dot(const double* a, const double* b, uint32_t n) {
+    double acc[4] = {0, 0, 0, 0};
+    std::size_t k = 0;
+    for (; k + 4 <= n; k += 4)
+        for (std::size_t i = 0; i < 4; ++i) acc[i] += a[k + i] * b[k + i];
+    for (; k < n; ++k) acc[0] += a[k] * b[k];
+    return (acc[0] + acc[2]) + (acc[1] + acc[3]);
+}
+
 // sum_k q[k] w[k]. Eight independent partial sums: a single running sum is one long dependency
 // chain the compiler may not reorder (strict floating point), and was the fitter's largest cost.
 double dot_quantized(const int16_t* q, const double* w, uint32_t n) {
@@ -63,10 +73,13 @@ LinearModel::LinearModel(const Model& m, uint32_t components)
                 joint_basis[(std::size_t(j) * 3 + a) * K + k] = double(step[k]) * m.joint_basis()[(std::size_t(k) * J + j) * 3 + a];
         }
     rest_orient.resize(J);
+    rest_world.resize(J);
     chains.resize(J);
     for (uint32_t j = 0; j < J; ++j) {
         const float* q = &d.skeleton.rest_orientations[4 * j];
         rest_orient[j] = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix();
+        const int32_t parent = d.skeleton.parents[j];  // parents precede children
+        rest_world[j] = parent < 0 ? rest_orient[j] : Matrix3d(rest_world[uint32_t(parent)] * rest_orient[j]);
         for (int32_t a = int32_t(j); a >= 0; a = d.skeleton.parents[uint32_t(a)]) chains[j].push_back(uint32_t(a));
     }
 }
@@ -117,44 +130,49 @@ void Kinematics::update(const FitState& s, bool derivatives) {
     for (uint32_t k = 0; k < K_; ++k) weighted_shape_[k] = lin_.step[k] * shape_[k];
     scale_ = s.scale;
     translation_ = s.translation;
-    std::vector<Matrix3d> rest_world(J_);
-    for (uint32_t j = 0; j < J_; ++j) {
-        Vector3d p = lin_.joint_mean[j];
-        for (uint32_t a = 0; a < 3; ++a) {
-            const double* b = &lin_.joint_basis[(std::size_t(j) * 3 + a) * K_];
-            for (uint32_t k = 0; k < K_; ++k) p[a] += b[k] * shape_[k];
+    // Rest joints depend on the shape only: pose-only updates (the limb search's candidates) keep them.
+    if (!rest_joints_valid_ || rest_joints_shape_ != shape_) {
+        for (uint32_t j = 0; j < J_; ++j) {
+            Vector3d p = lin_.joint_mean[j];
+            for (uint32_t a = 0; a < 3; ++a) p[a] += dot(&lin_.joint_basis[(std::size_t(j) * 3 + a) * K_], shape_.data(), K_);
+            rest_joint_[j] = p;
         }
-        rest_joint_[j] = p;
+        rest_joints_shape_ = shape_;
+        rest_joints_valid_ = true;
+    }
+    const std::vector<Matrix3d>& rest_world = lin_.rest_world;
+    for (uint32_t j = 0; j < J_; ++j) {
+        const Vector3d& p = rest_joint_[j];
         const Matrix3d P = s.pose[j].normalized().toRotationMatrix();
         const int32_t parent = parents[j];
         double* dq = &dpos_[std::size_t(j) * 3 * K_];
         const double* dp = &lin_.joint_basis[std::size_t(j) * 3 * K_];
         if (parent < 0) {
-            rest_world[j] = lin_.rest_orient[j];
             pre_pose_[j] = lin_.rest_orient[j];
             posed_joint_[j] = p;
-            std::copy(dp, dp + 3 * K_, dq);
+            if (derivatives) std::copy(dp, dp + 3 * K_, dq);
         } else {
             const auto up = uint32_t(parent);
-            rest_world[j] = rest_world[up] * lin_.rest_orient[j];
             pre_pose_[j] = world_[up] * lin_.rest_orient[j];
             posed_joint_[j] = skin_rot_[up] * (p - rest_joint_[up]) + posed_joint_[up];
             const double* dpp = &lin_.joint_basis[std::size_t(up) * 3 * K_];
             const double* dqp = &dpos_[std::size_t(up) * 3 * K_];
-            for (uint32_t k = 0; k < K_ && derivatives; ++k) {
-                const Vector3d diff(dp[k] - dpp[k], dp[K_ + k] - dpp[K_ + k], dp[2 * K_ + k] - dpp[2 * K_ + k]);
-                const Vector3d r = skin_rot_[up] * diff;
-                for (uint32_t a = 0; a < 3; ++a) dq[a * K_ + k] = r[a] + dqp[a * K_ + k];
-            }
+            if (derivatives)
+                for (std::size_t k = 0; k < K_; ++k) {
+                    const Vector3d diff(dp[k] - dpp[k], dp[K_ + k] - dpp[K_ + k], dp[2 * K_ + k] - dpp[2 * K_ + k]);
+                    const Vector3d r = skin_rot_[up] * diff;
+                    for (std::size_t a = 0; a < 3; ++a) dq[a * K_ + k] = r[a] + dqp[a * K_ + k];
+                }
         }
         world_[j] = pre_pose_[j] * P;
         skin_rot_[j] = world_[j] * rest_world[j].transpose();
         skin_trans_[j] = posed_joint_[j] - skin_rot_[j] * p;
         double* dc = &dskin_[std::size_t(j) * 3 * K_];
-        for (uint32_t k = 0; k < K_ && derivatives; ++k) {
-            const Vector3d r = skin_rot_[j] * Vector3d(dp[k], dp[K_ + k], dp[2 * K_ + k]);
-            for (uint32_t a = 0; a < 3; ++a) dc[a * K_ + k] = dq[a * K_ + k] - r[a];
-        }
+        if (derivatives)
+            for (std::size_t k = 0; k < K_; ++k) {
+                const Vector3d r = skin_rot_[j] * Vector3d(dp[k], dp[K_ + k], dp[2 * K_ + k]);
+                for (std::size_t a = 0; a < 3; ++a) dc[a * K_ + k] = dq[a * K_ + k] - r[a];
+            }
     }
 }
 

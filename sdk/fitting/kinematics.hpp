@@ -50,6 +50,7 @@ struct LinearModel {
     std::vector<double> joint_basis;  // [j][axis][k]
     std::vector<Vector3d> joint_mean;
     std::vector<Matrix3d> rest_orient;  // R_j (local rest orientation)
+    std::vector<Matrix3d> rest_world;   // W_j = W_parent R_j
     std::vector<std::vector<uint32_t>> chains;  // ancestors of each joint, itself first
 };
 
@@ -113,6 +114,8 @@ private:
     bool derivatives_ = false;  // whether the last update computed the shape derivatives
     Vector3d translation_ = Vector3d::Zero();
     std::vector<Vector3d> rest_joint_, posed_joint_;
+    std::vector<double> rest_joints_shape_;  // the shape rest_joint_ was computed for
+    bool rest_joints_valid_ = false;
     std::vector<Matrix3d> world_, pre_pose_, skin_rot_;  // G_j, G_parent R_j, S_j = G_j W_j^T
     std::vector<Vector3d> skin_trans_;                   // c_j
     std::vector<double> dpos_, dskin_;
