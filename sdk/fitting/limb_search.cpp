@@ -107,7 +107,7 @@ bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView&
                         }
                 }
             };
-            grid.resize(std::min<std::size_t>(grid.size(), 4));
+            grid.resize(std::min<std::size_t>(grid.size(), 6));
             pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) { refine(grid[i], 16 * d, w); });
             std::stable_sort(grid.begin(), grid.end(), by_score);
             grid.resize(std::min<std::size_t>(grid.size(), 2));

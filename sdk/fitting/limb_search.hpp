@@ -5,9 +5,9 @@
 // and leg, a grid of anatomical poses of its upper joint (raised sideways and forwards, along the
 // body, turned) times bends of its middle joint (elbow, knee) is scored together, because which
 // way a bent elbow points depends on both. The score is the explained() measure of explained.hpp
-// (LimbScore: only the limb re-posed); the current pose is a candidate too. The best four are
+// (LimbScore: only the limb re-posed); the current pose is a candidate too. The best six are
 // refined by pattern search within the joint limits (16 degree steps), the best two further (8 and
-// 4 degrees). (Six at 16 degrees gave the same benchmark errors for a quarter more candidates.)
+// 4 degrees).
 #pragma once
 
 #include "common/thread_pool.hpp"
