@@ -16,6 +16,21 @@ double explained_term(const CloudView& cloud, uint32_t i, const Vector3d& x, con
     return std::min(((*cloud.points)[i] - x).squaredNorm(), cap2);
 }
 
+double explained_measure(const CloudView& cloud, const std::vector<Vector3d>& points, const std::vector<Vector3d>& normals,
+                         const std::function<uint32_t(const Vector3d&)>& nearest_model, double cap, std::size_t samples) {
+    const double cap2 = cap * cap;
+    double sum = 0;
+    const std::size_t n = std::min(cloud.sample->size(), samples);
+    for (std::size_t s = 0; s < n; ++s) {
+        const uint32_t i = (*cloud.sample)[s];
+        const uint32_t k = nearest_model((*cloud.points)[i]);
+        sum += explained_term(cloud, i, points[k], normals[k], cap2);
+    }
+    const std::size_t m = std::min(points.size(), samples);
+    for (std::size_t k = 0; k < m; ++k) sum += explained_term(cloud, cloud.index->nearest(points[k], nullptr), points[k], normals[k], cap2);
+    return sum;
+}
+
 LimbScore::LimbScore(const Kinematics& kin, const CloudView& cloud, const std::vector<uint32_t>& vertices,
                      const std::vector<Vector3d>& posed, const std::vector<Vector3d>& posed_normals, uint32_t joint, double cap,
                      double model_cap, std::size_t samples)

@@ -9,6 +9,7 @@
 #include "fitting/nearest.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace ssc::fitting {
@@ -26,6 +27,17 @@ struct CloudView {
 // The term of scan point i against a model point x with unit normal n: the squared distance,
 // capped at cap2; a pair whose normals face away from each other counts as unexplained (cap2).
 double explained_term(const CloudView& cloud, uint32_t i, const Vector3d& x, const Vector3d& n, double cap2);
+
+// Cap of the measure for whole-body placements (start candidates), metres: a candidate still in
+// the rest pose has limbs off by more, which simply count as unexplained.
+constexpr double kPlacementCap = 0.05;
+
+// The measure of a posed model sample: points and unit normals, the first `samples` of them
+// scored against the cloud; nearest_model(p) gives the sample point nearest to p, for the first
+// `samples` of the cloud's sample. Both the start search (rest body, scan carried into its frame)
+// and the fitter (posed sample) score placements with it.
+double explained_measure(const CloudView& cloud, const std::vector<Vector3d>& points, const std::vector<Vector3d>& normals,
+                         const std::function<uint32_t(const Vector3d&)>& nearest_model, double cap, std::size_t samples);
 
 // The measure for poses of one limb (a joint and everything below it), re-posing only the
 // sampled model vertices the limb moves (about a sixth): the terms of the fixed rest are found

@@ -459,26 +459,15 @@ private:
     // candidates: truncated squared distances both ways over fixed point sets, a point whose
     // nearest partner faces the other way counting as unexplained. Unlike the fit's cost (which
     // gates correspondences away), a candidate cannot look good by leaving data unexplained.
-    double explained(uint32_t f, double cap = 0.05 /* metres */) {
-        auto& fd = frames_[f];
+    double explained(uint32_t f) {
         kin_[f].update(states_[f], false);
         pose_frame(f, false);
         const PointIndex model_index(posed_subset());
-        const CloudView cloud = cloud_view(fd);
-        const double cap2 = cap * cap;
-        double sum = 0;
-        const std::size_t n = std::min<std::size_t>(fd.scan_sample.size(), kExplainedSamples);
-        for (std::size_t s = 0; s < n; ++s) {
-            const uint32_t i = fd.scan_sample[s];
-            const uint32_t v = vertex_sample_[model_index.nearest(fd.points[i], nullptr)];
-            sum += explained_term(cloud, i, posed_[v], posed_normals_[v], cap2);
-        }
-        const std::size_t m = std::min<std::size_t>(vertex_sample_.size(), kExplainedSamples);
-        for (std::size_t s = 0; s < m; ++s) {
-            const uint32_t v = vertex_sample_[s];
-            sum += explained_term(cloud, fd.scan_index->nearest(posed_[v], nullptr), posed_[v], posed_normals_[v], cap2);
-        }
-        return sum;
+        subset_normals_.resize(vertex_sample_.size());
+        for (std::size_t i = 0; i < vertex_sample_.size(); ++i) subset_normals_[i] = posed_normals_[vertex_sample_[i]];
+        return explained_measure(
+            cloud_view(frames_[f]), subset_posed_, subset_normals_, [&](const Vector3d& p) { return model_index.nearest(p, nullptr); },
+            kPlacementCap, kExplainedSamples);
     }
 
     // derivatives = false for cost-only evaluations (the trial steps), which need no Jacobians.
@@ -825,7 +814,7 @@ private:
     std::vector<FitState> states_;
     uint32_t searched_frames_ = 0;  // frames started by the cloud start search (with its coarse fit)
     std::vector<uint32_t> vertex_sample_;
-    std::vector<Vector3d> posed_, posed_normals_, subset_posed_;
+    std::vector<Vector3d> posed_, posed_normals_, subset_posed_, subset_normals_;
     std::vector<Vector3d> rest_points_, rest_normals_;  // see rest_sample()
     std::unique_ptr<PointIndex> rest_index_;
     Vector3d rest_centre_ = Vector3d::Zero();

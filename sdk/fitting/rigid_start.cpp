@@ -20,9 +20,6 @@ using Vec7 = Eigen::Matrix<double, 7, 1>;
 // Correspondences reach far (a candidate may start tens of centimetres off) and the loss is wide.
 constexpr double kMaxDistance = 0.5;  // metres
 constexpr double kLossScale = 10;     // Geman-McClure scale, in sigmas
-// The explained measure's cap: a candidate's pose is still the rest pose, so limbs are off by
-// more than this and simply count as unexplained.
-constexpr double kExplainedCap = 0.05;  // metres
 
 struct Pair {
     uint32_t rest;     // index into the rest sample
@@ -128,22 +125,14 @@ private:
 
     // The explained measure (explained.hpp) of the placed rest body, scan points looked up in the
     // rest frame.
-    double explained(const Similarity& T) const {
-        const double cap2 = kExplainedCap * kExplainedCap;
+    double explained(const Similarity& T) {
+        placed_.resize(rest_.points->size());
+        placed_normals_.resize(rest_.points->size());
+        for (uint32_t k = 0; k < placed_.size(); ++k) placed_[k] = posed(T, k), placed_normals_[k] = T.R * (*rest_.normals)[k];
         const Matrix3d to_rest = T.R.transpose() / T.scale;
-        double sum = 0;
-        const std::size_t n = std::min(cloud_.sample->size(), o_.samples);
-        for (std::size_t s = 0; s < n; ++s) {
-            const uint32_t i = (*cloud_.sample)[s];
-            const uint32_t k = rest_.index->nearest(to_rest * ((*cloud_.points)[i] - T.t), nullptr);
-            sum += explained_term(cloud_, i, posed(T, k), T.R * (*rest_.normals)[k], cap2);
-        }
-        const std::size_t m = std::min(rest_.points->size(), o_.samples);
-        for (uint32_t k = 0; k < m; ++k) {
-            const Vector3d x = posed(T, k);
-            sum += explained_term(cloud_, cloud_.index->nearest(x, nullptr), x, T.R * (*rest_.normals)[k], cap2);
-        }
-        return sum;
+        return explained_measure(
+            cloud_, placed_, placed_normals_, [&](const Vector3d& p) { return rest_.index->nearest(to_rest * (p - T.t), nullptr); },
+            kPlacementCap, o_.samples);
     }
 
     const RestSample& rest_;
@@ -151,6 +140,7 @@ private:
     const RigidStartOptions& o_;
     Vector3d centre_;
     std::vector<Pair> pairs_;
+    std::vector<Vector3d> placed_, placed_normals_;  // explained() scratch
 };
 
 }  // namespace
