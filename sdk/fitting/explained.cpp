@@ -8,11 +8,7 @@
 namespace ssc::fitting {
 
 double explained_term(const CloudView& cloud, uint32_t i, const Vector3d& x, const Vector3d& n, double cap2) {
-    const Vector3d& scan_n = (*cloud.normals)[i];
-    if (scan_n.squaredNorm() != 0) {
-        const double dot = scan_n.dot(n);
-        if ((cloud.oriented ? dot : std::abs(dot)) < 0.0) return cap2;
-    }
+    if (!normals_agree((*cloud.normals)[i], n, cloud.oriented, 0.0)) return cap2;
     return std::min(((*cloud.points)[i] - x).squaredNorm(), cap2);
 }
 

@@ -8,6 +8,7 @@
 #include "fitting/kinematics.hpp"
 #include "fitting/nearest.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -23,6 +24,15 @@ struct CloudView {
     const std::vector<uint32_t>* sample = nullptr;   // random order of the points; a prefix is scored
     const std::vector<double>* confidence = nullptr; // per point in [0, 1]; null: all 1
 };
+
+// Whether a scan normal (zero: unknown) and a model normal agree to within min_dot (a cosine);
+// unoriented scan normals are compared up to their sign. The one rule of the fit's
+// correspondences, the start search's and the explained measure (min_dot 0).
+inline bool normals_agree(const Vector3d& scan_n, const Vector3d& model_n, bool oriented, double min_dot) {
+    if (scan_n.squaredNorm() == 0) return true;
+    const double dot = scan_n.dot(model_n);
+    return (oriented ? dot : std::abs(dot)) >= min_dot;
+}
 
 // The term of scan point i against a model point x with unit normal n: the squared distance,
 // capped at cap2; a pair whose normals face away from each other counts as unexplained (cap2).

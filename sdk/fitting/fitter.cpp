@@ -524,9 +524,7 @@ private:
         const std::size_t n_model = std::max<std::size_t>(16, std::min<std::size_t>(vertex_sample_.size(), n_scan));
         const double max2 = st.max_distance * st.max_distance;
         auto compatible = [&](const Vector3d& scan_n, const Vector3d& model_n) {
-            if (scan_n.squaredNorm() == 0) return true;
-            const double dot = scan_n.dot(model_n);
-            return (fd.oriented ? dot : std::abs(dot)) >= st.min_normal_dot;
+            return normals_agree(scan_n, model_n, fd.oriented, st.min_normal_dot);
         };
         std::vector<std::pair<double, Pair>> found;
         auto trim_into = [&](std::vector<std::pair<double, Pair>>& list) {

@@ -45,9 +45,7 @@ private:
     Vector3d posed(const Similarity& T, uint32_t k) const { return T.scale * (T.R * (*rest_.points)[k]) + T.t; }
 
     bool compatible(uint32_t i, const Vector3d& model_normal) const {
-        const Vector3d& n = (*cloud_.normals)[i];
-        if (n.squaredNorm() == 0) return true;
-        return !cloud_.oriented || n.dot(model_normal) >= 0;
+        return normals_agree((*cloud_.normals)[i], model_normal, cloud_.oriented, 0.0);
     }
 
     // Correspondences both ways, as the fitter's (fitter.cpp, find_frame_pairs), with the scan
