@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
+#include <vector>
 
 namespace ssc::fitting {
 
@@ -28,13 +29,17 @@ PointCloud depth_to_cloud(const DepthView& img) {
     const PinholeCamera& cam = img.camera;
     const int W = int(img.width), H = int(img.height);
     const double far = img.max_depth > 0 ? img.max_depth : std::numeric_limits<double>::infinity();
-    auto depth_at = [&](int u, int v) -> double {
-        const std::size_t i = std::size_t(v) * std::size_t(W) + std::size_t(u);
+    // Usable depths (0: none) and each column's and row's ray slope, found once: the window below
+    // reads every pixel 25 times.
+    std::vector<double> depth(std::size_t(W) * std::size_t(H), 0.0), ray_u(img.width), ray_v(img.height);
+    for (std::size_t i = 0; i < depth.size(); ++i) {
         const float z = img.depth[i];
-        if (!(z > 0) || !std::isfinite(z) || (img.mask && !img.mask[i]) || z < img.min_depth || z > far) return 0;
-        return z;
-    };
-    auto camera_point = [&](int u, int v, double z) { return Vector3d((u - cam.cx) * z / cam.fx, (v - cam.cy) * z / cam.fy, z); };
+        if (z > 0 && std::isfinite(z) && (!img.mask || img.mask[i]) && z >= img.min_depth && z <= far) depth[i] = z;
+    }
+    for (int u = 0; u < W; ++u) ray_u[std::size_t(u)] = (u - cam.cx) / cam.fx;
+    for (int v = 0; v < H; ++v) ray_v[std::size_t(v)] = (v - cam.cy) / cam.fy;
+    auto depth_at = [&](int u, int v) { return depth[std::size_t(v) * std::size_t(W) + std::size_t(u)]; };
+    auto camera_point = [&](int u, int v, double z) { return Vector3d(ray_u[std::size_t(u)] * z, ray_v[std::size_t(v)] * z, z); };
     PointCloud out;
     constexpr int R = 2;  // window radius: at 5 mm pixels, a 2.5 cm patch averages sensor noise
     for (int v = 0; v < H; ++v)
@@ -42,6 +47,8 @@ PointCloud depth_to_cloud(const DepthView& img) {
             const double z0 = depth_at(u, v);
             if (z0 == 0) continue;
             const double jump = 0.03 + 0.02 * z0;
+            // Moments about the pixel's own point: small numbers, so the covariance loses no precision.
+            const Vector3d p = camera_point(u, v, z0);
             Vector3d sum = Vector3d::Zero();
             Matrix3d outer = Matrix3d::Zero();
             int n = 0;
@@ -51,17 +58,19 @@ PointCloud depth_to_cloud(const DepthView& img) {
                     if (uu < 0 || vv < 0 || uu >= W || vv >= H) continue;
                     const double z = depth_at(uu, vv);
                     if (z == 0 || std::abs(z - z0) > jump) continue;
-                    const Vector3d p = camera_point(uu, vv, z);
-                    sum += p;
-                    outer += p * p.transpose();
+                    const Vector3d d = camera_point(uu, vv, z) - p;
+                    sum += d;
+                    outer += d * d.transpose();
                     ++n;
                 }
             if (n < 6) continue;
             const Vector3d mean = sum / n;
             const Matrix3d cov = outer / n - mean * mean.transpose();
-            const Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
+            // The closed-form 3 x 3 solver: several times faster than the iterative one, and a
+            // patch of 6 to 25 points needs no more.
+            Eigen::SelfAdjointEigenSolver<Matrix3d> es;
+            es.computeDirect(cov);
             Vector3d normal = es.eigenvectors().col(0);
-            const Vector3d p = camera_point(u, v, z0);
             if (normal.dot(p) > 0) normal = -normal;  // towards the camera centre (the origin here)
             out.points.push_back(cam.rotation * p + cam.position);
             out.normals.push_back((cam.rotation * normal).normalized());

@@ -12,6 +12,11 @@ double explained_term(const CloudView& cloud, uint32_t i, const Vector3d& x, con
     return std::min(((*cloud.points)[i] - x).squaredNorm(), cap2);
 }
 
+double model_term(const CloudView& cloud, const Vector3d& x, const Vector3d& n, double cap) {
+    const uint32_t i = cloud.grid->nearest(x, cap, nullptr);
+    return i == GridIndex::kNone ? cap * cap : explained_term(cloud, i, x, n, cap * cap);
+}
+
 double explained_measure(const CloudView& cloud, const std::vector<Vector3d>& points, const std::vector<Vector3d>& normals,
                          const std::function<uint32_t(const Vector3d&)>& nearest_model, double cap, std::size_t samples) {
     const double cap2 = cap * cap;
@@ -20,17 +25,17 @@ double explained_measure(const CloudView& cloud, const std::vector<Vector3d>& po
     for (std::size_t s = 0; s < n; ++s) {
         const uint32_t i = (*cloud.sample)[s];
         const uint32_t k = nearest_model((*cloud.points)[i]);
-        sum += explained_term(cloud, i, points[k], normals[k], cap2);
+        sum += k == GridIndex::kNone ? cap2 : explained_term(cloud, i, points[k], normals[k], cap2);
     }
     const std::size_t m = std::min(points.size(), samples);
-    for (std::size_t k = 0; k < m; ++k) sum += explained_term(cloud, cloud.index->nearest(points[k], nullptr), points[k], normals[k], cap2);
+    for (std::size_t k = 0; k < m; ++k) sum += model_term(cloud, points[k], normals[k], cap);
     return sum;
 }
 
 LimbScore::LimbScore(const Kinematics& kin, const CloudView& cloud, const std::vector<uint32_t>& vertices,
                      const std::vector<Vector3d>& posed, const std::vector<Vector3d>& posed_normals, uint32_t joint, double cap,
                      double model_cap, std::size_t samples)
-    : cloud_(cloud), cap2_(cap * cap), model_cap2_(model_cap * model_cap) {
+    : cloud_(cloud), cap2_(cap * cap), model_cap_(model_cap) {
     const Model& model = kin.model();
     const auto& skin = model.data().skin;
     const auto& parents = model.data().skeleton.parents;
@@ -52,20 +57,18 @@ LimbScore::LimbScore(const Kinematics& kin, const CloudView& cloud, const std::v
         } else {
             fixed.push_back(posed[v]);
             fixed_vertex.push_back(v);
-            if (s < m) fixed_sum_ += explained_term(cloud, cloud.index->nearest(posed[v], nullptr), posed[v], posed_normals[v], model_cap2_);
+            if (s < m) fixed_sum_ += model_term(cloud, posed[v], posed_normals[v], model_cap);
         }
     }
-    std::unique_ptr<PointIndex> index;
-    if (!fixed.empty()) index = std::make_unique<PointIndex>(fixed);
+    GridIndex index(0.04);  // the sample's spacing is about 2.5 cm
+    index.build(fixed);
     constexpr double kSettled = 0.01;  // metres: the limb could lower such a term by at most this squared
     const std::size_t n = std::min(cloud.sample->size(), samples);
     for (std::size_t s = 0; s < n; ++s) {
         const uint32_t i = (*cloud.sample)[s];
         double d2 = std::numeric_limits<double>::infinity(), term = cap2_;
-        if (index) {
-            const uint32_t k = index->nearest((*cloud.points)[i], &d2);
-            term = explained_term(cloud, i, fixed[k], posed_normals[fixed_vertex[k]], cap2_);
-        }
+        const uint32_t k = index.nearest((*cloud.points)[i], cap, &d2);
+        if (k != GridIndex::kNone) term = explained_term(cloud, i, fixed[k], posed_normals[fixed_vertex[k]], cap2_);
         if (d2 < kSettled * kSettled && term < cap2_) {
             fixed_sum_ += term;
             continue;
@@ -84,7 +87,7 @@ double LimbScore::operator()(const Kinematics& kin) {
     for (std::size_t i = 0; i < nm; ++i) {
         posed_[i] = kin.posed_vertex(moving_[i], unposed_[i]);
         normals_[i] = (kin.skin_rotation(moving_[i]) * rest_normal_[i]).normalized();
-        if (moving_scored_[i]) sum += explained_term(cloud_, cloud_.index->nearest(posed_[i], nullptr), posed_[i], normals_[i], model_cap2_);
+        if (moving_scored_[i]) sum += model_term(cloud_, posed_[i], normals_[i], model_cap_);
     }
     if (nm == 0) {
         for (double t : fixed_term_) sum += t;

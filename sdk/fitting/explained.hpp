@@ -20,7 +20,8 @@ struct CloudView {
     const std::vector<Vector3d>* points = nullptr;
     const std::vector<Vector3d>* normals = nullptr;  // zero where unknown
     bool oriented = true;                            // normals carry their sign
-    const PointIndex* index = nullptr;               // over *points
+    const GridIndex* grid = nullptr;                 // over *points, for queries within a radius
+    const PointIndex* index = nullptr;               // over *points, for queries without one (the start search)
     const std::vector<uint32_t>* sample = nullptr;   // random order of the points; a prefix is scored
     const std::vector<double>* confidence = nullptr; // per point in [0, 1]; null: all 1
 };
@@ -38,13 +39,17 @@ inline bool normals_agree(const Vector3d& scan_n, const Vector3d& model_n, bool 
 // capped at cap2; a pair whose normals face away from each other counts as unexplained (cap2).
 double explained_term(const CloudView& cloud, uint32_t i, const Vector3d& x, const Vector3d& n, double cap2);
 
+// The term of a model point x with unit normal n against its nearest scan point: the same cap,
+// and cap^2 when no scan point lies within the cap.
+double model_term(const CloudView& cloud, const Vector3d& x, const Vector3d& n, double cap);
+
 // Cap of the measure for whole-body placements (start candidates), metres: a candidate still in
 // the rest pose has limbs off by more, which simply count as unexplained.
 constexpr double kPlacementCap = 0.05;
 
 // The measure of a posed model sample: points and unit normals, the first `samples` of them
-// scored against the cloud; nearest_model(p) gives the sample point nearest to p, for the first
-// `samples` of the cloud's sample. Both the start search (rest body, scan carried into its frame)
+// scored against the cloud; nearest_model(p) gives the sample point nearest to p (or
+// GridIndex::kNone when none is within the cap), for the first `samples` of the cloud's sample. Both the start search (rest body, scan carried into its frame)
 // and the fitter (posed sample) score placements with it.
 double explained_measure(const CloudView& cloud, const std::vector<Vector3d>& points, const std::vector<Vector3d>& normals,
                          const std::function<uint32_t(const Vector3d&)>& nearest_model, double cap, std::size_t samples);
@@ -70,7 +75,7 @@ public:
 
 private:
     CloudView cloud_;
-    double cap2_, model_cap2_;
+    double cap2_, model_cap_;
     std::vector<uint32_t> moving_;          // model vertices the limb moves
     std::vector<uint8_t> moving_scored_;    // whether each is among the model-to-scan samples
     std::vector<Vector3d> unposed_, rest_normal_;

@@ -128,7 +128,8 @@ struct FrameData {
     std::vector<Vector3d> points, normals;  // all clouds merged; normals zero where unknown
     std::vector<double> confidence;
     bool oriented = true;  // normals known with their sign
-    std::unique_ptr<PointIndex> scan_index;
+    GridIndex scan_grid{0.02};              // for the fit's queries (all within a gate or a cap)
+    std::unique_ptr<PointIndex> scan_index;  // for the start search and normal estimation; built when needed
     std::vector<uint32_t> scan_sample;  // random order of scan points; a prefix is used
     std::vector<Pair> pairs;
 };
@@ -157,7 +158,7 @@ public:
                 if (c.normals.empty() && !c.points.empty()) fd.oriented = false;
             }
             if (!fd.points.empty()) {
-                fd.scan_index = std::make_unique<PointIndex>(fd.points);
+                fd.scan_grid.build(fd.points);
                 if (!fd.oriented) estimate_normals(fd);
                 fd.scan_sample.resize(fd.points.size());
                 for (uint32_t i = 0; i < fd.scan_sample.size(); ++i) fd.scan_sample[i] = i;
@@ -331,6 +332,7 @@ private:
     void estimate_normals(FrameData& fd) {
         uint32_t idx[12];
         double d2[12];
+        build_scan_tree(fd);
         for (std::size_t i = 0; i < fd.points.size(); ++i) {
             const std::size_t n = fd.scan_index->nearest_k(fd.points[i], 12, idx, d2);
             if (n < 3) continue;
@@ -342,6 +344,11 @@ private:
             Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
             fd.normals[i] = es.eigenvectors().col(0);
         }
+    }
+
+    // The k-d tree over a frame's cloud, for queries with no radius.
+    static void build_scan_tree(FrameData& fd) {
+        if (!fd.scan_index) fd.scan_index = std::make_unique<PointIndex>(fd.points);
     }
 
     // The start: rigid alignment (with scale when fitted) of the mean body.
@@ -375,6 +382,7 @@ private:
         ro.point_sigma = o_.point_sigma;
         ro.points = std::size_t(0.15 * o_.max_points);
         ro.samples = kExplainedSamples;
+        build_scan_tree(frames_[f]);
         const std::vector<StartCandidate> found = rigid_start(rest_sample(), cloud_view(fd), ro, *pool_);
         // The two best get a short coarse fit (pose and the main shape components), which tells
         // front from back far better than the rigid measure does. When the better of them ends in
@@ -443,6 +451,7 @@ private:
         c.points = &fd.points;
         c.normals = &fd.normals;
         c.oriented = fd.oriented;
+        c.grid = &fd.scan_grid;
         c.index = fd.scan_index.get();
         c.sample = &fd.scan_sample;
         return c;
@@ -462,12 +471,12 @@ private:
     double explained(uint32_t f) {
         kin_[f].update(states_[f], false);
         pose_frame(f, false);
-        const PointIndex model_index(posed_subset());
+        sample_grid_.build(posed_subset());
         subset_normals_.resize(vertex_sample_.size());
         for (std::size_t i = 0; i < vertex_sample_.size(); ++i) subset_normals_[i] = posed_normals_[vertex_sample_[i]];
         return explained_measure(
-            cloud_view(frames_[f]), subset_posed_, subset_normals_, [&](const Vector3d& p) { return model_index.nearest(p, nullptr); },
-            kPlacementCap, kExplainedSamples);
+            cloud_view(frames_[f]), subset_posed_, subset_normals_,
+            [&](const Vector3d& p) { return sample_grid_.nearest(p, kPlacementCap, nullptr); }, kPlacementCap, kExplainedSamples);
     }
 
     // derivatives = false for cost-only evaluations (the trial steps), which need no Jacobians.
@@ -516,9 +525,8 @@ private:
         if (fd.points.empty()) return;
         if (pair_candidates_.size() < F_) pair_candidates_.assign(F_, 0);
         // Model points for scan-to-model queries: all vertices or the subset (see Stage).
-        const std::vector<Vector3d>* model_points = &posed_;
-        if (!st.dense_model) model_points = &posed_subset();
-        const PointIndex model_index(*model_points);
+        GridIndex& model_index = st.dense_model ? dense_grid_ : sample_grid_;
+        model_index.build(st.dense_model ? posed_ : posed_subset());
         const std::size_t n_scan = std::max<std::size_t>(
             16, std::min<std::size_t>(fd.scan_sample.size(), std::size_t(st.point_fraction * o_.max_points)));
         const std::size_t n_model = std::max<std::size_t>(16, std::min<std::size_t>(vertex_sample_.size(), n_scan));
@@ -547,9 +555,10 @@ private:
         in_chunks(n_scan, [&](std::size_t s, std::vector<std::pair<double, Pair>>& out) {
             const uint32_t i = fd.scan_sample[s];
             double d2;
-            const uint32_t nearest = model_index.nearest(fd.points[i], &d2);
+            const uint32_t nearest = model_index.nearest(fd.points[i], st.max_distance, &d2);
+            if (nearest == GridIndex::kNone) return;
             const uint32_t v = st.dense_model ? nearest : vertex_sample_[nearest];
-            if (d2 > max2 || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) return;
+            if (!compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) return;
             Pair p;
             p.model.vertex[0] = v;
             p.target = fd.points[i];
@@ -561,8 +570,8 @@ private:
         in_chunks(n_model, [&](std::size_t s, std::vector<std::pair<double, Pair>>& out) {
             const uint32_t v = vertex_sample_[s];
             double d2;
-            const uint32_t i = fd.scan_index->nearest(posed_[v], &d2);
-            if (d2 > max2 || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) return;
+            const uint32_t i = fd.scan_grid.nearest(posed_[v], st.max_distance, &d2);
+            if (i == GridIndex::kNone || !compatible(fd.normals[i], posed_normals_[v]) || fd.confidence[i] <= 0) return;
             // Holes: a model vertex over a hole in the scan finds the nearest point at the hole's
             // edge, which belongs to another part of the model and would drag this part onto it
             // (a hand in a hole curls onto the wrist). Such a point's own nearest model point is
@@ -571,8 +580,8 @@ private:
             // than half that fraction pass without the query.)
             const double agree2 = kReciprocal * kReciprocal * max2;
             if (4 * d2 > agree2) {
-                const uint32_t back = model_index.nearest(fd.points[i], nullptr);
-                if ((posed_[st.dense_model ? back : vertex_sample_[back]] - posed_[v]).squaredNorm() > agree2) return;
+                const uint32_t back = model_index.nearest(fd.points[i], st.max_distance, nullptr);
+                if (back == GridIndex::kNone || (posed_[st.dense_model ? back : vertex_sample_[back]] - posed_[v]).squaredNorm() > agree2) return;
             }
             Pair p;
             p.model.vertex[0] = v;
@@ -815,6 +824,9 @@ private:
     std::vector<Vector3d> posed_, posed_normals_, subset_posed_, subset_normals_;
     std::vector<Vector3d> rest_points_, rest_normals_;  // see rest_sample()
     std::unique_ptr<PointIndex> rest_index_;
+    // Over the posed model, rebuilt for each use: every vertex (spacing about 1 cm) or the sample
+    // (about 2.5 cm).
+    GridIndex dense_grid_{0.02}, sample_grid_{0.04};
     Vector3d rest_centre_ = Vector3d::Zero();
     double rest_bottom_ = 0, rest_top_ = 0;
     Body body_;

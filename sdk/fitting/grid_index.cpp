@@ -6,92 +6,103 @@
 
 namespace ssc::fitting {
 
-namespace {
-
-// At most this many cells per axis: a stray far point must not make the grid huge (the cell
-// grows instead).
-constexpr int kMaxCellsPerAxis = 64;
-
-}  // namespace
-
 void GridIndex::build(const std::vector<Eigen::Vector3d>& points) {
-    points_ = &points;
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (const auto& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     if (points.empty()) lo = hi = Eigen::Vector3d::Zero();
     double cell = base_cell_;
-    for (int a = 0; a < 3; ++a) cell = std::max(cell, (hi[a] - lo[a]) / (kMaxCellsPerAxis - 1));
-    cell_ = cell;
-    origin_ = lo;
+    auto cells_for = [&](double c) {
+        double n = 1;
+        for (int a = 0; a < 3; ++a) n *= std::floor((hi[a] - lo[a]) / c) + 1;
+        return n;
+    };
+    while (cells_for(cell) > double(max_cells_)) cell *= 1.25;
+    cell_ = cell, inverse_cell_ = 1 / cell;
     lo_ = lo, hi_ = hi;
     std::size_t cells = 1;
     for (int a = 0; a < 3; ++a) {
-        dims_[a] = int((hi[a] - lo[a]) / cell) + 1;
+        dims_[a] = int((hi[a] - lo[a]) * inverse_cell_) + 1;
         cells *= std::size_t(dims_[a]);
     }
+    // Counting sort by cell: start_[c + 1] counts cell c, then prefix sums give each cell's first
+    // slot; filling advances start_[c], after which start_ is shifted back by one.
     start_.assign(cells + 1, 0);
     cell_of_.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
         std::size_t c = 0;
-        for (int a = 2; a >= 0; --a) c = c * std::size_t(dims_[a]) + std::size_t(std::min(dims_[a] - 1, int((points[i][a] - lo[a]) / cell)));
+        for (int a = 2; a >= 0; --a)
+            c = c * std::size_t(dims_[a]) + std::size_t(std::min(dims_[a] - 1, int((points[i][a] - lo[a]) * inverse_cell_)));
         cell_of_[i] = uint32_t(c);
         ++start_[c + 1];
     }
     for (std::size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
-    order_.resize(points.size());
-    next_.assign(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < points.size(); ++i) order_[next_[cell_of_[i]]++] = uint32_t(i);
+    sorted_.resize(points.size());
+    original_.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const uint32_t k = start_[cell_of_[i]]++;
+        sorted_[k] = points[i];
+        original_[k] = uint32_t(i);
+    }
+    for (std::size_t c = cells; c > 0; --c) start_[c] = start_[c - 1];
+    start_[0] = 0;
 }
 
 uint32_t GridIndex::nearest(const Eigen::Vector3d& q, double radius, double* dist2) const {
-    if (!points_ || points_->empty()) return kNone;
-    // Most queries of the limb search are far from the limb: the bounding box answers them.
+    if (sorted_.empty()) return kNone;
+    double best = radius * radius;
+    // Queries far from the set (most of the limb search's) are answered by the bounding box.
     double outside2 = 0;
     for (int a = 0; a < 3; ++a) {
         const double below = lo_[a] - q[a], above = q[a] - hi_[a];
         if (below > 0) outside2 += below * below;
         if (above > 0) outside2 += above * above;
     }
-    if (outside2 >= radius * radius) return kNone;
+    if (outside2 >= best) return kNone;
     int qc[3];
+    double f[3];  // q in cell units
     for (int a = 0; a < 3; ++a) {
-        const double x = std::floor((q[a] - origin_[a]) / cell_);
-        qc[a] = int(std::clamp(x, 0.0, double(dims_[a] - 1)));
+        f[a] = (q[a] - lo_[a]) * inverse_cell_;
+        qc[a] = int(std::clamp(std::floor(f[a]), 0.0, double(dims_[a] - 1)));
     }
-    double best = radius * radius;
     uint32_t found = kNone;
-    auto visit = [&](int x, int y, int z) {
-        const std::size_t c = (std::size_t(z) * std::size_t(dims_[1]) + std::size_t(y)) * std::size_t(dims_[0]) + std::size_t(x);
-        for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
-            const uint32_t i = order_[k];
-            const double d2 = ((*points_)[i] - q).squaredNorm();
-            if (d2 < best) best = d2, found = i;
+    const std::size_t nx = std::size_t(dims_[0]), nxy = nx * std::size_t(dims_[1]);
+    auto scan = [&](std::size_t first_cell, std::size_t end_cell) {  // cells [first, end) of one row
+        for (uint32_t k = start_[first_cell]; k < start_[end_cell]; ++k) {
+            const double d2 = (sorted_[k] - q).squaredNorm();
+            if (d2 < best) best = d2, found = k;
         }
     };
-    // Shells of cells around q's cell, nearest first, clipped to the grid.
+    // Shells of cells around q's cell (Chebyshev distance s), nearest first, clipped to the grid.
     for (int s = 0;; ++s) {
-        // Points in cells s or more away (Chebyshev, in cells) are at least s - 1 cells away.
-        const double gap = double(s - 1) * cell_;
-        if (s > 0 && gap * gap >= best) break;
-        int lo[3], hi[3];
-        bool inside = false;  // some cell of this shell lies in the grid
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = std::max(qc[a] - s, 0), hi[a] = std::min(qc[a] + s, dims_[a] - 1);
-            inside |= qc[a] - s >= 0 || qc[a] + s < dims_[a];
+        if (s > 0) {
+            // Shell s lies beyond the faces of the box of the shells before it: stop once that is
+            // farther than the best so far (or the grid has no cells beyond any face).
+            double gap = std::numeric_limits<double>::infinity();
+            for (int a = 0; a < 3; ++a) {
+                if (qc[a] - s >= 0) gap = std::min(gap, (f[a] - double(qc[a] - s + 1)) * cell_);
+                if (qc[a] + s < dims_[a]) gap = std::min(gap, (double(qc[a] + s) - f[a]) * cell_);
+            }
+            if (gap == std::numeric_limits<double>::infinity() || (gap > 0 && gap * gap >= best)) break;
         }
-        if (!inside) break;
-        for (int x = lo[0]; x <= hi[0]; ++x)
-            for (int y = lo[1]; y <= hi[1]; ++y) {
-                if (std::abs(x - qc[0]) == s || std::abs(y - qc[1]) == s) {
-                    for (int z = lo[2]; z <= hi[2]; ++z) visit(x, y, z);
+        const int x0 = std::max(qc[0] - s, 0), x1 = std::min(qc[0] + s, dims_[0] - 1);
+        const int y0 = std::max(qc[1] - s, 0), y1 = std::min(qc[1] + s, dims_[1] - 1);
+        const int z0 = std::max(qc[2] - s, 0), z1 = std::min(qc[2] + s, dims_[2] - 1);
+        for (int z = z0; z <= z1; ++z) {
+            const bool z_face = std::abs(z - qc[2]) == s;
+            for (int y = y0; y <= y1; ++y) {
+                const std::size_t row = std::size_t(z) * nxy + std::size_t(y) * nx;
+                if (z_face || std::abs(y - qc[1]) == s) {
+                    scan(row + std::size_t(x0), row + std::size_t(x1) + 1);  // a whole row of the shell: contiguous
                 } else {
-                    if (qc[2] - s >= 0) visit(x, y, qc[2] - s);
-                    if (s > 0 && qc[2] + s < dims_[2]) visit(x, y, qc[2] + s);
+                    if (qc[0] - s >= 0) scan(row + std::size_t(qc[0] - s), row + std::size_t(qc[0] - s) + 1);
+                    if (s > 0 && qc[0] + s < dims_[0]) scan(row + std::size_t(qc[0] + s), row + std::size_t(qc[0] + s) + 1);
                 }
             }
+        }
     }
-    if (found != kNone && dist2) *dist2 = best;
-    return found;
+    if (found == kNone) return kNone;
+    if (dist2) *dist2 = best;
+    return original_[found];
 }
 
 }  // namespace ssc::fitting
