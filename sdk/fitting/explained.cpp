@@ -51,6 +51,9 @@ LimbScore::LimbScore(const Kinematics& kin, const CloudView& cloud, const std::v
         for (int i = 0; i < 4; ++i) moves |= skin.weights[4 * std::size_t(v) + i] != 0 && below[skin.joints[4 * std::size_t(v) + i]];
         if (moves) {
             moving_.push_back(v);
+            Influence inf;
+            for (int i = 0; i < 4; ++i) inf.joint[i] = skin.joints[4 * std::size_t(v) + i], inf.weight[i] = skin.weights[4 * std::size_t(v) + i];
+            influence_.push_back(inf);
             moving_scored_.push_back(s < m);
             unposed_.push_back(kin.rest_vertex(v));
             rest_normal_.push_back(kin.skin_rotation(v).inverse() * posed_normals[v]);
@@ -85,8 +88,17 @@ double LimbScore::operator()(const Kinematics& kin) {
     normals_.resize(nm);
     double sum = fixed_sum_;
     for (std::size_t i = 0; i < nm; ++i) {
-        posed_[i] = kin.posed_vertex(moving_[i], unposed_[i]);
-        normals_[i] = (kin.skin_rotation(moving_[i]) * rest_normal_[i]).normalized();
+        // The blended skinning transform serves both the position and the normal.
+        const Influence& inf = influence_[i];
+        Matrix3d M = Matrix3d::Zero();
+        Vector3d t = Vector3d::Zero();
+        for (int a = 0; a < 4; ++a) {
+            if (inf.weight[a] == 0) continue;
+            M += inf.weight[a] * kin.joint_skin_rotation(inf.joint[a]);
+            t += inf.weight[a] * kin.joint_skin_translation(inf.joint[a]);
+        }
+        posed_[i] = kin.scale() * (M * unposed_[i] + t) + kin.translation();
+        normals_[i] = (M * rest_normal_[i]).normalized();
         if (moving_scored_[i]) sum += model_term(cloud_, posed_[i], normals_[i], model_cap_);
     }
     if (nm == 0) {

@@ -77,6 +77,11 @@ private:
     CloudView cloud_;
     double cap2_, model_cap_;
     std::vector<uint32_t> moving_;          // model vertices the limb moves
+    struct Influence {
+        uint16_t joint[4];
+        double weight[4];  // 0 for unused slots
+    };
+    std::vector<Influence> influence_;     // each moving vertex's skinning
     std::vector<uint8_t> moving_scored_;    // whether each is among the model-to-scan samples
     std::vector<Vector3d> unposed_, rest_normal_;
     std::vector<uint32_t> open_;            // scan points not settled by the fixed vertices

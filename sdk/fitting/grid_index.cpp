@@ -64,6 +64,8 @@ uint32_t GridIndex::nearest(const Eigen::Vector3d& q, double radius, double* dis
         f[a] = (q[a] - lo_[a]) * inverse_cell_;
         qc[a] = int(std::clamp(std::floor(f[a]), 0.0, double(dims_[a] - 1)));
     }
+    // Distance (metres) along one axis from q (at f, in cell units) to the slab of cells c.
+    auto axis_gap = [&](double fa, int c) { return (fa < c ? double(c) - fa : fa > c + 1 ? fa - double(c + 1) : 0.0) * cell_; };
     uint32_t found = kNone;
     const std::size_t nx = std::size_t(dims_[0]), nxy = nx * std::size_t(dims_[1]);
     auto scan = [&](std::size_t first_cell, std::size_t end_cell) {  // cells [first, end) of one row
@@ -87,15 +89,24 @@ uint32_t GridIndex::nearest(const Eigen::Vector3d& q, double radius, double* dis
         const int x0 = std::max(qc[0] - s, 0), x1 = std::min(qc[0] + s, dims_[0] - 1);
         const int y0 = std::max(qc[1] - s, 0), y1 = std::min(qc[1] + s, dims_[1] - 1);
         const int z0 = std::max(qc[2] - s, 0), z1 = std::min(qc[2] + s, dims_[2] - 1);
+        // Rows of cells farther from q than the best so far are skipped, and full rows are
+        // clipped to the span the best distance still reaches.
         for (int z = z0; z <= z1; ++z) {
+            const double gz = axis_gap(f[2], z), rz = best - gz * gz;
+            if (rz <= 0) continue;
             const bool z_face = std::abs(z - qc[2]) == s;
             for (int y = y0; y <= y1; ++y) {
+                const double gy = axis_gap(f[1], y), ryz = rz - gy * gy;
+                if (ryz <= 0) continue;
                 const std::size_t row = std::size_t(z) * nxy + std::size_t(y) * nx;
-                if (z_face || std::abs(y - qc[1]) == s) {
-                    scan(row + std::size_t(x0), row + std::size_t(x1) + 1);  // a whole row of the shell: contiguous
+                if (z_face || std::abs(y - qc[1]) == s) {  // a whole row of the shell: contiguous
+                    const double reach = std::sqrt(ryz) * inverse_cell_;
+                    const int a = int(std::max(double(x0), std::floor(f[0] - reach))), b = int(std::min(double(x1), std::floor(f[0] + reach)));
+                    if (a <= b) scan(row + std::size_t(a), row + std::size_t(b) + 1);
                 } else {
-                    if (qc[0] - s >= 0) scan(row + std::size_t(qc[0] - s), row + std::size_t(qc[0] - s) + 1);
-                    if (s > 0 && qc[0] + s < dims_[0]) scan(row + std::size_t(qc[0] + s), row + std::size_t(qc[0] + s) + 1);
+                    const int a = qc[0] - s, b = qc[0] + s;
+                    if (a >= 0 && axis_gap(f[0], a) * axis_gap(f[0], a) < ryz) scan(row + std::size_t(a), row + std::size_t(a) + 1);
+                    if (s > 0 && b < dims_[0] && axis_gap(f[0], b) * axis_gap(f[0], b) < ryz) scan(row + std::size_t(b), row + std::size_t(b) + 1);
                 }
             }
         }

@@ -20,12 +20,6 @@ namespace ssc::fitting {
 
 namespace {
 
-Matrix3d skew(const Vector3d& a) {
-    Matrix3d m;
-    m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-    return m;
-}
-
 // sum_k a[k] b[k], with partial sums as dot_quantized below.
 double dot(const double* a, const double* b, uint32_t n) {
     double acc[4] = {0, 0, 0, 0};
@@ -261,13 +255,19 @@ Vector3d Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor, uint
         const uint16_t j = skin.joints[4 * std::size_t(v) + i];
         const Vector3d x = skin_rot_[j] * u + skin_trans_[j];
         blended += w * x;
-        // Rotations of the joint and its ancestors: -w [x - q_k]_x.
+        // Rotations of the joint and its ancestors: -w [x - q_k]_x, written entry by entry (a
+        // Matrix3d temporary here went through the stack and stalled on store forwarding).
+        double* row0 = J3;
+        double* row1 = J3 + P;
+        double* row2 = J3 + 2 * std::size_t(P);
+        const double fw = f * w;
         for (uint32_t k : lin_.chains[j]) {
             const uint32_t off = rotation_offset(k);
             if (active && !active[off]) continue;
-            const Matrix3d m = -(f * w) * skew(x - posed_joint_[k]);
-            for (uint32_t a = 0; a < 3; ++a)
-                for (uint32_t c = 0; c < 3; ++c) J3[std::size_t(a) * P + off + c] += m(a, c);
+            const Vector3d r = fw * (x - posed_joint_[k]);
+            row0[off + 1] += r.z(), row0[off + 2] -= r.y();
+            row1[off] -= r.z(), row1[off + 2] += r.x();
+            row2[off] += r.y(), row2[off + 1] -= r.x();
         }
     }
     const uint32_t t = translation_offset();

@@ -81,6 +81,12 @@ public:
     // which carries unposed normals to posed ones (up to normalisation).
     Vector3d posed_vertex(uint32_t v, const Vector3d& u) const;
     Matrix3d skin_rotation(uint32_t v) const;
+    // Joint j's skinning transform (a vertex skinned by j alone is S u + c before scale and
+    // translation), and the global scale and translation: for callers that blend many vertices.
+    const Matrix3d& joint_skin_rotation(uint32_t j) const { return skin_rot_[j]; }
+    const Vector3d& joint_skin_translation(uint32_t j) const { return skin_trans_[j]; }
+    double scale() const { return scale_; }
+    const Vector3d& translation() const { return translation_; }
     // Adds d(final point)/d(parameters) (3 x parameter_count) times `factor` into J (3 rows,
     // leading dimension = parameter_count, row-major) for the given point. `active`, when given
     // (parameter_count flags), skips the columns that are off: shape columns past the first off
