@@ -94,16 +94,13 @@ struct Pair {
 };
 
 // One residual block of the data: a landmark (Huber on the distance) or a correspondence
-// (point_plane). scale = sqrt(weight) / sigma; set and row: where its 3 rows go in the
-// normal equations.
+// (point_plane). scale = sqrt(weight) / sigma.
 struct Block {
     uint32_t frame;
     const SurfacePoint* point;
     const Vector3d* target;
     const Vector3d* normal;  // null for a landmark
     double scale;
-    uint32_t set;
-    std::size_t row;
 };
 
 // Coarse-to-fine stages: what moves, how far correspondences may reach, how robust the loss is.
@@ -733,19 +730,20 @@ private:
             const auto& fd = frames_[f];
             for (std::size_t i = 0; i < fd.landmark_points.size(); ++i)
                 blocks_.push_back({f, &fd.landmark_points[i], &fd.landmark_targets[i], nullptr,
-                                   std::sqrt(fd.landmark_weights[i]) / o_.landmark_sigma, 0, 0});
-            for (const auto& p : fd.pairs) blocks_.push_back({f, &p.model, &p.target, &p.normal, std::sqrt(p.weight) / o_.point_sigma, 0, 0});
+                                   std::sqrt(fd.landmark_weights[i]) / o_.landmark_sigma});
+            for (const auto& p : fd.pairs) blocks_.push_back({f, &p.model, &p.target, &p.normal, std::sqrt(p.weight) / o_.point_sigma});
         }
+        group_blocks();
         if (H) {
             H->setZero(P, P);
             g->setZero(P);
             touched_.assign(P, 0);
             normal_.reset();
-            for (Block& b : blocks_) {
-                b.set = column_set(b);
-                b.row = normal_.reserve(b.set, 3);
-                if (b.row == 0)
-                    for (uint32_t c : normal_.columns(b.set)) touched_[c] = 1;
+            for (Group& gr : groups_) {
+                gr.set = column_set(blocks_[members_[gr.first]]);
+                gr.row = normal_.reserve(gr.set, 3);
+                if (gr.row == 0)
+                    for (uint32_t c : normal_.columns(gr.set)) touched_[c] = 1;
             }
             normal_.allocate();
         }
@@ -756,38 +754,50 @@ private:
         if (H) chunk_g_.assign(kChunks, VectorXd::Zero(P));
         if (jacobian_scratch_.size() != pool_->size() || jacobian_scratch_[0].size() != 3 * std::size_t(PL))
             jacobian_scratch_.assign(pool_->size(), std::vector<double>(3 * std::size_t(PL), 0.0));
-        const std::size_t n_blocks = blocks_.size();
+        const std::size_t n_groups = groups_.size();
         pool_->parallel_for(kChunks, [&](std::size_t c, unsigned worker) {
             double* J3 = jacobian_scratch_[worker].data();
             double sum = 0;
-            for (std::size_t i = c * n_blocks / kChunks; i < (c + 1) * n_blocks / kChunks; ++i) {
-                const Block& b = blocks_[i];
-                const Kinematics& kin = kin_[b.frame];
-                // With H the Jacobian comes first: it computes the point on the way.
-                const Vector3d x = H ? kin.point_jacobian(*b.point, J3, b.scale, on.data()) : kin.point(*b.point);
-                const Vector3d e = b.scale * (x - *b.target);
-                Matrix3d L;
-                Vector3d m;
-                if (b.normal) {
-                    const PointPlaneTerm term = point_plane(e, *b.normal, st.gm_scale, H != nullptr);
-                    sum += term.cost;
-                    L = term.L, m = term.m;
-                } else {
-                    const Robust rb = huber(e.norm(), kHuber);
-                    sum += rb.cost;
-                    L = std::sqrt(rb.weight) * Matrix3d::Identity(), m = rb.weight * e;
+            for (std::size_t gi = c * n_groups / kChunks; gi < (c + 1) * n_groups / kChunks; ++gi) {
+                const Group& gr = groups_[gi];
+                const Block& first = blocks_[members_[gr.first]];
+                const Kinematics& kin = kin_[first.frame];
+                // With H the Jacobian (of the point) comes first: it computes the point on the way.
+                const Vector3d x = H ? kin.point_jacobian(*first.point, J3, 1.0, on.data()) : kin.point(*first.point);
+                // Each term's Gauss-Newton weight on the point (s^2 L^T L, e = s (x - target)) and
+                // gradient factor (s m) add up over the group.
+                Matrix3d W = Matrix3d::Zero();
+                Vector3d m = Vector3d::Zero();
+                for (uint32_t k = gr.first; k < gr.first + gr.count; ++k) {
+                    const Block& b = blocks_[members_[k]];
+                    const Vector3d e = b.scale * (x - *b.target);
+                    Matrix3d L;
+                    Vector3d mb;
+                    if (b.normal) {
+                        const PointPlaneTerm term = point_plane(e, *b.normal, st.gm_scale, H != nullptr);
+                        sum += term.cost;
+                        L = term.L, mb = term.m;
+                    } else {
+                        const Robust rb = huber(e.norm(), kHuber);
+                        sum += rb.cost;
+                        L = std::sqrt(rb.weight) * Matrix3d::Identity(), mb = rb.weight * e;
+                    }
+                    if (!H) continue;
+                    W.noalias() += (b.scale * b.scale) * (L.transpose() * L);
+                    m += b.scale * mb;
                 }
                 if (!H) continue;
-                // The block's rows (L J, J the Jacobian of e) on its column set, and J^T m into g.
-                const std::vector<uint32_t>& cols = normal_.columns(b.set);
+                // Three rows R J with R^T R = W, on the group's column set, and J^T m into g.
+                const Matrix3d R = weight_root(W);
+                const std::vector<uint32_t>& cols = normal_.columns(gr.set);
                 const std::size_t n = cols.size();
-                double* rows = normal_.rows(b.set, b.row);
+                double* rows = normal_.rows(gr.set, gr.row);
                 VectorXd& gc = chunk_g_[c];
                 for (std::size_t a = 0; a < n; ++a) {
-                    const uint32_t l = cols[a] < K_ ? cols[a] : cols[a] - b.frame * B_;  // local column
+                    const uint32_t l = cols[a] < K_ ? cols[a] : cols[a] - first.frame * B_;  // local column
                     const Vector3d j(J3[l], J3[PL + l], J3[2 * std::size_t(PL) + l]);
-                    const Vector3d lj = L * j;
-                    rows[a] = lj[0], rows[n + a] = lj[1], rows[2 * n + a] = lj[2];
+                    const Vector3d rj = R * j;
+                    rows[a] = rj[0], rows[n + a] = rj[1], rows[2 * n + a] = rj[2];
                     gc[cols[a]] += j.dot(m);
                     J3[l] = J3[PL + l] = J3[2 * std::size_t(PL) + l] = 0;
                 }
@@ -817,6 +827,45 @@ private:
         return cost;
     }
 
+    // Groups the blocks of evaluate(): the correspondences of one model vertex in one frame form
+    // one group (a third of them share a vertex with another), every other block its own. A
+    // group's Jacobian is computed once and its terms' weights add up into one 3-row block.
+    // Groups follow their first block's order, members the blocks' order.
+    void group_blocks() {
+        groups_.clear();
+        group_of_.resize(blocks_.size());
+        if (vertex_group_.size() != std::size_t(F_) * lin_.V) vertex_group_.assign(std::size_t(F_) * lin_.V, kNoSet);
+        for (std::size_t i = 0; i < blocks_.size(); ++i) {
+            const Block& b = blocks_[i];
+            const bool single = b.point->weight[1] == 0 && b.point->weight[2] == 0;
+            uint32_t* slot = single ? &vertex_group_[std::size_t(b.frame) * lin_.V + b.point->vertex[0]] : nullptr;
+            if (!slot || *slot == kNoSet) {
+                if (slot) *slot = uint32_t(groups_.size());
+                groups_.push_back({0, 0, 0, 0});
+            }
+            group_of_[i] = slot ? *slot : uint32_t(groups_.size() - 1);
+            ++groups_[group_of_[i]].count;
+        }
+        uint32_t next = 0;
+        for (Group& gr : groups_) gr.first = next, next += gr.count, gr.count = 0;
+        members_.resize(blocks_.size());
+        for (std::size_t i = 0; i < blocks_.size(); ++i) {
+            Group& gr = groups_[group_of_[i]];
+            members_[gr.first + gr.count++] = uint32_t(i);
+        }
+        for (const Block& b : blocks_)  // leave the map empty for the next call
+            if (b.point->weight[1] == 0 && b.point->weight[2] == 0) vertex_group_[std::size_t(b.frame) * lin_.V + b.point->vertex[0]] = kNoSet;
+    }
+
+    // R with R^T R = W for a group's summed weight (symmetric positive definite: every term has
+    // a point-to-point part): Cholesky, or the eigen-decomposition should rounding say otherwise.
+    static Matrix3d weight_root(const Matrix3d& W) {
+        const Eigen::LLT<Matrix3d> llt(W);
+        if (llt.info() == Eigen::Success) return llt.matrixU();
+        const Eigen::SelfAdjointEigenSolver<Matrix3d> es(W);
+        return es.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() * es.eigenvectors().transpose();
+    }
+
     const LinearModel& lin_;
     FitOptions o_;
     uint32_t F_, K_, B_;
@@ -843,6 +892,14 @@ private:
     NormalEquations normal_;  // data blocks of the H being built
     static constexpr uint32_t kNoSet = 0xFFFFFFFFu;
     std::vector<Block> blocks_;
+    struct Group {
+        uint32_t first, count;  // its blocks: members_[first, first + count)
+        uint32_t set;
+        std::size_t row;
+    };
+    std::vector<Group> groups_;
+    std::vector<uint32_t> members_, group_of_;  // group_blocks() output and scratch
+    std::vector<uint32_t> vertex_group_;        // per frame and vertex: its group in the current call, or kNoSet
     std::vector<uint8_t> set_active_;                // the active local parameters the column sets were made for
     std::vector<std::vector<uint32_t>> vertex_set_;  // per frame and vertex: its column set, or kNoSet
     std::vector<uint32_t> nonzeros_, set_columns_;   // column_set() scratch
