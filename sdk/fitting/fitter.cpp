@@ -965,7 +965,7 @@ FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const 
     validate(lin, frames, options);
     if (start && !options.auto_start)
         SSC_REQUIRE_ARG_S(start->size() == frames.size(), "fit: " << start->size() << " start states for " << frames.size() << " frames");
-    // The reported time includes the setup (scan k-d trees, normal estimation).
+    // The reported time includes the setup (the scans' grids and k-d trees, normal estimation).
     const auto t0 = std::chrono::steady_clock::now();
     Solver solver(lin, frames, options, pool);
     return solver.run(start, progress, t0);

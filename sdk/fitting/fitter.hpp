@@ -8,8 +8,10 @@
 //           short coarse fit;
 //   solve   Levenberg-Marquardt over shape, per-joint rotations, translation and optional scale, with
 //           the analytic Jacobians of kinematics.hpp;
-//   data    landmarks (robust Huber loss), clouds with correspondences both ways (nanoflann k-d
-//           trees), point-to-plane where normals exist, normal-compatibility and distance tests
+//   data    landmarks (robust Huber loss), clouds with correspondences both ways (uniform grids,
+//           grid_index.hpp: every query has a gate; the start search's far-reaching ones use
+//           nanoflann k-d trees), point-to-plane where normals exist, normal-compatibility and
+//           distance tests
 //           (model-to-scan pairs must agree with the scan point's own nearest model point, so
 //           holes do not drag the model), Geman-McClure loss and trimming (robust.hpp);
 //   priors  Gaussian on shape (the model's own: coefficients are standard deviations) and on each
