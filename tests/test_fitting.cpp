@@ -74,6 +74,13 @@ TEST_CASE("the grid index finds the same nearest point within a radius as a brut
     const std::vector<Eigen::Vector3d> none;
     grid.build(none);
     CHECK(grid.nearest(Eigen::Vector3d::Zero(), 1.0, nullptr) == fitting::GridIndex::kNone);
+    // An extent that overflows a double: still exact, point by point.
+    const std::vector<Eigen::Vector3d> extreme = {Eigen::Vector3d(-1e308, 0, 0), Eigen::Vector3d(1e308, 0, 0), Eigen::Vector3d(0.5, 0, 0)};
+    grid.build(extreme);
+    double d2 = 0;
+    CHECK(grid.nearest(Eigen::Vector3d(0.4, 0, 0), 1.0, &d2) == 2);
+    CHECK(d2 == Approx(0.01));
+    CHECK(grid.nearest(Eigen::Vector3d(-1e308, 1, 0), 2.0, nullptr) == 0);
 }
 
 TEST_CASE("fitter Jacobians match finite differences", "[fitting]") {
@@ -237,6 +244,8 @@ TEST_CASE("the fitter rejects bad input with a message", "[fitting]") {
     for (int i = 0; i < 20; ++i) cloud.clouds[0].points.emplace_back(0.01 * i, 0.1 * i, 0);
     cloud.clouds[0].points[3].x() = std::nan("");
     CHECK(status_of({cloud}) == SSC_ERROR_INVALID_ARGUMENT);
+    cloud.clouds[0].points[3].x() = 1e300;  // finite, but no measurement (extents would overflow)
+    CHECK(status_of({cloud}) == SSC_ERROR_INVALID_ARGUMENT);
     cloud.clouds[0].points[3].x() = 0;
     cloud.clouds[0].normals.resize(3, Eigen::Vector3d::UnitZ());
     CHECK(status_of({cloud}) == SSC_ERROR_INVALID_ARGUMENT);  // counts differ
@@ -334,6 +343,9 @@ TEST_CASE("the C API fits landmarks by name and reports through ssc_fitter", "[f
     CHECK(ssc_fitter_add_points(fitter, 0, pts.data(), nullptr, nullptr, 20, 6) == SSC_ERROR_INVALID_ARGUMENT);
     pts[7] = std::nanf("");
     CHECK(ssc_fitter_add_points(fitter, 0, pts.data(), nullptr, nullptr, 20, 0) == SSC_ERROR_INVALID_ARGUMENT);
+    pts[7] = 1e30f;  // finite, but no measurement
+    CHECK(ssc_fitter_add_points(fitter, 0, pts.data(), nullptr, nullptr, 20, 0) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(ssc_last_error()).find("beyond") != std::string::npos);
     CHECK(ssc_fitter_point_count(fitter, 0) == 0);
     pts[7] = 0;
     REQUIRE(ssc_fitter_add_points(fitter, 0, pts.data(), nullptr, nullptr, 20, 0) == SSC_OK);

@@ -745,7 +745,8 @@ SSC_API uint32_t ssc_fitter_frame_count(const ssc_fitter* fitter);
  * @param positions  3 * count floats, metres, any frame of reference (the fit finds the rigid motion).
  * @param weights    count relative confidences (> 0), or NULL for all 1.
  * @return SSC_ERROR_INVALID_ARGUMENT for NULL, a bad frame, an index out of range, non-finite
- *         values or non-positive weights; nothing is added then.
+ *         values or coordinates beyond 1e6 in magnitude, or non-positive weights; nothing is
+ *         added then.
  * Ownership: the arrays are copied. Threads: the fitter's thread.
  */
 SSC_API ssc_status ssc_fitter_add_landmarks(ssc_fitter* fitter, uint32_t frame, const uint32_t* indices,
@@ -766,7 +767,8 @@ SSC_API ssc_status ssc_fitter_add_landmarks_by_name(ssc_fitter* fitter, uint32_t
  * @param confidence  NULL, or count weights in [0, 1] (packed floats).
  * @param count       at least 16 points.
  * @return SSC_ERROR_INVALID_ARGUMENT for NULL, a bad frame or stride, too few points, non-finite
- *         values, non-unit normals or confidences outside [0, 1]; nothing is added then.
+ *         values or coordinates beyond 1e6 in magnitude, non-unit normals or confidences outside
+ *         [0, 1]; nothing is added then.
  * Ownership: the arrays are copied. Threads: the fitter's thread.
  */
 SSC_API ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float* points, const float* normals,

@@ -33,7 +33,8 @@ void add_landmarks(ssc_fitter* f, uint32_t frame, const std::vector<uint32_t>& i
         fitting::LandmarkTarget t;
         t.landmark = indices[i];
         t.position = Eigen::Vector3d(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
-        SSC_REQUIRE_ARG_S(t.position.allFinite(), "positions of landmark " << i << " are not finite");
+        SSC_REQUIRE_ARG_S(fitting::measured_point(t.position),
+                          "positions of landmark " << i << " are not finite or beyond " << fitting::kMaxCoordinate);
         t.weight = weights ? weights[i] : 1.0;
         SSC_REQUIRE_ARG_S(std::isfinite(t.weight) && t.weight > 0, "weights[" << i << "] must be positive");
         add.push_back(t);
@@ -155,7 +156,7 @@ ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float
         c.points.reserve(count);
         for (uint32_t i = 0; i < count; ++i) {
             c.points.push_back(at(points, i));
-            SSC_REQUIRE_ARG_S(c.points.back().allFinite(), "point " << i << " is not finite");
+            SSC_REQUIRE_ARG_S(fitting::measured_point(c.points.back()), "point " << i << " is not finite or beyond " << fitting::kMaxCoordinate);
             if (normals) {
                 c.normals.push_back(at(normals, i));
                 SSC_REQUIRE_ARG_S(c.normals.back().allFinite() && std::abs(c.normals.back().norm() - 1) < 1e-3,

@@ -921,7 +921,8 @@ void validate(const LinearModel& lin, const std::vector<Frame>& frames, const Fi
         std::size_t points = 0;
         for (const auto& l : fr.landmarks) {
             SSC_REQUIRE_ARG_S(l.landmark < d.landmarks.size(), "fit: frame " << f << ": landmark index " << l.landmark << " out of range");
-            SSC_REQUIRE_ARG_S(finite(l.position), "fit: frame " << f << ": landmark " << d.landmarks[l.landmark].name << " is not finite");
+            SSC_REQUIRE_ARG_S(measured_point(l.position), "fit: frame " << f << ": landmark " << d.landmarks[l.landmark].name
+                                                                 << " is not finite or has a coordinate beyond " << kMaxCoordinate);
             SSC_REQUIRE_ARG_S(l.weight > 0 && std::isfinite(l.weight), "fit: frame " << f << ": landmark weights must be positive");
         }
         for (const auto& c : fr.clouds) {
@@ -930,7 +931,8 @@ void validate(const LinearModel& lin, const std::vector<Frame>& frames, const Fi
             SSC_REQUIRE_ARG_S(c.confidence.empty() || c.confidence.size() == c.points.size(),
                             "fit: frame " << f << ": " << c.confidence.size() << " confidences for " << c.points.size() << " points");
             for (std::size_t i = 0; i < c.points.size(); ++i) {
-                SSC_REQUIRE_ARG_S(finite(c.points[i]), "fit: frame " << f << ": point " << i << " is not finite");
+                SSC_REQUIRE_ARG_S(measured_point(c.points[i]),
+                                  "fit: frame " << f << ": point " << i << " is not finite or has a coordinate beyond " << kMaxCoordinate);
                 if (!c.normals.empty())
                     SSC_REQUIRE_ARG_S(finite(c.normals[i]) && std::abs(c.normals[i].norm() - 1) < 1e-3,
                                     "fit: frame " << f << ": normal " << i << " is not a unit vector");
@@ -945,6 +947,8 @@ void validate(const LinearModel& lin, const std::vector<Frame>& frames, const Fi
 }
 
 }  // namespace
+
+bool measured_point(const Vector3d& p) { return finite(p) && p.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
 
 bool is_hand_landmark(const std::string& name) {
     std::string lower;

@@ -91,6 +91,14 @@ struct FitSolution {
 FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,
                 const std::vector<FitState>* start = nullptr, const FitProgress& progress = {}, ThreadPool* pool = nullptr);
 
+// Measured coordinates beyond this magnitude (metres, or the data's unit when scale is fitted)
+// are no measurement of a person: they would overflow extents and centroids.
+constexpr double kMaxCoordinate = 1e6;
+
+// Whether a measured point (landmark, cloud point) is finite and within kMaxCoordinate: the
+// fitter's and the C API's one rule.
+bool measured_point(const Vector3d& p);
+
 // Per-joint prior standard deviation of the rotation (radians): loose for the trunk and limbs,
 // tight for fingers and the toes, which sparse data rarely constrain.
 double joint_rotation_sigma(const std::string& joint_name);

@@ -10,6 +10,15 @@ void GridIndex::build(const std::vector<Eigen::Vector3d>& points) {
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (const auto& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     if (points.empty()) lo = hi = Eigen::Vector3d::Zero();
+    // A set whose extent overflows (callers reject such coordinates, but the grid must not divide
+    // by infinity) is searched point by point.
+    brute_force_ = !(hi - lo).allFinite();
+    if (brute_force_) {
+        sorted_ = points;
+        original_.resize(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i) original_[i] = uint32_t(i);
+        return;
+    }
     double cell = base_cell_;
     auto cells_for = [&](double c) {
         double n = 1;
@@ -50,6 +59,15 @@ void GridIndex::build(const std::vector<Eigen::Vector3d>& points) {
 uint32_t GridIndex::nearest(const Eigen::Vector3d& q, double radius, double* dist2) const {
     if (sorted_.empty()) return kNone;
     double best = radius * radius;
+    if (brute_force_) {
+        uint32_t found = kNone;
+        for (std::size_t k = 0; k < sorted_.size(); ++k) {
+            const double d2 = (sorted_[k] - q).squaredNorm();
+            if (d2 < best) best = d2, found = uint32_t(k);
+        }
+        if (found != kNone && dist2) *dist2 = best;
+        return found;
+    }
     // Queries far from the set (most of the limb search's) are answered by the bounding box.
     double outside2 = 0;
     for (int a = 0; a < 3; ++a) {

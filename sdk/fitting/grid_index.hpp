@@ -44,6 +44,7 @@ private:
     std::vector<Eigen::Vector3d> sorted_;     // the points by cell
     std::vector<uint32_t> original_;          // their indices in the built set
     std::vector<uint32_t> cell_of_;           // build scratch
+    bool brute_force_ = false;                // the set's extent overflowed: no cells, every point tried
 };
 
 }  // namespace ssc::fitting
