@@ -7,6 +7,8 @@
 // correspondence gate, the cap of a truncated distance), which bounds the grid's search. Queries
 // with no useful radius (the start search, whose candidates begin tens of centimetres off) stay
 // with the k-d tree.
+//
+// Threads: nearest() may run on many threads at once; build() must run alone.
 #pragma once
 
 #include <Eigen/Core>
