@@ -763,7 +763,7 @@ private:
                 const Block& first = blocks_[members_[gr.first]];
                 const Kinematics& kin = kin_[first.frame];
                 // With H the Jacobian (of the point) comes first: it computes the point on the way.
-                const Vector3d x = H ? kin.point_jacobian(*first.point, J3, 1.0, on.data()) : kin.point(*first.point);
+                const Vector3d x = H ? kin.point_jacobian(*first.point, J3, on.data()) : kin.point(*first.point);
                 // Each term's Gauss-Newton weight on the point (s^2 L^T L, e = s (x - target)) and
                 // gradient factor (s m) add up over the group.
                 Matrix3d W = Matrix3d::Zero();

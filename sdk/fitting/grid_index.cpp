@@ -25,7 +25,7 @@ void GridIndex::build(const std::vector<Eigen::Vector3d>& points) {
         for (int a = 0; a < 3; ++a) n *= std::floor((hi[a] - lo[a]) / c) + 1;
         return n;
     };
-    while (cells_for(cell) > double(max_cells_)) cell *= 1.25;
+    while (cells_for(cell) > kMaxCells) cell *= 1.25;
     cell_ = cell, inverse_cell_ = 1 / cell;
     lo_ = lo, hi_ = hi;
     std::size_t cells = 1;

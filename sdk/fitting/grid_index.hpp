@@ -23,8 +23,8 @@ public:
     static constexpr uint32_t kNone = 0xFFFFFFFFu;
 
     // cell: edge length in metres, about twice the points' typical spacing. The grid never has
-    // more than max_cells cells: a widely spread set (a stray far point) gets larger cells.
-    explicit GridIndex(double cell, std::size_t max_cells = std::size_t(1) << 18) : base_cell_(cell), max_cells_(max_cells) {}
+    // more than kMaxCells cells: a widely spread set (a stray far point) gets larger cells.
+    explicit GridIndex(double cell) : base_cell_(cell) {}
 
     // Indexes the points (copied in cell order, so the set may change after the build). Buffers
     // are reused between builds.
@@ -34,11 +34,10 @@ public:
     // untouched) when there is none. Exact; the same answer every time for the same build.
     uint32_t nearest(const Eigen::Vector3d& q, double radius, double* dist2) const;
 
-    std::size_t size() const { return sorted_.size(); }
-
 private:
+    static constexpr double kMaxCells = 1 << 18;  // 1 MB of cell starts
+
     double base_cell_;
-    std::size_t max_cells_;
     double cell_ = 0, inverse_cell_ = 0;  // the cell used: base_cell_, or larger for a widely spread set
     Eigen::Vector3d lo_ = Eigen::Vector3d::Zero(), hi_ = Eigen::Vector3d::Zero();  // the points' bounding box; lo_ is the grid's origin
     int dims_[3] = {0, 0, 0};                 // cells per axis; x varies fastest

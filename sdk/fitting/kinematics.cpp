@@ -207,14 +207,14 @@ Matrix3d Kinematics::skin_rotation(uint32_t v) const {
     return m;
 }
 
-Vector3d Kinematics::point_jacobian(const SurfacePoint& p, double* J3, double factor, const uint8_t* active) const {
+Vector3d Kinematics::point_jacobian(const SurfacePoint& p, double* J3, const uint8_t* active) const {
     if (!derivatives_) fail(SSC_ERROR_INTERNAL, "point_jacobian after an update without derivatives");
     uint32_t shape_columns = K_;
     if (active)
         for (shape_columns = 0; shape_columns < K_ && active[shape_columns];) ++shape_columns;
     Vector3d out = Vector3d::Zero();
     for (int b = 0; b < 3; ++b)
-        if (p.weight[b] != 0) out += p.weight[b] * vertex_jacobian(p.vertex[b], J3, factor * p.weight[b], shape_columns, active);
+        if (p.weight[b] != 0) out += p.weight[b] * vertex_jacobian(p.vertex[b], J3, p.weight[b], shape_columns, active);
     return scale_ * out + translation_;
 }
 

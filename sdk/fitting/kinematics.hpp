@@ -87,12 +87,12 @@ public:
     const Vector3d& joint_skin_translation(uint32_t j) const { return skin_trans_[j]; }
     double scale() const { return scale_; }
     const Vector3d& translation() const { return translation_; }
-    // Adds d(final point)/d(parameters) (3 x parameter_count) times `factor` into J (3 rows,
+    // Adds d(final point)/d(parameters) (3 x parameter_count) into J (3 rows,
     // leading dimension = parameter_count, row-major) for the given point. `active`, when given
     // (parameter_count flags), skips the columns that are off: shape columns past the first off
     // one (stages use a prefix of the components) and the rotations of joints that are off; the
     // skipped entries are left as they were. Returns point(p), which it computes on the way.
-    Vector3d point_jacobian(const SurfacePoint& p, double* J3, double factor = 1, const uint8_t* active = nullptr) const;
+    Vector3d point_jacobian(const SurfacePoint& p, double* J3, const uint8_t* active = nullptr) const;
 
     // Posed joint positions (final frame).
     Vector3d joint_position(uint32_t j) const { return scale_ * posed_joint_[j] + translation_; }
