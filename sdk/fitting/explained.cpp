@@ -82,7 +82,7 @@ LimbScore::LimbScore(const Kinematics& kin, const CloudView& cloud, const std::v
     }
 }
 
-double LimbScore::operator()(const Kinematics& kin) {
+double LimbScore::operator()(const Kinematics& kin, double bound) {
     const std::size_t nm = moving_.size();
     posed_.resize(nm);
     normals_.resize(nm);
@@ -99,7 +99,10 @@ double LimbScore::operator()(const Kinematics& kin) {
         }
         posed_[i] = kin.scale() * (M * unposed_[i] + t) + kin.translation();
         normals_[i] = (M * rest_normal_[i]).normalized();
-        if (moving_scored_[i]) sum += model_term(cloud_, posed_[i], normals_[i], model_cap_);
+        if (moving_scored_[i]) {
+            sum += model_term(cloud_, posed_[i], normals_[i], model_cap_);
+            if (sum >= bound) return sum;
+        }
     }
     if (nm == 0) {
         for (double t : fixed_term_) sum += t;
@@ -113,6 +116,7 @@ double LimbScore::operator()(const Kinematics& kin) {
         const double radius = std::sqrt(std::min(fixed_d2_[s], cap2_));
         const uint32_t k = moved_index_.nearest((*cloud_.points)[i], radius, nullptr);
         sum += k != GridIndex::kNone ? explained_term(cloud_, i, posed_[k], normals_[k], cap2_) : fixed_term_[s];
+        if (sum >= bound) return sum;
     }
     return sum;
 }

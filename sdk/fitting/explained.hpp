@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace ssc::fitting {
@@ -70,8 +71,10 @@ public:
               const std::vector<Vector3d>& posed, const std::vector<Vector3d>& posed_normals, uint32_t joint, double cap,
               double model_cap, std::size_t samples);
 
-    // The measure with kin updated to a candidate state (only the limb's joints differing).
-    double operator()(const Kinematics& kin);
+    // The measure with kin updated to a candidate state (only the limb's joints differing). Every
+    // term is non-negative, so once the sum reaches `bound` the candidate cannot beat a measure of
+    // `bound`: the scoring stops there and returns a value >= bound (not the measure).
+    double operator()(const Kinematics& kin, double bound = std::numeric_limits<double>::infinity());
 
 private:
     CloudView cloud_;

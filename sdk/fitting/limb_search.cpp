@@ -5,7 +5,9 @@
 #include "fitting/posed_surface.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace ssc::fitting {
@@ -63,12 +65,12 @@ bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView&
             };
             const LimbScore limb_score(kin, cloud, vertex_sample, posed, posed_normals, uint32_t(ju), cap, model_cap, kLimbSamples);
             std::vector<Worker> workers(pool.size(), Worker{keep, kin, limb_score});
-            auto score = [&](unsigned w, const Vector3d& au, const Vector3d& am) {
+            auto score = [&](unsigned w, const Vector3d& au, const Vector3d& am, double bound) {
                 Worker& k = workers[w];
                 k.state.pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, au);
                 k.state.pose[std::size_t(jm)] = anatomy::rotation_from_angles(lm, am);
                 k.kin.update(k.state, false);
-                return k.score(k.kin);
+                return k.score(k.kin, bound);
             };
             struct Candidate {
                 Vector3d upper, middle;
@@ -84,13 +86,29 @@ bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView&
             std::vector<Candidate> grid;
             for (const auto& au : uppers)
                 for (const auto& am : middles) grid.push_back({au, am, 0});
-            pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) { grid[i].score = score(w, grid[i].upper, grid[i].middle); });
+            constexpr std::size_t kRefined = 6;
+            pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) {
+                grid[i].score = score(w, grid[i].upper, grid[i].middle, std::numeric_limits<double>::infinity());
+            });
             const double current = grid[0].score;  // the current pose: first upper, first middle
             std::stable_sort(grid.begin(), grid.end(), by_score);
             // The grid is coarse (20 to 60 degrees apart): refine the best few by pattern
             // search over the upper joint's three angles and the middle joint's bend, in
             // 16 degree steps, then the best two in 8 and 4 degree steps.
-            auto refine = [&](Candidate& x, double step, unsigned w) {
+            // A step only needs to know whether a neighbour beats the current candidate, so its
+            // scoring stops at the current score (LimbScore's bound). The search returns to
+            // poses it has scored (a step back, the 4 degree steps on the 8 degree lattice):
+            // those come from a memo. A bounded score stays valid as the current score only falls.
+            struct Scored {
+                std::array<int64_t, 4> key;
+                double score;
+            };
+            auto key_of = [](const Candidate& y) {
+                // Angles repeat up to rounding (a step there and back): keys in units of 1e-7 rad.
+                return std::array<int64_t, 4>{std::llround(y.upper[0] * 1e7), std::llround(y.upper[1] * 1e7),
+                                              std::llround(y.upper[2] * 1e7), std::llround(y.middle[0] * 1e7)};
+            };
+            auto refine = [&](Candidate& x, double step, unsigned w, std::vector<Scored>& memo) {
                 for (bool improved = true; improved;) {
                     improved = false;
                     for (int coord = 0; coord < 4; ++coord)
@@ -102,17 +120,33 @@ bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView&
                             const double moved_to = std::clamp(angle + sign * step, lo, hi);
                             if (moved_to == angle) continue;
                             angle = moved_to;
-                            y.score = score(w, y.upper, y.middle);
+                            const std::array<int64_t, 4> key = key_of(y);
+                            const auto seen = std::find_if(memo.begin(), memo.end(), [&](const Scored& m) { return m.key == key; });
+                            if (seen != memo.end()) {
+                                y.score = seen->score;
+                            } else {
+                                y.score = score(w, y.upper, y.middle, x.score);
+                                memo.push_back({key, y.score});
+                            }
                             if (y.score < x.score) x = y, improved = true;
                         }
                 }
             };
-            grid.resize(std::min<std::size_t>(grid.size(), 6));
-            pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) { refine(grid[i], 16 * d, w); });
-            std::stable_sort(grid.begin(), grid.end(), by_score);
-            grid.resize(std::min<std::size_t>(grid.size(), 2));
-            pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) { refine(grid[i], 8 * d, w), refine(grid[i], 4 * d, w); });
-            const Candidate best = *std::min_element(grid.begin(), grid.end(), by_score);
+            grid.resize(std::min<std::size_t>(grid.size(), kRefined));
+            std::vector<std::vector<Scored>> memos(grid.size());  // per candidate: its refinements only ever visit its own
+            pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) { refine(grid[i], 16 * d, w, memos[i]); });
+            // Sorted with their memos (the best two are refined further).
+            std::vector<std::size_t> order(grid.size());
+            for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+            std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return grid[a].score < grid[b].score; });
+            order.resize(std::min<std::size_t>(order.size(), 2));
+            pool.parallel_for(order.size(), [&](std::size_t i, unsigned w) {
+                const std::size_t c = order[i];
+                refine(grid[c], 8 * d, w, memos[c]), refine(grid[c], 4 * d, w, memos[c]);
+            });
+            const Candidate best = grid[*std::min_element(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+                return grid[a].score < grid[b].score;
+            })];
             FitState best_state = keep;
             if (best.score < current) {
                 best_state.pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, best.upper);

@@ -1,6 +1,9 @@
 // Fitting accuracy and speed on simulated measurements of held-out random bodies of the default
 // model (random shape, random plausible pose, random heading). Prints one table row per scenario:
-// mean vertex error (mean and worst over trials), time per fit (median).
+// mean vertex error (mean and worst over trials), time per fit (median), and the process CPU time
+// per fit (median; all threads together). On a shared virtual machine the wall time follows the
+// host's load (time stolen by other guests, reported per row where /proc/stat tells it); the CPU
+// time is the steadier measure of the work, for comparing builds.
 //
 //   sscape_fit_bench [--trials N] [--scenario landmarks|scan|depth|depth2|robust] [--components K]
 //                    [--max-points N] [--no-joint-limits] [--threads N]
@@ -17,6 +20,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -28,18 +33,48 @@ using namespace ssc;
 
 namespace {
 
-struct Row {
-    std::vector<double> errors, times;
-    int converged = 0;
+// The host's CPU time counters of /proc/stat (Linux), in ticks: busy, and stolen by other guests.
+struct CpuTicks {
+    double busy = 0, steal = 0;
+    bool known = false;
 };
+
+CpuTicks cpu_ticks() {
+    CpuTicks t;
+    std::ifstream in("/proc/stat");
+    std::string cpu;
+    double user, nice, system, idle, iowait, irq, softirq, steal;
+    if (in >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal && cpu == "cpu") {
+        t.busy = user + nice + system + irq + softirq;
+        t.steal = steal;
+        t.known = true;
+    }
+    return t;
+}
+
+struct Row {
+    std::vector<double> errors, times, cpu;
+    int converged = 0;
+    CpuTicks start = cpu_ticks();
+};
+
+// Process CPU time, seconds (std::clock: every thread of the process).
+double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
 void print(const char* name, Row& r) {
     std::sort(r.times.begin(), r.times.end());
+    std::sort(r.cpu.begin(), r.cpu.end());
+    const CpuTicks end = cpu_ticks();
     double mean = 0, worst = 0;
     for (double e : r.errors) mean += e, worst = std::max(worst, e);
     mean /= double(r.errors.size());
-    std::printf("%-44s trials %3zu  mean vertex error %6.2f mm (worst %6.2f)  time median %7.1f ms (max %7.1f)  converged %d\n", name,
-                r.errors.size(), mean * 1e3, worst * 1e3, r.times[r.times.size() / 2] * 1e3, r.times.back() * 1e3, r.converged);
+    std::printf("%-44s trials %3zu  mean vertex error %6.2f mm (worst %6.2f)  time median %7.1f ms (max %7.1f)  cpu median %7.1f ms"
+                "  converged %d",
+                name, r.errors.size(), mean * 1e3, worst * 1e3, r.times[r.times.size() / 2] * 1e3, r.times.back() * 1e3,
+                r.cpu[r.cpu.size() / 2] * 1e3, r.converged);
+    const double busy = end.busy - r.start.busy, steal = end.steal - r.start.steal;
+    if (end.known && r.start.known && busy + steal > 0) std::printf("  steal %.0f%%", 100 * steal / (busy + steal));
+    std::printf("\n");
     std::fflush(stdout);
 }
 
@@ -117,7 +152,9 @@ int main(int argc, char** argv) {
             fitting::Frame frame;
             frame.landmarks = simulation::simulate_landmarks(model, truth, 0.010, true, rng);
             fitting::FitOptions o = options();
+            const double c0 = cpu_seconds();
             const auto sol = fitting::fit(lin, {frame}, o, nullptr, {}, &pool);
+            r.cpu.push_back(cpu_seconds() - c0);
             r.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[0]), truth.vertices));
             r.times.push_back(sol.report.seconds);
             r.converged += sol.report.converged;
@@ -138,7 +175,9 @@ int main(int argc, char** argv) {
             simulation::CloudSpec spec;
             frame.clouds.push_back(simulation::simulate_cloud(model, truth, spec, rng));
             fitting::FitOptions o = options();
+            const double c0 = cpu_seconds();
             const auto sol = fitting::fit(lin, {frame}, o, nullptr, {}, &pool);
+            r.cpu.push_back(cpu_seconds() - c0);
             r.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[0]), truth.vertices));
             r.times.push_back(sol.report.seconds);
             r.converged += sol.report.converged;
@@ -182,7 +221,7 @@ int main(int argc, char** argv) {
             centre /= double(truth.vertices.size());
             simulation::DepthCameraSpec spec;
             fitting::Frame frame;
-            double convert = 0;
+            double convert = 0, convert_cpu = 0;
             for (int view = 0; view < views; ++view) {
                 const Eigen::Vector3d eye = centre + Eigen::Vector3d(0, 0, view == 0 ? 2.8 : -2.8);
                 const auto camera = simulation::look_at(eye, centre, spec);
@@ -190,11 +229,15 @@ int main(int argc, char** argv) {
                 fitting::DepthView img;
                 img.width = spec.width, img.height = spec.height, img.depth = depth.data(), img.camera = camera;
                 const auto c0 = std::chrono::steady_clock::now();
+                const double cpu0 = cpu_seconds();
                 frame.clouds.push_back(fitting::depth_to_cloud(img));
                 convert += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+                convert_cpu += cpu_seconds() - cpu0;
             }
             fitting::FitOptions o = options();
+            const double c0 = cpu_seconds();
             const auto sol = fitting::fit(lin, {frame}, o, nullptr, {}, &pool);
+            r.cpu.push_back(cpu_seconds() - c0 + convert_cpu);
             const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
             r.errors.push_back(simulation::mean_vertex_error(fv, truth.vertices));
             r.times.push_back(sol.report.seconds + convert);  // back-projection counts: it is part of the job
@@ -237,7 +280,9 @@ int main(int argc, char** argv) {
             fitting::FitOptions o = options();
             o.auto_start = false;
             const std::vector<fitting::FitState> starts = {start};
+            const double c0 = cpu_seconds();
             const auto sol = fitting::fit(lin, {frame}, o, &starts, {}, &pool);
+            r.cpu.push_back(cpu_seconds() - c0);
             const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
             double body = 0;
             std::size_t nb = 0;
