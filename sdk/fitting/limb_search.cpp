@@ -132,21 +132,21 @@ bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView&
                         }
                 }
             };
-            grid.resize(std::min<std::size_t>(grid.size(), kRefined));
-            std::vector<std::vector<Scored>> memos(grid.size());  // per candidate: its refinements only ever visit its own
-            pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) { refine(grid[i], 16 * d, w, memos[i]); });
-            // Sorted with their memos (the best two are refined further).
-            std::vector<std::size_t> order(grid.size());
-            for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-            std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return grid[a].score < grid[b].score; });
-            order.resize(std::min<std::size_t>(order.size(), 2));
-            pool.parallel_for(order.size(), [&](std::size_t i, unsigned w) {
-                const std::size_t c = order[i];
-                refine(grid[c], 8 * d, w, memos[c]), refine(grid[c], 4 * d, w, memos[c]);
+            // Each refined candidate keeps its own memo: its refinements only revisit its own poses.
+            struct Refined {
+                Candidate x;
+                std::vector<Scored> memo;
+            };
+            auto by_refined_score = [](const Refined& a, const Refined& b) { return a.x.score < b.x.score; };
+            std::vector<Refined> top;
+            for (std::size_t i = 0; i < grid.size() && i < kRefined; ++i) top.push_back({grid[i], {}});
+            pool.parallel_for(top.size(), [&](std::size_t i, unsigned w) { refine(top[i].x, 16 * d, w, top[i].memo); });
+            std::stable_sort(top.begin(), top.end(), by_refined_score);
+            top.resize(std::min<std::size_t>(top.size(), 2));
+            pool.parallel_for(top.size(), [&](std::size_t i, unsigned w) {
+                refine(top[i].x, 8 * d, w, top[i].memo), refine(top[i].x, 4 * d, w, top[i].memo);
             });
-            const Candidate best = grid[*std::min_element(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-                return grid[a].score < grid[b].score;
-            })];
+            const Candidate best = std::min_element(top.begin(), top.end(), by_refined_score)->x;
             FitState best_state = keep;
             if (best.score < current) {
                 best_state.pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, best.upper);
