@@ -8,6 +8,7 @@
 #include "anatomy/named_poses.hpp"
 #include "fitting/grid_index.hpp"
 #include "fitting/nearest.hpp"
+#include "fitting/robust.hpp"
 #include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
 
@@ -81,6 +82,26 @@ TEST_CASE("the grid index finds the same nearest point within a radius as a brut
     CHECK(grid.nearest(Eigen::Vector3d(0.4, 0, 0), 1.0, &d2) == 2);
     CHECK(d2 == Approx(0.01));
     CHECK(grid.nearest(Eigen::Vector3d(-1e308, 1, 0), 2.0, nullptr) == 0);
+}
+
+TEST_CASE("trimming keeps the nearest pairs in their order and cuts ties first come first", "[fitting]") {
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<int> d(0, 40);  // few distinct distances: many ties at the cut
+    std::vector<double> scratch;
+    for (std::size_t n : {0, 1, 49, 50, 51, 777, 3000}) {
+        std::vector<std::pair<double, int>> found(n);
+        for (std::size_t i = 0; i < n; ++i) found[i] = {double(d(rng)), int(i)};
+        std::vector<int> kept;
+        fitting::append_trimmed(found, scratch, kept);
+        // Reference: a stable sort by distance keeps the same set; the output is in input order.
+        auto sorted = found;
+        std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        std::vector<int> want;
+        for (std::size_t i = 0; i < fitting::kept_after_trimming(n); ++i) want.push_back(sorted[i].second);
+        std::sort(want.begin(), want.end());
+        REQUIRE(kept.size() == n - n / 50);
+        CHECK(kept == want);
+    }
 }
 
 TEST_CASE("fitter Jacobians match finite differences", "[fitting]") {

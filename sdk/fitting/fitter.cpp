@@ -536,15 +536,8 @@ private:
             return normals_agree(scan_n, model_n, fd.oriented, st.min_normal_dot);
         };
         std::vector<std::pair<double, Pair>> found;
-        // Sorted by distance through small keys (the pairs are large to move); the comparison is
-        // the same, so is the order.
-        std::vector<std::pair<double, uint32_t>> keys;
-        auto trim_into = [&](std::vector<std::pair<double, Pair>>& list) {
-            keys.resize(list.size());
-            for (std::size_t i = 0; i < list.size(); ++i) keys[i] = {list[i].first, uint32_t(i)};
-            std::sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-            for (std::size_t i = 0; i < kept_after_trimming(list.size()); ++i) fd.pairs.push_back(list[keys[i].second].second);
-        };
+        std::vector<double> scratch;
+        auto trim_into = [&](const std::vector<std::pair<double, Pair>>& list) { append_trimmed(list, scratch, fd.pairs); };
         // Queries run on the pool's threads in fixed chunks, merged in order: the same pairs for
         // any thread count.
         constexpr std::size_t kChunks = 8;

@@ -55,9 +55,9 @@ private:
         const std::size_t n = std::max<std::size_t>(16, std::min(cloud_.sample->size(), o_.points));
         const double max2 = kMaxDistance * kMaxDistance;
         std::vector<std::pair<double, Pair>> found;
+        std::vector<double> scratch;
         auto keep = [&]() {
-            std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-            for (std::size_t i = 0; i < kept_after_trimming(found.size()); ++i) pairs_.push_back(found[i].second);
+            append_trimmed(found, scratch, pairs_);
             found.clear();
         };
         const Matrix3d to_rest = T.R.transpose() / T.scale;

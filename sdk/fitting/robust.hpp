@@ -4,8 +4,11 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <utility>
+#include <vector>
 
 namespace ssc::fitting {
 
@@ -61,5 +64,23 @@ inline PointPlaneTerm point_plane(const Eigen::Vector3d& e, const Eigen::Vector3
 // whatever the loss says (clutter); more would cut off the hands, whose correspondences start
 // farthest, and leave them misplaced.
 inline std::size_t kept_after_trimming(std::size_t count) { return count - count / 50; }
+
+// Appends to `out` the items of (squared distance, item) pairs that trimming keeps, in their
+// order in `found`: those nearer than the cut, then as many at the cut as fit, first come first.
+// A selection, not a sort (trimming drops only 2 %): linear time. scratch: reused buffer.
+template <class T>
+void append_trimmed(const std::vector<std::pair<double, T>>& found, std::vector<double>& scratch, std::vector<T>& out) {
+    const std::size_t kept = kept_after_trimming(found.size());
+    if (kept == 0) return;
+    scratch.resize(found.size());
+    for (std::size_t i = 0; i < found.size(); ++i) scratch[i] = found[i].first;
+    std::nth_element(scratch.begin(), scratch.begin() + std::ptrdiff_t(kept - 1), scratch.end());
+    const double cut = scratch[kept - 1];
+    std::size_t below = 0;
+    for (const auto& f : found) below += f.first < cut;
+    std::size_t at_cut = kept - below;
+    for (const auto& f : found)
+        if (f.first < cut || (f.first == cut && at_cut > 0 && at_cut--)) out.push_back(f.second);
+}
 
 }  // namespace ssc::fitting
