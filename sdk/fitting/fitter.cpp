@@ -43,6 +43,8 @@ constexpr double kImplausiblePose = 300;
 // A stage's plateau (see run_stage): relative gain, and iterations without it (Stage::stall).
 constexpr double kPlateau = 2e-3;
 constexpr uint32_t kStall = 3;
+// Iterations of the polish stage (see run()).
+constexpr uint32_t kPolish = 2;
 
 // Scan points and model points explained() scores (each a fixed random sample).
 constexpr std::size_t kExplainedSamples = 1000;
@@ -194,21 +196,32 @@ public:
         }
         const uint32_t total = std::max<uint32_t>(o_.max_iterations, 3);
         const bool given_start = start && !o_.auto_start;
-        // Stage budgets: a fifth rigid, a third coarse, the rest fine.
+        // Stage budgets: a fifth rigid, a third coarse, kPolish (when there is room) the polish, the
+        // rest fine.
         const uint32_t n0 = std::max<uint32_t>(1, total / 5), n1 = std::max<uint32_t>(1, total / 3);
-        const Stage stages[3] = {
+        const uint32_t n2 = std::max<uint32_t>(1, total - n0 - n1 - std::min(kPolish, total - n0 - n1 - 1));
+        const Stage stages[4] = {
             // A given start may be off by tens of centimetres at the head: the rigid stage then reaches
             // far with a wide loss. After the automatic start search it stays close.
             {n0, false, false, 0, given_start ? 1.0 : 0.3, given_start ? 40.0 : 10.0, 0.0, 0.25, 1e-3},
             {n1, true, false, std::min<uint32_t>(K_, 10), 0.10, 6.0, 0.3, 0.5, 1e-4},
-            {total - n0 - n1, true, true, K_, 0.04, 4.0, 0.5, 1.0, 1e-5, true, 2},
+            // Fine, on half the points until the first iteration without a gain, then a polish on
+            // all of them: the fine stage's first steps (shape components 11 to 50 joining, the
+            // wrists and fingers free) need no more, and the last steps get the full accuracy.
+            // Against the whole fine stage on all points (benchmark, 30 trials): a tenth less
+            // CPU time, mean errors up to 0.2 mm higher (scan 2.18 against 2.04 mm).
+            {n2, true, true, K_, 0.04, 4.0, 0.5, 0.5, 1e-5, true, 1},
+            {total - n0 - n1 - n2, true, true, K_, 0.04, 4.0, 0.5, 1.0, 1e-5, true, 2},
         };
         bool cancelled = false, converged = false;
         uint32_t iteration = 0;
         // Frames whose start search ended with a short coarse fit need no rigid stage.
         const int first_stage = searched_frames_ == F_ ? 1 : 0;
-        for (int si = first_stage; si < 3 && !cancelled; ++si) {
-            converged = run_stage(stages[si], 0xFFFFFFFFu, &progress, iteration, cancelled, &sol.report.initial_cost);
+        for (int si = first_stage; si < 4 && !cancelled; ++si) {
+            if (stages[si].iterations == 0) continue;
+            // The polish has a fixed budget: convergence is the fine stage's.
+            const bool stage_converged = run_stage(stages[si], 0xFFFFFFFFu, &progress, iteration, cancelled, &sol.report.initial_cost);
+            if (si < 3) converged = stage_converged;
             // Between the coarse and the fine stage: limbs the coarse stage could not reach.
             if (si == 1 && !cancelled && search_limbs()) {
                 const Stage again{std::max<uint32_t>(1, stages[1].iterations / 2), true, false, stages[1].components, 0.10, 6.0, 0.3, 0.5, 1e-4};
@@ -217,7 +230,7 @@ public:
         }
         update_kinematics();
         // Report on the final state with the final stage's rules.
-        const Stage& last = stages[2];
+        const Stage& last = stages[3];
         find_pairs(last);
         sol.report.final_cost = evaluate(last, nullptr, nullptr);
         double lm2 = 0, pd = 0;

@@ -17,7 +17,8 @@
 //   priors  Gaussian on shape (the model's own: coefficients are standard deviations) and on each
 //           joint's rotation, and soft walls at the anatomical joint limits (joint_limits.hpp);
 //           coarse-to-fine stages (rigid, then trunk and limbs with few components, then
-//           everything); a frame started by the cloud search skips the rigid stage;
+//           everything on half the scan points, then a two-iteration polish on all of them); a
+//           frame started by the cloud search skips the rigid stage;
 //   limbs   between the coarse and the fine stage, a search over anatomical poses of each arm and
 //           leg with clouds (raised overhead, forward, bent elbows and knees; upper and middle
 //           joint together, the best refined) that the coarse stage's short-reaching

@@ -16,6 +16,12 @@ namespace {
 
 // Scan and model points each candidate is scored on (a prefix of the frame's random samples).
 constexpr std::size_t kLimbSamples = 500;
+// Grid poses scoring worse than this many times the current pose are not refined. When the current
+// pose is already right (most limbs) that leaves little to refine. On the benchmark's scans and
+// depth images about a tenth of the limbs that moved had won from beyond it (up to 4.3 times),
+// each gaining 4 to 17 % of its score, a fine adjustment the fit's later stages also make: without
+// them the mean errors stayed the same (30 trials each).
+constexpr double kRefineWithin = 1.5;
 
 }  // namespace
 
@@ -87,10 +93,15 @@ bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView&
             for (const auto& au : uppers)
                 for (const auto& am : middles) grid.push_back({au, am, 0});
             constexpr std::size_t kRefined = 6;
-            pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) {
-                grid[i].score = score(w, grid[i].upper, grid[i].middle, std::numeric_limits<double>::infinity());
+            // Only grid poses scoring within kRefineWithin of the current pose are refined: their
+            // scoring stops at that bound, and the others are dropped.
+            const double current = score(0, grid[0].upper, grid[0].middle, std::numeric_limits<double>::infinity());
+            grid[0].score = current;
+            const double bound = kRefineWithin * current;
+            pool.parallel_for(grid.size() - 1, [&](std::size_t i, unsigned w) {
+                grid[i + 1].score = score(w, grid[i + 1].upper, grid[i + 1].middle, bound);
             });
-            const double current = grid[0].score;  // the current pose: first upper, first middle
+            grid.erase(std::remove_if(grid.begin() + 1, grid.end(), [&](const Candidate& c) { return c.score >= bound; }), grid.end());
             std::stable_sort(grid.begin(), grid.end(), by_score);
             // The grid is coarse (20 to 60 degrees apart): refine the best few by pattern
             // search over the upper joint's three angles and the middle joint's bend, in

@@ -5,9 +5,9 @@
 // and leg, a grid of anatomical poses of its upper joint (raised sideways and forwards, along the
 // body, turned) times bends of its middle joint (elbow, knee) is scored together, because which
 // way a bent elbow points depends on both. The score is the explained() measure of explained.hpp
-// (LimbScore: only the limb re-posed); the current pose is a candidate too. The best six are
-// refined by pattern search within the joint limits (16 degree steps), the best two further (8 and
-// 4 degrees). A refinement step scores a neighbour only until it cannot beat the current pose, and
+// (LimbScore: only the limb re-posed); the current pose is a candidate too. The best six of those
+// scoring within 1.5 times the current pose are refined by pattern search within the joint limits
+// (16 degree steps), the best two further (8 and 4 degrees). A refinement step scores a neighbour only until it cannot beat the current pose, and
 // takes poses it has scored before from a memo (a fifth of the steps on the benchmark's scans): the
 // same choices for less scoring.
 #pragma once
