@@ -121,7 +121,12 @@ void Kinematics::update(const FitState& s, bool derivatives) {
     derivatives_ = derivatives;
     const auto& parents = model_.data().skeleton.parents;
     std::copy(s.shape.begin(), s.shape.begin() + K_, shape_.begin());
-    for (uint32_t k = 0; k < K_; ++k) weighted_shape_[k] = lin_.step[k] * shape_[k];
+    shape_terms_ = 0;
+    for (uint32_t k = 0; k < K_; ++k) {
+        weighted_shape_[k] = lin_.step[k] * shape_[k];
+        if (weighted_shape_[k] != 0) shape_terms_ = k + 1;
+    }
+    shape_terms_ = std::min(K_, (shape_terms_ + 7) / 8 * 8);
     scale_ = s.scale;
     translation_ = s.translation;
     // Rest joints depend on the shape only: pose-only updates (the limb search's candidates) keep them.
@@ -173,7 +178,7 @@ void Kinematics::update(const FitState& s, bool derivatives) {
 Vector3d Kinematics::rest_vertex(uint32_t v) const {
     const float* mean = &model_.data().shape.mean[3 * std::size_t(v)];
     Vector3d u(mean[0], mean[1], mean[2]);
-    for (uint32_t a = 0; a < 3; ++a) u[a] += dot_quantized(&lin_.basis[(std::size_t(v) * 3 + a) * K_], weighted_shape_.data(), K_);
+    for (uint32_t a = 0; a < 3; ++a) u[a] += dot_quantized(&lin_.basis[(std::size_t(v) * 3 + a) * K_], weighted_shape_.data(), shape_terms_);
     return u;
 }
 

@@ -116,6 +116,9 @@ private:
     // Current state.
     std::vector<double> shape_;
     std::vector<double> weighted_shape_;  // step[k] * shape_[k]: multiplies the quantized basis
+    // rest_vertex() sums the first this many terms: the nonzero ones (the coarse stages fit the first
+    // few components only), rounded up to dot_quantized's block of 8 so the sums stay bit-identical.
+    uint32_t shape_terms_ = 0;
     double scale_ = 1;
     bool derivatives_ = false;  // whether the last update computed the shape derivatives
     Vector3d translation_ = Vector3d::Zero();
