@@ -15,7 +15,8 @@ namespace ssc::fitting {
 namespace {
 
 // Scan and model points each candidate is scored on (a prefix of the frame's random samples).
-constexpr std::size_t kLimbSamples = 500;
+// 300 against 500: the same mean errors on the benchmark (30 trials each), 6 % less CPU time.
+constexpr std::size_t kLimbSamples = 300;
 // Grid poses scoring worse than this many times the current pose are not refined. When the current
 // pose is already right (most limbs) that leaves little to refine. On the benchmark's scans and
 // depth images about a tenth of the limbs that moved had won from beyond it (up to 4.3 times),
