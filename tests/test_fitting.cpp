@@ -53,12 +53,14 @@ TEST_CASE("the grid index finds the same nearest point within a radius as a brut
     std::normal_distribution<double> n(0, 1);
     std::uniform_real_distribution<double> u(0, 1);
     fitting::GridIndex grid(0.04);
-    for (int set = 0; set < 4; ++set) {
+    for (int set = 0; set < 8; ++set) {
         // Clustered points like a limb, plus a stray far point (which must not blow the grid up).
-        std::vector<Eigen::Vector3d> points(set == 3 ? 1 : 300);
+        std::vector<Eigen::Vector3d> points(set % 4 == 3 ? 1 : 300);
         for (auto& p : points) p = Eigen::Vector3d(0.05 * n(rng), 0.3 * u(rng), 0.05 * n(rng));
-        if (set == 2) points.push_back(Eigen::Vector3d(40, -3, 7));
+        if (set % 4 == 2) points.push_back(Eigen::Vector3d(40, -3, 7));
         grid.build(points);
+        // The second four with the empty space indexed (few shells: queries reach past them).
+        if (set >= 4) grid.index_empty_space(2);
         for (int q = 0; q < 2000; ++q) {
             const Eigen::Vector3d x(0.3 * n(rng), 0.4 * n(rng), 0.3 * n(rng));
             const double radius = 0.01 + 0.2 * u(rng);

@@ -46,6 +46,10 @@ constexpr uint32_t kStall = 3;
 // Iterations of the polish stage (see run()).
 constexpr uint32_t kPolish = 2;
 
+// Empty shells of cells the scan grid records around each cell (GridIndex::index_empty_space):
+// 8 cm: the limb search's model cap and the fine stage's gate (wider queries still skip these).
+constexpr int kEmptyShells = 4;
+
 // Scan points and model points explained() scores (each a fixed random sample).
 constexpr std::size_t kExplainedSamples = 1000;
 
@@ -162,6 +166,7 @@ public:
             }
             if (!fd.points.empty()) {
                 fd.scan_grid.build(fd.points);
+                fd.scan_grid.index_empty_space(kEmptyShells);
                 if (!fd.oriented) estimate_normals(fd);
                 fd.scan_sample.resize(fd.points.size());
                 for (uint32_t i = 0; i < fd.scan_sample.size(); ++i) fd.scan_sample[i] = i;

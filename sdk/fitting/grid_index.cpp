@@ -54,6 +54,45 @@ void GridIndex::build(const std::vector<Eigen::Vector3d>& points) {
     }
     for (std::size_t c = cells; c > 0; --c) start_[c] = start_[c - 1];
     start_[0] = 0;
+    empty_shells_.clear();
+}
+
+void GridIndex::index_empty_space(int max_shells) {
+    empty_shells_.clear();
+    if (brute_force_ || sorted_.empty()) return;
+    max_shells = std::clamp(max_shells, 0, 254);
+    // The Chebyshev distance (in cells) from each cell to the nearest non-empty one, capped:
+    // min over non-empty n of max(|dx|, |dy|, |dz|) nests into one pass per axis, each
+    // d'(c) = min over |t| <= cap of max(|t|, d(c + t e_axis)).
+    const int cap = max_shells + 1;
+    const std::size_t cells = start_.size() - 1;
+    std::vector<uint8_t> d(cells), next(cells);
+    for (std::size_t c = 0; c < cells; ++c) d[c] = start_[c + 1] > start_[c] ? 0 : uint8_t(cap);
+    const std::size_t stride[3] = {1, std::size_t(dims_[0]), std::size_t(dims_[0]) * std::size_t(dims_[1])};
+    for (int a = 0; a < 3; ++a) {
+        // Lines along axis a: the other two axes enumerate their starts.
+        const int b = (a + 1) % 3, e = (a + 2) % 3;
+        const int n = dims_[a];
+        const std::ptrdiff_t step = std::ptrdiff_t(stride[a]);
+        for (int j = 0; j < dims_[e]; ++j)
+            for (int i = 0; i < dims_[b]; ++i) {
+                const std::size_t base = std::size_t(i) * stride[b] + std::size_t(j) * stride[e];
+                const uint8_t* in = d.data() + base;
+                uint8_t* out = next.data() + base;
+                for (int at = 0; at < n; ++at) {
+                    int best = in[at * step];
+                    for (int t = 1; t < best; ++t) {
+                        if (at - t >= 0) best = std::min(best, std::max(t, int(in[(at - t) * step])));
+                        if (at + t < n) best = std::min(best, std::max(t, int(in[(at + t) * step])));
+                    }
+                    out[at * step] = uint8_t(best);
+                }
+            }
+        d.swap(next);
+    }
+    // A cell at distance k has k - 1 empty shells around it besides its own: shells 0 .. k - 1
+    // hold no point.
+    empty_shells_ = std::move(d);
 }
 
 uint32_t GridIndex::nearest(const Eigen::Vector3d& q, double radius, double* dist2) const {
@@ -92,8 +131,13 @@ uint32_t GridIndex::nearest(const Eigen::Vector3d& q, double radius, double* dis
             if (d2 < best) best = d2, found = k;
         }
     };
-    // Shells of cells around q's cell (Chebyshev distance s), nearest first, clipped to the grid.
-    for (int s = 0;; ++s) {
+    // Shells of cells around q's cell (Chebyshev distance s), nearest first, clipped to the grid;
+    // those index_empty_space() found empty are skipped. (q's cell is clamped to the grid, which
+    // only brings it nearer every cell: the count holds for q.)
+    int first = 0;
+    if (!empty_shells_.empty())
+        first = empty_shells_[std::size_t(qc[0]) + std::size_t(dims_[0]) * (std::size_t(qc[1]) + std::size_t(dims_[1]) * std::size_t(qc[2]))];
+    for (int s = first;; ++s) {
         if (s > 0) {
             // Shell s lies beyond the faces of the box of the shells before it: stop once that is
             // farther than the best so far (or the grid has no cells beyond any face).

@@ -30,6 +30,13 @@ public:
     // are reused between builds.
     void build(const std::vector<Eigen::Vector3d>& points);
 
+    // Optional, after build(): records for every cell how many shells of cells around it are
+    // empty (up to max_shells), so queries skip them. Queries far from every point (a model vertex
+    // over a hole in a scan, or behind a depth image's visible side) then end at once instead of
+    // visiting every cell within their radius. It costs two passes over the cells per axis: worth
+    // it for a set built once and queried many times (a scan), not for one rebuilt per iteration.
+    void index_empty_space(int max_shells);
+
     // The nearest point closer than `radius` to q and its squared distance, or kNone (dist2
     // untouched) when there is none. Exact; the same answer every time for the same build.
     uint32_t nearest(const Eigen::Vector3d& q, double radius, double* dist2) const;
@@ -45,6 +52,7 @@ private:
     std::vector<Eigen::Vector3d> sorted_;     // the points by cell
     std::vector<uint32_t> original_;          // their indices in the built set
     std::vector<uint32_t> cell_of_;           // build scratch
+    std::vector<uint8_t> empty_shells_;       // per cell (index_empty_space), or empty
     bool brute_force_ = false;                // the set's extent overflowed: no cells, every point tried
 };
 
