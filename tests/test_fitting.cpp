@@ -60,7 +60,8 @@ TEST_CASE("the grid index finds the same nearest point within a radius as a brut
         if (set % 4 == 2) points.push_back(Eigen::Vector3d(40, -3, 7));
         grid.build(points);
         // The second four with the empty space indexed (few shells: queries reach past them).
-        if (set >= 4) grid.index_empty_space(2);
+        ThreadPool pool(set % 2 ? 3 : 1);
+        if (set >= 4) grid.index_empty_space(2, pool);
         for (int q = 0; q < 2000; ++q) {
             const Eigen::Vector3d x(0.3 * n(rng), 0.4 * n(rng), 0.3 * n(rng));
             const double radius = 0.01 + 0.2 * u(rng);

@@ -166,7 +166,7 @@ public:
             }
             if (!fd.points.empty()) {
                 fd.scan_grid.build(fd.points);
-                fd.scan_grid.index_empty_space(kEmptyShells);
+                fd.scan_grid.index_empty_space(kEmptyShells, *pool_);
                 if (!fd.oriented) estimate_normals(fd);
                 fd.scan_sample.resize(fd.points.size());
                 for (uint32_t i = 0; i < fd.scan_sample.size(); ++i) fd.scan_sample[i] = i;

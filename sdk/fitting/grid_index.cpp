@@ -57,7 +57,7 @@ void GridIndex::build(const std::vector<Eigen::Vector3d>& points) {
     empty_shells_.clear();
 }
 
-void GridIndex::index_empty_space(int max_shells) {
+void GridIndex::index_empty_space(int max_shells, ThreadPool& pool) {
     empty_shells_.clear();
     if (brute_force_ || sorted_.empty()) return;
     max_shells = std::clamp(max_shells, 0, 254);
@@ -74,24 +74,27 @@ void GridIndex::index_empty_space(int max_shells) {
         const int b = (a + 1) % 3, e = (a + 2) % 3;
         const int n = dims_[a];
         const std::ptrdiff_t step = std::ptrdiff_t(stride[a]);
-        for (int j = 0; j < dims_[e]; ++j)
-            for (int i = 0; i < dims_[b]; ++i) {
-                const std::size_t base = std::size_t(i) * stride[b] + std::size_t(j) * stride[e];
-                const uint8_t* in = d.data() + base;
-                uint8_t* out = next.data() + base;
-                for (int at = 0; at < n; ++at) {
-                    int best = in[at * step];
-                    for (int t = 1; t < best; ++t) {
-                        if (at - t >= 0) best = std::min(best, std::max(t, int(in[(at - t) * step])));
-                        if (at + t < n) best = std::min(best, std::max(t, int(in[(at + t) * step])));
+        // Lines are independent: slabs of them run on the pool's threads.
+        constexpr int kChunks = 8;
+        pool.parallel_for(kChunks, [&](std::size_t chunk, unsigned) {
+            for (int j = int(chunk) * dims_[e] / kChunks; j < (int(chunk) + 1) * dims_[e] / kChunks; ++j)
+                for (int i = 0; i < dims_[b]; ++i) {
+                    const std::size_t base = std::size_t(i) * stride[b] + std::size_t(j) * stride[e];
+                    const uint8_t* in = d.data() + base;
+                    uint8_t* out = next.data() + base;
+                    for (int at = 0; at < n; ++at) {
+                        int best = in[at * step];
+                        for (int t = 1; t < best; ++t) {
+                            if (at - t >= 0) best = std::min(best, std::max(t, int(in[(at - t) * step])));
+                            if (at + t < n) best = std::min(best, std::max(t, int(in[(at + t) * step])));
+                        }
+                        out[at * step] = uint8_t(best);
                     }
-                    out[at * step] = uint8_t(best);
                 }
-            }
+        });
         d.swap(next);
     }
-    // A cell at distance k has k - 1 empty shells around it besides its own: shells 0 .. k - 1
-    // hold no point.
+    // A cell at distance k: shells 0 .. k - 1 around it hold no point.
     empty_shells_ = std::move(d);
 }
 

@@ -11,6 +11,8 @@
 // Threads: nearest() may run on many threads at once; build() must run alone.
 #pragma once
 
+#include "common/thread_pool.hpp"
+
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -35,7 +37,8 @@ public:
     // over a hole in a scan, or behind a depth image's visible side) then end at once instead of
     // visiting every cell within their radius. It costs two passes over the cells per axis: worth
     // it for a set built once and queried many times (a scan), not for one rebuilt per iteration.
-    void index_empty_space(int max_shells);
+    // The passes run on the pool's threads; the result does not depend on their number.
+    void index_empty_space(int max_shells, ThreadPool& pool);
 
     // The nearest point closer than `radius` to q and its squared distance, or kNone (dist2
     // untouched) when there is none. Exact; the same answer every time for the same build.
