@@ -39,7 +39,9 @@ void NormalEquations::add_to_upper(Eigen::MatrixXd& H, ThreadPool& pool) {
         Set& s = sets_[b];
         if (s.reserved == 0) return;
         const auto n = Eigen::Index(s.cols.size());
-        s.product.setZero(n, n);
+        // rankUpdate adds to the upper triangle only, and only that is read: the rest stays as is.
+        s.product.resize(n, n);
+        s.product.triangularView<Eigen::Upper>().setZero();
         const Eigen::Map<const RowMajor> R(s.rows.data(), Eigen::Index(s.reserved), n);
         s.product.selfadjointView<Eigen::Upper>().rankUpdate(R.transpose());
     });
