@@ -204,7 +204,8 @@ public:
         // Stage budgets: a fifth rigid, a third coarse, kPolish (when there is room) the polish, the
         // rest fine.
         const uint32_t n0 = std::max<uint32_t>(1, total / 5), n1 = std::max<uint32_t>(1, total / 3);
-        const uint32_t n2 = std::max<uint32_t>(1, total - n0 - n1 - std::min(kPolish, total - n0 - n1 - 1));
+        const uint32_t later = total - n0 - n1;  // at least 1: the fine stage keeps one
+        const uint32_t n2 = later - std::min(kPolish, later - 1);
         const Stage stages[4] = {
             // A given start may be off by tens of centimetres at the head: the rigid stage then reaches
             // far with a wide loss. After the automatic start search it stays close.

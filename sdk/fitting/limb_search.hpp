@@ -7,9 +7,9 @@
 // way a bent elbow points depends on both. The score is the explained() measure of explained.hpp
 // (LimbScore: only the limb re-posed); the current pose is a candidate too. The best six of those
 // scoring within 1.5 times the current pose are refined by pattern search within the joint limits
-// (16 degree steps), the best two further (8 and 4 degrees). A refinement step scores a neighbour only until it cannot beat the current pose, and
-// takes poses it has scored before from a memo (a fifth of the steps on the benchmark's scans): the
-// same choices for less scoring.
+// (16 degree steps), the best two further (8 and 4 degrees). A refinement step scores a neighbour
+// only until it cannot beat the current pose, and takes poses it has scored before from a memo (a
+// fifth of the steps on the benchmark's scans): the same choices for less scoring.
 #pragma once
 
 #include "common/thread_pool.hpp"
