@@ -147,6 +147,7 @@ public:
         : lin_(lin), o_(o), F_(uint32_t(frames.size())), K_(lin.K), B_(3 * lin.J + 4), body_(lin.model, nullptr),
           pool_(pool ? pool : &inline_pool_) {
         const auto& d = lin.model.data();
+        body_.set_pool(pool_);
         std::mt19937 rng(o.seed);
         frames_.resize(F_);
         for (uint32_t f = 0; f < F_; ++f) {

@@ -33,13 +33,26 @@ void Body::set_pose(const float* unit_quats, const float* translation) {
     skeleton_ok_ = posed_ok_ = normals_ok_ = false;
 }
 
+template <class Fn>
+void Body::split(std::size_t n, std::size_t align, const Fn& fn) {
+    if (!pool_ || pool_->size() == 1) return fn(std::size_t(0), n);
+    // More chunks than threads: dynamic hand-out evens out a thread that starts late.
+    constexpr std::size_t kChunks = 8;
+    const std::size_t blocks = (n + align - 1) / align;
+    pool_->parallel_for(kChunks, [&](std::size_t c, unsigned) {
+        const std::size_t first = std::min(n, c * blocks / kChunks * align), end = std::min(n, (c + 1) * blocks / kChunks * align);
+        if (first < end) fn(first, end);
+    });
+}
+
 void Body::update_rest() {
     if (rest_ok_) return;
     kernels::scale_coefficients(model_, coeffs_.data(), scaled_.data());
     const float* c = scaled_.data();
     float* r = rest_.data();
     float* j = joints_.data();
-    kernels::shape(model_, 1, &c, &r, &j);
+    split(model_.padded_rows() / Model::kChunk, 1, [&](std::size_t first, std::size_t end) { kernels::shape_rows(model_, 1, &c, &r, first, end); });
+    kernels::shape_joints(model_, 1, &c, &j);
     rest_ok_ = true;
 }
 
@@ -64,7 +77,9 @@ const float* Body::rest_joints() {
 const float* Body::posed() {
     if (!posed_ok_) {
         update_skeleton();
-        kernels::skin(model_, rest_.data(), skinning_.data(), posed_.data());
+        split(kernels::skin_slot_count(model_), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
+            kernels::skin_slots(model_, rest_.data(), skinning_.data(), posed_.data(), uint32_t(first), uint32_t(end));
+        });
         posed_ok_ = true;
     }
     return posed_.data();
@@ -72,7 +87,13 @@ const float* Body::posed() {
 
 const float* Body::normals() {
     if (!normals_ok_) {
-        kernels::normals(model_, posed(), face_normals_.data(), normals_.data());
+        const float* p = posed();
+        split(model_.triangle_count(), 1, [&](std::size_t first, std::size_t end) {
+            kernels::face_normals(model_, p, face_normals_.data(), uint32_t(first), uint32_t(end));
+        });
+        split(model_.vertex_count(), 1, [&](std::size_t first, std::size_t end) {
+            kernels::vertex_normals(model_, face_normals_.data(), normals_.data(), uint32_t(first), uint32_t(end));
+        });
         normals_ok_ = true;
     }
     return normals_.data();

@@ -3,6 +3,7 @@
 // Inputs are validated by the caller (the C API shim); setters here assume valid values.
 #pragma once
 
+#include "common/thread_pool.hpp"
 #include "kernels.hpp"
 #include "model.hpp"
 
@@ -13,6 +14,10 @@ public:
     Body(const Model& model, const Allocator* alloc);
 
     const Model& model() const { return model_; }
+
+    // Splits the shape, skinning and normals stages over the pool's threads (the same results);
+    // null (the default): the calling thread only. The pool must outlive the body's use of it.
+    void set_pool(ThreadPool* pool) { pool_ = pool; }
 
     void set_shape(const float* coeffs, uint32_t count);  // count <= K, rest zero
     const float* shape() const { return coeffs_.data(); }
@@ -30,7 +35,12 @@ private:
     void update_rest();
     void update_skeleton();
 
+    // Runs fn(first, end) over [0, n) in chunks of multiples of `align`, on the pool when set.
+    template <class Fn>
+    void split(std::size_t n, std::size_t align, const Fn& fn);
+
     const Model& model_;
+    ThreadPool* pool_ = nullptr;
     Vec<float> coeffs_, scaled_, rest_, joints_, quats_, world_, inverse_bind_, posed_, normals_, scratch_, face_normals_;
     Vec<kernels::SkinMatrix> skinning_;
     float translation_[3] = {0, 0, 0};

@@ -25,6 +25,12 @@ void scale_coefficients(const Model& m, const float* coeffs, float* scaled);
 // and joints[g] (3J) likewise, from scale_coefficients() output. Bodies share passes over the
 // basis, so larger counts amortise its memory traffic; results do not depend on count.
 void shape(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, float* const* joints);
+// shape() in parts, for splitting one call over threads with the same results: the rest rows of
+// panels [first_panel, end_panel) (Model::kChunk rows each; padded_rows() / kChunk in all), and the
+// joints.
+void shape_rows(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first_panel,
+                std::size_t end_panel);
+void shape_joints(const Model& m, std::size_t count, const float* const* scaled, float* const* joints);
 
 // A skinning matrix: column-major 4x4 (last row 0 0 0 1), aligned for SIMD loads.
 struct SkinMatrix {
@@ -43,10 +49,20 @@ void skeleton(const Model& m, const float* joints_rest, const float* quats, cons
 // Posed vertex v = sum_i w_i * skinning[j_i] * rest(v). rest and out are planar (x block, y block,
 // z block; 3V floats, out must not alias rest).
 void skin(const Model& m, const float* rest_planar, const SkinMatrix* skinning, float* out_planar);
+// skin() for the skinning layout's slots [first, end) (Model::skin_runs; multiples of
+// Model::kSkinBlock) of skin_slot_count(m): disjoint ranges write disjoint vertices, so threads
+// may each take one, with the same results.
+uint32_t skin_slot_count(const Model& m);
+void skin_slots(const Model& m, const float* rest_planar, const SkinMatrix* skinning, float* out_planar, uint32_t first, uint32_t end);
 
 // Area-weighted unit normals of the mesh with planar vertices into out (packed xyz).
 // scratch: 3 floats per triangle. Allocates nothing.
 void normals(const Model& m, const float* planar, float* scratch, float* out);
+// normals() in two steps, for splitting over threads with the same results: the face normals
+// (scratch above) of triangles [first, end), then, once all are written, the unit normals of
+// vertices [first, end).
+void face_normals(const Model& m, const float* planar, float* face, uint32_t first, uint32_t end);
+void vertex_normals(const Model& m, const float* face, float* out, uint32_t first, uint32_t end);
 
 // Landmark positions from planar vertices (x block, y block, z block), xyz at stride bytes.
 void landmarks(const format::ModelData& d, const float* planar, float* out, std::size_t stride);

@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -166,8 +167,18 @@ void skin_run(const Model& m, const Model::SkinRun& run, const float* mats, cons
 }  // namespace
 
 void skin(const Model& m, const float* rest, const SkinMatrix* skinning, float* out) {
+    skin_slots(m, rest, skinning, out, 0, skin_slot_count(m));
+}
+
+uint32_t skin_slot_count(const Model& m) { return m.skin_runs().empty() ? 0 : m.skin_runs().back().end; }
+
+void skin_slots(const Model& m, const float* rest, const SkinMatrix* skinning, float* out, uint32_t first, uint32_t end) {
     const float* mats = skinning[0].m;
-    for (const auto& run : m.skin_runs()) {
+    for (const auto& full : m.skin_runs()) {
+        if (full.end <= first || full.begin >= end) continue;
+        Model::SkinRun run = full;
+        run.begin = std::max(run.begin, first);
+        run.end = std::min(run.end, end);
         switch (run.influences) {
             case 1: skin_run<1>(m, run, mats, rest, out); break;
             case 2: skin_run<2>(m, run, mats, rest, out); break;
@@ -178,12 +189,17 @@ void skin(const Model& m, const float* rest, const SkinMatrix* skinning, float* 
 }
 
 void normals(const Model& m, const float* planar, float* face, float* out) {
-    const uint32_t V = m.vertex_count(), T = m.triangle_count();
+    face_normals(m, planar, face, 0, m.triangle_count());
+    vertex_normals(m, face, out, 0, m.vertex_count());
+}
+
+void face_normals(const Model& m, const float* planar, float* face, uint32_t first, uint32_t end) {
+    const uint32_t V = m.vertex_count();
     const uint32_t* tris = m.data().mesh.triangles.data();
     const float* X = planar;
     const float* Y = planar + V;
     const float* Z = planar + 2 * std::size_t(V);
-    for (uint32_t t = 0; t < T; ++t) {
+    for (uint32_t t = first; t < end; ++t) {
         const uint32_t a = tris[3 * t], b = tris[3 * t + 1], c = tris[3 * t + 2];
         const float e1[3] = {X[b] - X[a], Y[b] - Y[a], Z[b] - Z[a]};
         const float e2[3] = {X[c] - X[a], Y[c] - Y[a], Z[c] - Z[a]};
@@ -193,9 +209,12 @@ void normals(const Model& m, const float* planar, float* face, float* out) {
         n[1] = e1[2] * e2[0] - e1[0] * e2[2];
         n[2] = e1[0] * e2[1] - e1[1] * e2[0];
     }
+}
+
+void vertex_normals(const Model& m, const float* face, float* out, uint32_t first, uint32_t end) {
     const uint32_t* off = m.vertex_triangle_offsets();
     const uint32_t* vt = m.vertex_triangles();
-    for (uint32_t v = 0; v < V; ++v) {
+    for (uint32_t v = first; v < end; ++v) {
         float n[3] = {0.f, 0.f, 0.f};
         for (uint32_t e = off[v]; e < off[v + 1]; ++e) {
             const float* f = face + 3 * std::size_t(vt[e]);

@@ -60,19 +60,18 @@ void tile_avx2(const Model& m, std::size_t first, const float* const* scaled, fl
 }
 
 template <int G, int P>
-void pass_avx2(const Model& m, const float* const* scaled, float* const* rest) {
-    const std::size_t panels = m.padded_rows() / kChunk;
-    std::size_t c = 0;
-    for (; c + P <= panels; c += P) tile_avx2<G, P>(m, c, scaled, rest);
-    for (; c < panels; ++c) tile_avx2<G, 1>(m, c, scaled, rest);
+void pass_avx2(const Model& m, const float* const* scaled, float* const* rest, std::size_t first, std::size_t end) {
+    std::size_t c = first;
+    for (; c + P <= end; c += P) tile_avx2<G, P>(m, c, scaled, rest);
+    for (; c < end; ++c) tile_avx2<G, 1>(m, c, scaled, rest);
 }
 
-void shape_avx2(const Model& m, std::size_t count, const float* const* scaled, float* const* rest) {
+void shape_avx2(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first, std::size_t end) {
     for (std::size_t g = 0; g < count;) {
         const std::size_t left = count - g;
-        if (left >= 4) pass_avx2<4, 1>(m, scaled + g, rest + g), g += 4;
-        else if (left >= 2) pass_avx2<2, 2>(m, scaled + g, rest + g), g += 2;
-        else pass_avx2<1, 4>(m, scaled + g, rest + g), g += 1;
+        if (left >= 4) pass_avx2<4, 1>(m, scaled + g, rest + g, first, end), g += 4;
+        else if (left >= 2) pass_avx2<2, 2>(m, scaled + g, rest + g, first, end), g += 2;
+        else pass_avx2<1, 4>(m, scaled + g, rest + g, first, end), g += 1;
     }
 }
 #endif
@@ -110,20 +109,20 @@ SSC_AVX512 void tile_avx512(const Model& m, std::size_t first, const float* cons
 }
 
 template <int G, int P>
-SSC_AVX512 void pass_avx512(const Model& m, const float* const* scaled, float* const* rest) {
-    const std::size_t panels = m.padded_rows() / kChunk;
-    std::size_t c = 0;
-    for (; c + P <= panels; c += P) tile_avx512<G, P>(m, c, scaled, rest);
-    for (; c < panels; ++c) tile_avx512<G, 1>(m, c, scaled, rest);
+SSC_AVX512 void pass_avx512(const Model& m, const float* const* scaled, float* const* rest, std::size_t first, std::size_t end) {
+    std::size_t c = first;
+    for (; c + P <= end; c += P) tile_avx512<G, P>(m, c, scaled, rest);
+    for (; c < end; ++c) tile_avx512<G, 1>(m, c, scaled, rest);
 }
 
-SSC_AVX512 void shape_avx512(const Model& m, std::size_t count, const float* const* scaled, float* const* rest) {
+SSC_AVX512 void shape_avx512(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first,
+                             std::size_t end) {
     for (std::size_t g = 0; g < count;) {
         const std::size_t left = count - g;
-        if (left >= 8) pass_avx512<8, 2>(m, scaled + g, rest + g), g += 8;
-        else if (left >= 4) pass_avx512<4, 2>(m, scaled + g, rest + g), g += 4;
-        else if (left >= 2) pass_avx512<2, 4>(m, scaled + g, rest + g), g += 2;
-        else pass_avx512<1, 8>(m, scaled + g, rest + g), g += 1;
+        if (left >= 8) pass_avx512<8, 2>(m, scaled + g, rest + g, first, end), g += 8;
+        else if (left >= 4) pass_avx512<4, 2>(m, scaled + g, rest + g, first, end), g += 4;
+        else if (left >= 2) pass_avx512<2, 4>(m, scaled + g, rest + g, first, end), g += 2;
+        else pass_avx512<1, 8>(m, scaled + g, rest + g, first, end), g += 1;
     }
 }
 
@@ -133,10 +132,11 @@ bool cpu_has_avx512() {
 }
 #endif
 
-[[maybe_unused]] void shape_scalar(const Model& m, std::size_t count, const float* const* scaled, float* const* rest) {
+[[maybe_unused]] void shape_scalar(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first,
+                                   std::size_t end) {
     const uint32_t K = m.component_count();
     for (std::size_t g = 0; g < count; ++g)
-        for (std::size_t r = 0; r < m.padded_rows(); ++r) {
+        for (std::size_t r = first * kChunk; r < end * kChunk; ++r) {
             const int16_t* panel = m.basis_panels() + (r / kChunk) * K * kChunk + r % kChunk;
             float acc = m.mean_planar()[r];
             for (uint32_t k = 0; k < K; ++k) acc = std::fma(scaled[g][k], float(panel[k * kChunk]), acc);
@@ -151,14 +151,23 @@ void scale_coefficients(const Model& m, const float* coeffs, float* scaled) {
 }
 
 void shape(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, float* const* joints) {
+    shape_rows(m, count, scaled, rest, 0, m.padded_rows() / kChunk);
+    shape_joints(m, count, scaled, joints);
+}
+
+void shape_rows(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first_panel,
+                std::size_t end_panel) {
 #if defined(SSC_SHAPE_AVX512)
-    if (cpu_has_avx512()) shape_avx512(m, count, scaled, rest);
-    else shape_avx2(m, count, scaled, rest);
+    if (cpu_has_avx512()) shape_avx512(m, count, scaled, rest, first_panel, end_panel);
+    else shape_avx2(m, count, scaled, rest, first_panel, end_panel);
 #elif defined(SSC_SHAPE_AVX2)
-    shape_avx2(m, count, scaled, rest);
+    shape_avx2(m, count, scaled, rest, first_panel, end_panel);
 #else
-    shape_scalar(m, count, scaled, rest);
+    shape_scalar(m, count, scaled, rest, first_panel, end_panel);
 #endif
+}
+
+void shape_joints(const Model& m, std::size_t count, const float* const* scaled, float* const* joints) {
     const uint32_t J = m.joint_count(), K = m.component_count();
     for (std::size_t g = 0; g < count; ++g) {
         float* out = joints[g];
