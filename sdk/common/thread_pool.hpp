@@ -1,7 +1,9 @@
 // A fixed set of worker threads owned by a context. parallel_for hands out indices dynamically;
-// the calling thread works too, so a pool of size 1 has no threads at all.
+// the calling thread works too, so a pool of size 1 has no threads at all. Threads poll briefly
+// before they sleep (see kSpin in thread_pool.cpp), so batches in quick succession start at once.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <functional>
@@ -37,9 +39,10 @@ private:
     std::mutex mutex_;
     std::condition_variable wake_, done_;
     const std::function<void(std::size_t, unsigned)>* job_ = nullptr;
-    std::size_t count_ = 0, next_ = 0, finished_ = 0;
-    unsigned generation_ = 0;
-    unsigned busy_ = 0;
+    std::size_t count_ = 0, next_ = 0;
+    // Written under mutex_; atomic so that the spin phases may read them without it.
+    std::atomic<std::size_t> finished_{0};
+    std::atomic<unsigned> generation_{0}, busy_{0};
     bool stop_ = false;
 };
 
