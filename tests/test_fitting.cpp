@@ -8,6 +8,7 @@
 #include "anatomy/named_poses.hpp"
 #include "fitting/grid_index.hpp"
 #include "fitting/nearest.hpp"
+#include "fitting/normal_equations.hpp"
 #include "fitting/robust.hpp"
 #include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
@@ -59,9 +60,10 @@ TEST_CASE("the grid index finds the same nearest point within a radius as a brut
         for (auto& p : points) p = Eigen::Vector3d(0.05 * n(rng), 0.3 * u(rng), 0.05 * n(rng));
         if (set % 4 == 2) points.push_back(Eigen::Vector3d(40, -3, 7));
         grid.build(points);
-        // The second four with the empty space indexed (few shells: queries reach past them).
+        // The second four with the empty space indexed: few shells (queries reach past them), then
+        // more than the farthest query reaches (as the start search's grid).
         ThreadPool pool(set % 2 ? 3 : 1);
-        if (set >= 4) grid.index_empty_space(2, pool);
+        if (set >= 4) grid.index_empty_space(set >= 6 ? 8 : 2, pool);
         for (int q = 0; q < 2000; ++q) {
             const Eigen::Vector3d x(0.3 * n(rng), 0.4 * n(rng), 0.3 * n(rng));
             const double radius = 0.01 + 0.2 * u(rng);
@@ -85,6 +87,49 @@ TEST_CASE("the grid index finds the same nearest point within a radius as a brut
     CHECK(grid.nearest(Eigen::Vector3d(0.4, 0, 0), 1.0, &d2) == 2);
     CHECK(d2 == Approx(0.01));
     CHECK(grid.nearest(Eigen::Vector3d(-1e308, 1, 0), 2.0, nullptr) == 0);
+}
+
+TEST_CASE("normal equations from stacked blocks equal the sum of every block's J^T J", "[fitting]") {
+    const uint32_t P = 37;
+    Eigen::MatrixXd result[2];
+    for (int run = 0; run < 2; ++run) {
+        std::mt19937 data(5);  // the same blocks in both runs
+        fitting::NormalEquations ne;
+        Eigen::MatrixXd want = Eigen::MatrixXd::Zero(P, P);
+        struct Block {
+            uint32_t set;
+            std::size_t row;
+            Eigen::MatrixXd J;  // 3 x columns(set)
+        };
+        std::vector<Block> blocks;
+        for (int b = 0; b < 60; ++b) {
+            std::vector<uint32_t> cols;  // sorted, a few shared prefixes as the fitter's shape columns
+            for (uint32_t c = 0; c < P; ++c)
+                if (c < 5 || data() % 3 == 0) cols.push_back(c);
+            Block blk{ne.column_set(cols), 0, Eigen::MatrixXd(3, cols.size())};
+            blk.row = ne.reserve(blk.set, 3);
+            for (Eigen::Index i = 0; i < blk.J.size(); ++i) blk.J.data()[i] = double(data() % 2001) / 1000.0 - 1.0;
+            for (std::size_t a = 0; a < cols.size(); ++a)
+                for (std::size_t c = 0; c < cols.size(); ++c) want(cols[a], cols[c]) += blk.J.col(Eigen::Index(a)).dot(blk.J.col(Eigen::Index(c)));
+            blocks.push_back(std::move(blk));
+        }
+        ne.allocate();
+        for (const Block& blk : blocks) {
+            const std::size_t n = ne.columns(blk.set).size();
+            double* rows = ne.rows(blk.set, blk.row);
+            for (int r = 0; r < 3; ++r)
+                for (std::size_t c = 0; c < n; ++c) rows[std::size_t(r) * n + c] = blk.J(r, Eigen::Index(c));
+        }
+        Eigen::MatrixXd H = Eigen::MatrixXd::Constant(P, P, 0.3);  // the lower triangle is left alone
+        const Eigen::MatrixXd before = H;
+        ThreadPool pool(run == 0 ? 1 : 3);
+        ne.add_to_upper(H, pool);
+        const Eigen::MatrixXd added = H - before;
+        CHECK((Eigen::MatrixXd(added.triangularView<Eigen::Upper>()) - Eigen::MatrixXd(want.triangularView<Eigen::Upper>())).norm() < 1e-9 * want.norm());
+        CHECK(H.triangularView<Eigen::StrictlyLower>().toDenseMatrix() == before.triangularView<Eigen::StrictlyLower>().toDenseMatrix());
+        result[run] = H;
+    }
+    CHECK(result[0] == result[1]);  // the same sums for any thread count
 }
 
 TEST_CASE("trimming keeps the nearest pairs in their order and cuts ties first come first", "[fitting]") {

@@ -22,7 +22,9 @@ struct CloudView {
     const std::vector<Vector3d>* normals = nullptr;  // zero where unknown
     bool oriented = true;                            // normals carry their sign
     const GridIndex* grid = nullptr;                 // over *points, for queries within a radius
-    const PointIndex* index = nullptr;               // over *points, for queries without one (the start search)
+    // Over *points with cells a few times larger and empty space indexed far out: for the start
+    // search's far-reaching queries (kStartReach), which the fine grid would answer shell by shell.
+    const GridIndex* coarse_grid = nullptr;
     const std::vector<uint32_t>* sample = nullptr;   // random order of the points; a prefix is scored
     const std::vector<double>* confidence = nullptr; // per point in [0, 1]; null: all 1
 };

@@ -1,5 +1,8 @@
 #include "fitting/normal_equations.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace ssc::fitting {
 
 std::size_t NormalEquations::Hash::operator()(const std::vector<uint32_t>& v) const {
@@ -45,12 +48,24 @@ void NormalEquations::add_to_upper(Eigen::MatrixXd& H, ThreadPool& pool) {
         const Eigen::Map<const RowMajor> R(s.rows.data(), Eigen::Index(s.reserved), n);
         s.product.selfadjointView<Eigen::Upper>().rankUpdate(R.transpose());
     });
-    for (const Set& s : sets_) {
-        if (s.reserved == 0) continue;
-        // cols is sorted, so the upper triangle of the block lands in H's upper triangle.
-        for (Eigen::Index c = 0; c < s.product.cols(); ++c)
-            for (Eigen::Index r = 0; r <= c; ++r) H(s.cols[std::size_t(r)], s.cols[std::size_t(c)]) += s.product(r, c);
-    }
+    // The products go into H on the pool's threads too, each thread a band of H's columns (every
+    // set in order, so each entry sums the same terms in the same order for any thread count).
+    // Bands are equal shares of the upper triangle: column c holds c + 1 entries.
+    constexpr std::size_t kBands = 8;
+    const double P = double(H.cols());
+    auto band_start = [&](std::size_t b) { return uint32_t(std::lround(P * std::sqrt(double(b) / kBands))); };
+    pool.parallel_for(kBands, [&](std::size_t b, unsigned) {
+        const uint32_t lo = band_start(b), hi = band_start(b + 1);
+        for (const Set& s : sets_) {
+            if (s.reserved == 0) continue;
+            // cols is sorted, so the upper triangle of the block lands in H's upper triangle.
+            const auto first = std::lower_bound(s.cols.begin(), s.cols.end(), lo) - s.cols.begin();
+            for (auto c = first; c < Eigen::Index(s.cols.size()) && s.cols[std::size_t(c)] < hi; ++c) {
+                double* column = H.col(s.cols[std::size_t(c)]).data();
+                for (Eigen::Index r = 0; r <= c; ++r) column[s.cols[std::size_t(r)]] += s.product(r, c);
+            }
+        }
+    });
 }
 
 }  // namespace ssc::fitting

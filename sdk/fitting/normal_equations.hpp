@@ -40,9 +40,9 @@ public:
     // written once; different rows may be written by different threads.
     double* rows(uint32_t set, std::size_t row) { return sets_[set].rows.data() + row * sets_[set].cols.size(); }
 
-    // Adds the sum into the upper triangle of H (parameters x parameters). The products run on the
-    // pool's threads; H receives them in a fixed order, so the sum does not depend on the thread
-    // count.
+    // Adds the sum into the upper triangle of H (parameters x parameters). The products and their
+    // sums into H run on the pool's threads; H receives them in a fixed order, so the sum does not
+    // depend on the thread count.
     void add_to_upper(Eigen::MatrixXd& H, ThreadPool& pool);
 
 private:

@@ -17,9 +17,8 @@ namespace {
 using Mat7 = Eigen::Matrix<double, 7, 7>;
 using Vec7 = Eigen::Matrix<double, 7, 1>;
 
-// Correspondences reach far (a candidate may start tens of centimetres off) and the loss is wide.
-constexpr double kMaxDistance = 0.5;  // metres
-constexpr double kLossScale = 10;     // Geman-McClure scale, in sigmas
+// Correspondences reach far (kStartReach) and the loss is wide.
+constexpr double kLossScale = 10;  // Geman-McClure scale, in sigmas
 
 struct Pair {
     uint32_t rest;     // index into the rest sample
@@ -53,7 +52,7 @@ private:
     void find_pairs(const Similarity& T) {
         pairs_.clear();
         const std::size_t n = std::max<std::size_t>(16, std::min(cloud_.sample->size(), o_.points));
-        const double max2 = kMaxDistance * kMaxDistance;
+        const double max2 = kStartReach * kStartReach;
         std::vector<std::pair<double, Pair>> found;
         std::vector<double> scratch;
         auto keep = [&]() {
@@ -75,7 +74,8 @@ private:
         const std::size_t m = std::max<std::size_t>(16, std::min(rest_.points->size(), n));
         for (uint32_t k = 0; k < m && k < rest_.points->size(); ++k) {
             double d2;
-            const uint32_t i = cloud_.index->nearest(posed(T, k), &d2);
+            const uint32_t i = cloud_.coarse_grid->nearest(posed(T, k), kStartReach, &d2);
+            if (i == GridIndex::kNone) continue;
             const Vector3d model_normal = T.R * (*rest_.normals)[k];
             const double w = confidence(cloud_, i);
             if (d2 > max2 || w <= 0 || !compatible(i, model_normal)) continue;

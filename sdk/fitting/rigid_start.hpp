@@ -25,6 +25,10 @@ struct RestSample {
     double bottom = 0, top = 0;                      // its extent along +y (up), metres
 };
 
+// How far the start search's correspondences reach (metres): a candidate may start tens of
+// centimetres off.
+constexpr double kStartReach = 0.5;
+
 struct StartCandidate {
     Similarity placement;  // world = scale * R * rest + t
     double score;          // the explained measure (lower is better)
