@@ -564,23 +564,13 @@ private:
         auto compatible = [&](const Vector3d& scan_n, const Vector3d& model_n) {
             return normals_agree(scan_n, model_n, fd.oriented, st.min_normal_dot);
         };
-        std::vector<std::pair<double, Pair>> found;
-        std::vector<double> scratch;
-        auto trim_into = [&](const std::vector<std::pair<double, Pair>>& list) { append_trimmed(list, scratch, fd.pairs); };
-        // Queries run on the pool's threads in fixed chunks, merged in order: the same pairs for
-        // any thread count.
+        using Found = std::vector<std::pair<double, Pair>>;
+        // Both directions' queries run in one batch on the pool's threads, in fixed chunks merged
+        // in order, and each direction is trimmed on its own (one thread each): the same pairs
+        // for any thread count.
         constexpr std::size_t kChunks = 8;
-        std::vector<std::vector<std::pair<double, Pair>>> chunks(kChunks);
-        auto in_chunks = [&](std::size_t count, const std::function<void(std::size_t, std::vector<std::pair<double, Pair>>&)>& query) {
-            for (auto& c : chunks) c.clear();
-            pool_->parallel_for(kChunks, [&](std::size_t c, unsigned) {
-                for (std::size_t s = c * count / kChunks; s < (c + 1) * count / kChunks; ++s) query(s, chunks[c]);
-            });
-            pair_candidates_[f] += count;
-            found.clear();
-            for (const auto& c : chunks) found.insert(found.end(), c.begin(), c.end());
-        };
-        in_chunks(n_scan, [&](std::size_t s, std::vector<std::pair<double, Pair>>& out) {
+        Found chunks[2][kChunks];
+        auto scan_to_model = [&](std::size_t s, Found& out) {
             const uint32_t i = fd.scan_sample[s];
             double d2;
             const uint32_t nearest = model_index.nearest(fd.points[i], st.max_distance, &d2);
@@ -593,9 +583,8 @@ private:
             p.normal = posed_normals_[v];  // the model's normal: always known and oriented
             p.weight = fd.confidence[i];
             out.emplace_back(d2, p);
-        });
-        trim_into(found);
-        in_chunks(n_model, [&](std::size_t s, std::vector<std::pair<double, Pair>>& out) {
+        };
+        auto model_to_scan = [&](std::size_t s, Found& out) {
             const uint32_t v = vertex_sample_[s];
             double d2;
             const uint32_t i = fd.scan_grid.nearest(posed_[v], st.max_distance, &d2);
@@ -617,8 +606,23 @@ private:
             p.normal = fd.normals[i].squaredNorm() > 0 ? fd.normals[i] : posed_normals_[v];
             p.weight = 0.5 * fd.confidence[i];  // the two directions share one budget
             out.emplace_back(d2, p);
+        };
+        const std::size_t count[2] = {n_scan, n_model};
+        pool_->parallel_for(2 * kChunks, [&](std::size_t item, unsigned) {
+            const std::size_t d = item / kChunks, c = item % kChunks;
+            for (std::size_t s = c * count[d] / kChunks; s < (c + 1) * count[d] / kChunks; ++s)
+                d == 0 ? scan_to_model(s, chunks[d][c]) : model_to_scan(s, chunks[d][c]);
         });
-        trim_into(found);
+        pair_candidates_[f] += n_scan + n_model;
+        std::vector<Pair> kept[2];
+        pool_->parallel_for(2, [&](std::size_t d, unsigned) {
+            Found found;
+            for (const Found& c : chunks[d]) found.insert(found.end(), c.begin(), c.end());
+            std::vector<double> scratch;
+            append_trimmed(found, scratch, kept[d]);
+        });
+        fd.pairs.insert(fd.pairs.end(), kept[0].begin(), kept[0].end());
+        fd.pairs.insert(fd.pairs.end(), kept[1].begin(), kept[1].end());
     }
 
     // The column set of a block's Jacobian (active columns only), cached per frame and vertex
