@@ -552,6 +552,7 @@ private:
     void find_frame_pairs(uint32_t f, const Stage& st) {
         auto& fd = frames_[f];
         fd.pairs.clear();
+        ++pairs_version_;
         if (fd.points.empty()) return;
         if (pair_candidates_.size() < F_) pair_candidates_.assign(F_, 0);
         // Model points for scan-to-model queries: all vertices or the subset (see Stage).
@@ -754,16 +755,20 @@ private:
             set_active_ = on;
             vertex_set_.assign(F_, std::vector<uint32_t>(lin_.V, kNoSet));
         }
-        blocks_.clear();
-        for (uint32_t f = 0; f < F_; ++f) {
-            if (frame_only < F_ && f != frame_only) continue;
-            const auto& fd = frames_[f];
-            for (std::size_t i = 0; i < fd.landmark_points.size(); ++i)
-                blocks_.push_back({f, &fd.landmark_points[i], &fd.landmark_targets[i], nullptr,
-                                   std::sqrt(fd.landmark_weights[i]) / o_.landmark_sigma});
-            for (const auto& p : fd.pairs) blocks_.push_back({f, &p.model, &p.target, &p.normal, std::sqrt(p.weight) / o_.point_sigma});
+        // The blocks follow the correspondences: the trial steps of an iteration reuse its blocks.
+        if (blocks_pairs_ != pairs_version_ || blocks_frame_ != frame_only) {
+            blocks_.clear();
+            for (uint32_t f = 0; f < F_; ++f) {
+                if (frame_only < F_ && f != frame_only) continue;
+                const auto& fd = frames_[f];
+                for (std::size_t i = 0; i < fd.landmark_points.size(); ++i)
+                    blocks_.push_back({f, &fd.landmark_points[i], &fd.landmark_targets[i], nullptr,
+                                       std::sqrt(fd.landmark_weights[i]) / o_.landmark_sigma});
+                for (const auto& p : fd.pairs) blocks_.push_back({f, &p.model, &p.target, &p.normal, std::sqrt(p.weight) / o_.point_sigma});
+            }
+            group_blocks();
+            blocks_pairs_ = pairs_version_, blocks_frame_ = frame_only;
         }
-        group_blocks();
         if (H) {
             H->setZero(P, P);
             g->setZero(P);
@@ -922,6 +927,10 @@ private:
     NormalEquations normal_;  // data blocks of the H being built
     static constexpr uint32_t kNoSet = 0xFFFFFFFFu;
     std::vector<Block> blocks_;
+    // Bumped whenever some frame's pairs change; blocks_ (and groups_) were made for this version
+    // and frame selection.
+    uint64_t pairs_version_ = 0, blocks_pairs_ = ~uint64_t(0);
+    uint32_t blocks_frame_ = 0;
     struct Group {
         uint32_t first, count;  // its blocks: members_[first, first + count)
         uint32_t set;
