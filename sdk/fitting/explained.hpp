@@ -6,7 +6,6 @@
 
 #include "fitting/grid_index.hpp"
 #include "fitting/kinematics.hpp"
-#include "fitting/nearest.hpp"
 
 #include <cmath>
 #include <cstdint>

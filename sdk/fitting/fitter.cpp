@@ -20,7 +20,6 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
-#include <functional>
 #include <cmath>
 #include <random>
 
@@ -374,6 +373,12 @@ private:
         }
     }
 
+    // The start search's grid over a frame's cloud (CloudView::coarse_grid).
+    void build_start_grid(FrameData& fd) {
+        fd.start_grid.build(fd.points);
+        fd.start_grid.index_empty_space(kStartShells, *pool_);
+    }
+
     // The k-d tree over a frame's cloud, for normal estimation's k-nearest queries.
     static void build_scan_tree(FrameData& fd) {
         if (!fd.scan_index) fd.scan_index = std::make_unique<PointIndex>(fd.points);
@@ -410,9 +415,7 @@ private:
         ro.point_sigma = o_.point_sigma;
         ro.points = std::size_t(0.15 * o_.max_points);
         ro.samples = kExplainedSamples;
-        FrameData& frame = frames_[f];
-        frame.start_grid.build(frame.points);
-        frame.start_grid.index_empty_space(kStartShells, *pool_);
+        build_start_grid(frames_[f]);
         const std::vector<StartCandidate> found = rigid_start(rest_sample(), cloud_view(fd), ro, *pool_);
         // The two best get a short coarse fit (pose and the main shape components), which tells
         // front from back far better than the rigid measure does. When the better of them ends in

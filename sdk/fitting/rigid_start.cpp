@@ -75,10 +75,10 @@ private:
         for (uint32_t k = 0; k < m && k < rest_.points->size(); ++k) {
             double d2;
             const uint32_t i = cloud_.coarse_grid->nearest(posed(T, k), kStartReach, &d2);
-            if (i == GridIndex::kNone) continue;
+            if (i == GridIndex::kNone) continue;  // nothing within the reach
             const Vector3d model_normal = T.R * (*rest_.normals)[k];
             const double w = confidence(cloud_, i);
-            if (d2 > max2 || w <= 0 || !compatible(i, model_normal)) continue;
+            if (w <= 0 || !compatible(i, model_normal)) continue;
             const Vector3d& scan_normal = (*cloud_.normals)[i];
             found.push_back({d2, Pair{k, i, scan_normal.squaredNorm() > 0 ? scan_normal : model_normal, 0.5 * w}});
         }

@@ -11,6 +11,7 @@
 #include "common/rigid.hpp"
 #include "common/thread_pool.hpp"
 #include "fitting/explained.hpp"
+#include "fitting/nearest.hpp"
 
 #include <vector>
 
