@@ -26,7 +26,7 @@ constexpr double kRefineWithin = 1.5;
 
 }  // namespace
 
-bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
+double search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
                   ThreadPool& pool) {
     std::vector<Vector3d> posed, posed_normals;
     const Model& model = kin.model();
@@ -47,7 +47,7 @@ bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView&
     for (double flex : {0.0, -45.0, -90.0})
         for (double abd : {0.0, -25.0}) limbs[1].upper_angles.push_back(d * Vector3d(flex, 0, abd));
     for (double flex : {0.0, 45.0, 90.0, 120.0}) limbs[1].middle_angles.push_back(d * Vector3d(flex, 0, 0));
-    bool moved = false;
+    double gain = 0;
     // A wider cap than the start search's: a candidate limb a few centimetres off its points (the
     // coarse grid) must still score better than one lying on the torso. Model vertices left
     // unexplained cost less (holes; see LimbScore): 8 cm, chosen on the benchmark's scans and the
@@ -163,11 +163,11 @@ bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView&
             if (best.score < current) {
                 best_state.pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, best.upper);
                 best_state.pose[std::size_t(jm)] = anatomy::rotation_from_angles(lm, best.middle);
-                moved = true;
+                gain = std::max(gain, 1 - best.score / current);
             }
             state = best_state;
         }
-    return moved;
+    return gain;
 }
 
 }  // namespace ssc::fitting

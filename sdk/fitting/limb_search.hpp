@@ -25,9 +25,10 @@ namespace ssc::fitting {
 // Searches the limbs of one frame, one after another, and moves each to its best pose.
 // kin and body: scratch for the frame's model (their state is overwritten). state: the frame's
 // state, updated. cloud: the frame's cloud; vertex_sample: area-uniform model vertices. Candidates
-// are scored on the pool's threads; the result does not depend on their number. Returns whether
-// any limb moved. Models without joint limits or without the named limbs are left as they are.
-bool search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
+// are scored on the pool's threads; the result does not depend on their number. Returns the
+// largest relative gain of the measure, 1 - best / current, of a limb that moved (0: none moved).
+// Models without joint limits or without the named limbs are left as they are.
+double search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
                   ThreadPool& pool);
 
 }  // namespace ssc::fitting
