@@ -839,6 +839,9 @@ typedef struct ssc_fit_report {
     float point_mean;         /**< Mean distance of accepted scan correspondences, metres (0 if none). */
     float inlier_fraction;    /**< Share of correspondence candidates accepted (0 if no points). */
     float seconds;            /**< Wall time of the solve. */
+    uint32_t restarts;        /**< Fits redone from another automatic start candidate because the one
+                                   before ended in an implausible pose (one frame, no given start);
+                                   iterations counts them all. */
 } ssc_fit_report;
 
 /**

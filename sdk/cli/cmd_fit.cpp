@@ -156,6 +156,7 @@ int cmd_fit(const std::vector<std::string>& args) {
     check(ssc_fitter_solve(guard.fitter, nullptr, nullptr, &report), "fit");
     std::printf("fit: %u iterations, %s, %.1f ms; cost %.4g -> %.4g\n", report.iterations, report.converged ? "converged" : "iteration limit",
                 report.seconds * 1e3, report.initial_cost, report.final_cost);
+    if (report.restarts) std::printf("restarts: %u (the fit from the best start candidate ended in an implausible pose)\n", report.restarts);
     if (!o.landmarks.empty()) std::printf("landmark rms distance: %.2f mm\n", report.landmark_rms * 1e3);
     if (!o.points.empty() || !o.depth.empty()) std::printf("points: mean correspondence distance %.2f mm, inliers %.1f %%\n", report.point_mean * 1e3, 100 * report.inlier_fraction);
 

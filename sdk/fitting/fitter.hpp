@@ -4,8 +4,8 @@
 // Method (each choice is explained where it is made in fitter.cpp):
 //   start   rigid alignment with scale from landmarks (Umeyama) when a frame has any; otherwise
 //           from the cloud's principal axes, trying the plausible facing directions
-//           (rigid_start.hpp), the best two (four when those end in implausible poses) given a
-//           short coarse fit;
+//           (rigid_start.hpp), the best two (two more at a time, up to all eight, while the
+//           best ends in an implausible pose) given a short coarse fit;
 //   solve   Levenberg-Marquardt over shape, per-joint rotations, translation and optional scale, with
 //           the analytic Jacobians of kinematics.hpp;
 //   data    landmarks (robust Huber loss), clouds with correspondences both ways (uniform grids,
@@ -22,7 +22,10 @@
 //   limbs   between the coarse and the fine stage, a search over anatomical poses of each arm and
 //           leg with clouds (raised overhead, forward, bent elbows and knees; upper and middle
 //           joint together, the best refined) that the coarse stage's short-reaching
-//           correspondences cannot find from the rest pose (limb_search.hpp, scored by explained.hpp).
+//           correspondences cannot find from the rest pose (limb_search.hpp, scored by explained.hpp),
+//           swept again when a limb's move changed much;
+//   restart a single frame's fit from the automatic start that ends in an implausible pose is
+//           redone from the start search's next candidates (at most two).
 #pragma once
 
 #include "common/thread_pool.hpp"
@@ -74,6 +77,9 @@ struct FitReport {
     double point_mean = 0;     // metres, mean distance of accepted scan points to the model surface
     double inlier_fraction = 0;
     double seconds = 0;
+    // Fits redone from another start candidate because the one before ended implausible
+    // (single-frame fits from the automatic start; see fitter.cpp). iterations counts them all.
+    uint32_t restarts = 0;
 };
 
 // Called once per iteration; return false to cancel (the best state so far is kept).
