@@ -51,13 +51,14 @@ constexpr double kPlateau = 2e-3;
 constexpr uint32_t kStall = 3;
 // Iterations of the polish stage (see run()).
 constexpr uint32_t kPolish = 2;
-// A limb search sweep in which some limb gained this fraction of the measure is followed by a
-// second sweep (see run()). Measured on the benchmark (scan, front depth, front and back depth,
-// trials 0-59 chosen on, 60-139 held out): any threshold from 0.05 to 0.3 fixed the same failures
-// of the front depth images (an arm left on the thigh of a raised leg: 91 and 38 mm mean vertex
-// error to 5). 0.3 sweeps twice least often: in 30 % of the scans, 14 to 28 % of the front and
-// back images, 2 to 4 % of the front images, for at most 16 ms more median fit time. A second
-// sweep for every fit took 35 to 60 ms more and made two fits worse (2 to 10 and 12 mm).
+// A limb that gained this fraction of the measure in the limb search has the limbs searched
+// before it searched again (see fit_stages()). Chosen on the benchmark (scan, front depth, front
+// and back depth; trials 0-59, checked on 60-139): any threshold from 0.05 to 0.3 fixed the same
+// failures of the front depth images (an arm left on the thigh of a raised leg: 91 and 38 mm mean
+// vertex error to 5); 0.3 searches again least often. Searching all four limbs again instead gave
+// the same mean errors over 140 trials each (scan 2.50 against 2.48 mm, front 3.56 / 3.57, front
+// and back 1.81 / 1.83) but also when the first limb was the one that moved. Searching again after
+// every search took 35 to 60 ms more per fit and made two fits worse (2 to 10 and 12 mm).
 constexpr double kResweep = 0.3;
 
 // Empty shells of cells the scan grid records around each cell (GridIndex::index_empty_space):
@@ -293,15 +294,19 @@ private:
             const bool stage_converged = run_stage(stages[si], 0xFFFFFFFFu, &progress, iteration, cancelled, first_cost);
             if (si < 3) converged = stage_converged;
             // Between the coarse and the fine stage: limbs the coarse stage could not reach, each
-            // sweep settled by a short coarse stage when a limb moved. Limbs are searched one after
+            // search settled by a short coarse stage when a limb moved. Limbs are searched one after
             // another, so a limb that gained kResweep of the measure (a raised leg found) changed
-            // what the limbs searched before it had to explain: they get a second sweep.
+            // what the limbs searched before it had to explain: they are searched again.
             if (si == 1 && !cancelled) {
                 const Stage again{std::max<uint32_t>(1, stages[1].iterations / 2), true, false, stages[1].components, 0.10, 6.0, 0.3, 0.5, 1e-4};
-                for (int sweep = 0; sweep < 2 && !cancelled; ++sweep) {
-                    const double gain = search_limbs();
-                    if (gain > 0) run_stage(again, 0xFFFFFFFFu, &progress, iteration, cancelled);
-                    if (gain < kResweep) break;
+                std::size_t count = kLimbCount;
+                for (int sweep = 0; sweep < 2 && count > 0 && !cancelled; ++sweep) {
+                    const LimbGains gains = search_limbs(count);
+                    if (*std::max_element(gains.begin(), gains.end()) > 0) run_stage(again, 0xFFFFFFFFu, &progress, iteration, cancelled);
+                    const std::size_t searched = count;
+                    count = 0;  // the limbs before the last that gained kResweep
+                    for (std::size_t i = 0; i < searched; ++i)
+                        if (gains[i] >= kResweep) count = i;
                 }
             }
         }
@@ -517,15 +522,17 @@ private:
         return best;
     }
 
-    // Arms and legs the coarse stage cannot reach (limb_search.hpp), for every frame with a cloud.
-    // Returns the largest relative gain of a limb that moved (0: none moved).
-    double search_limbs() {
-        double gain = 0;
+    // Arms and legs the coarse stage cannot reach (limb_search.hpp): the first `count` limbs, for
+    // every frame with a cloud. Returns each limb's largest relative gain over the frames.
+    LimbGains search_limbs(std::size_t count) {
+        LimbGains gains{};
         for (uint32_t f = 0; f < F_; ++f)
-            if (!frames_[f].points.empty())
-                gain = std::max(gain, fitting::search_limbs(kin_[f], body_, states_[f], cloud_view(frames_[f]), vertex_sample_, *pool_));
+            if (!frames_[f].points.empty()) {
+                const LimbGains g = fitting::search_limbs(kin_[f], body_, states_[f], cloud_view(frames_[f]), vertex_sample_, *pool_, count);
+                for (std::size_t i = 0; i < kLimbCount; ++i) gains[i] = std::max(gains[i], g[i]);
+            }
         update_kinematics();
-        return gain;
+        return gains;
     }
 
     // The vertex sample on the mean body at rest, for the rigid start search; built on first use.

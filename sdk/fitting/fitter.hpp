@@ -23,7 +23,7 @@
 //           leg with clouds (raised overhead, forward, bent elbows and knees; upper and middle
 //           joint together, the best refined) that the coarse stage's short-reaching
 //           correspondences cannot find from the rest pose (limb_search.hpp, scored by explained.hpp),
-//           swept again when a limb's move changed much;
+//           the limbs before one whose move changed much searched again;
 //   restart a single frame's fit from the automatic start that ends in an implausible pose is
 //           redone from the start search's next candidates (at most two).
 #pragma once

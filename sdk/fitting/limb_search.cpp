@@ -26,8 +26,8 @@ constexpr double kRefineWithin = 1.5;
 
 }  // namespace
 
-double search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
-                  ThreadPool& pool) {
+LimbGains search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
+                       ThreadPool& pool, std::size_t count) {
     std::vector<Vector3d> posed, posed_normals;
     const Model& model = kin.model();
     const auto limits = anatomy::joint_limits(model);
@@ -47,7 +47,8 @@ double search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudVie
     for (double flex : {0.0, -45.0, -90.0})
         for (double abd : {0.0, -25.0}) limbs[1].upper_angles.push_back(d * Vector3d(flex, 0, abd));
     for (double flex : {0.0, 45.0, 90.0, 120.0}) limbs[1].middle_angles.push_back(d * Vector3d(flex, 0, 0));
-    double gain = 0;
+    LimbGains gains{};
+    std::size_t index = 0;  // in kLimbs' order
     // A wider cap than the start search's: a candidate limb a few centimetres off its points (the
     // coarse grid) must still score better than one lying on the torso. Model vertices left
     // unexplained cost less (holes; see LimbScore): 8 cm, chosen on the benchmark's scans and the
@@ -55,6 +56,7 @@ double search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudVie
     constexpr double cap = 0.15, model_cap = 0.08;
     for (const Limb& limb : limbs)
         for (const char* side : {"_l", "_r"}) {
+            if (index++ >= count) return gains;
             const int64_t ju = model.find_joint(std::string(limb.upper) + side);
             const int64_t jm = model.find_joint(std::string(limb.middle) + side);
             if (ju < 0 || jm < 0 || !limits[std::size_t(ju)].limited || !limits[std::size_t(jm)].limited) continue;
@@ -163,11 +165,11 @@ double search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudVie
             if (best.score < current) {
                 best_state.pose[std::size_t(ju)] = anatomy::rotation_from_angles(lu, best.upper);
                 best_state.pose[std::size_t(jm)] = anatomy::rotation_from_angles(lm, best.middle);
-                gain = std::max(gain, 1 - best.score / current);
+                gains[index - 1] = 1 - best.score / current;
             }
             state = best_state;
         }
-    return gain;
+    return gains;
 }
 
 }  // namespace ssc::fitting

@@ -17,18 +17,24 @@
 #include "fitting/kinematics.hpp"
 #include "synthesis/body.hpp"
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace ssc::fitting {
 
-// Searches the limbs of one frame, one after another, and moves each to its best pose.
-// kin and body: scratch for the frame's model (their state is overwritten). state: the frame's
-// state, updated. cloud: the frame's cloud; vertex_sample: area-uniform model vertices. Candidates
-// are scored on the pool's threads; the result does not depend on their number. Returns the
-// largest relative gain of the measure, 1 - best / current, of a limb that moved (0: none moved).
-// Models without joint limits or without the named limbs are left as they are.
-double search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
-                  ThreadPool& pool);
+// The limbs searched, in their order: left arm, right arm, left leg, right leg.
+constexpr std::size_t kLimbCount = 4;
+// Per limb, the relative gain of the measure, 1 - best / current, when it moved (else 0).
+using LimbGains = std::array<double, kLimbCount>;
+
+// Searches the first `count` limbs of one frame (kLimbCount: all), one after another, and moves
+// each to its best pose. kin and body: scratch for the frame's model (their state is overwritten).
+// state: the frame's state, updated. cloud: the frame's cloud; vertex_sample: area-uniform model
+// vertices. Candidates are scored on the pool's threads; the result does not depend on their
+// number. Models without joint limits or without the named limbs are left as they are (gain 0).
+LimbGains search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
+                       ThreadPool& pool, std::size_t count = kLimbCount);
 
 }  // namespace ssc::fitting
