@@ -48,7 +48,7 @@ LimbGains search_limbs(Kinematics& kin, Body& body, FitState& state, const Cloud
         for (double abd : {0.0, -25.0}) limbs[1].upper_angles.push_back(d * Vector3d(flex, 0, abd));
     for (double flex : {0.0, 45.0, 90.0, 120.0}) limbs[1].middle_angles.push_back(d * Vector3d(flex, 0, 0));
     LimbGains gains{};
-    std::size_t index = 0;  // in kLimbs' order
+    std::size_t index = 0;  // the limb's place in the search order (kLimbCount in all)
     // A wider cap than the start search's: a candidate limb a few centimetres off its points (the
     // coarse grid) must still score better than one lying on the torso. Model vertices left
     // unexplained cost less (holes; see LimbScore): 8 cm, chosen on the benchmark's scans and the
