@@ -234,14 +234,15 @@ TEST_CASE("landmark fits recover held-out bodies in any heading", "[fitting]") {
 
 namespace {
 
-// Turns and moves a true body, scans it (8000 points, the simulator's noise, holes and outliers) and
-// fits the scan with the default options; returns the solution and its mean vertex error.
+// Turns and moves a true body, scans it (`points` points, the simulator's noise, holes and
+// outliers) and fits the scan with the default options; returns the solution and its mean vertex error.
 std::pair<fitting::FitSolution, double> fit_scan(const Model& m, const fitting::LinearModel& lin, simulation::TrueBody truth,
-                                                 double heading, const Eigen::Vector3d& shift, std::mt19937& rng) {
+                                                 double heading, const Eigen::Vector3d& shift, std::mt19937& rng,
+                                                 uint32_t points = 8000) {
     simulation::transform_body(truth, Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY()).toRotationMatrix(), shift);
     fitting::Frame frame;
     simulation::CloudSpec spec;
-    spec.points = 8000;
+    spec.points = points;
     frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
     auto sol = fitting::fit(lin, {frame}, fitting::FitOptions{});
     const double err = simulation::mean_vertex_error(simulation::fitted_vertices(m, sol.frames[0]), truth.vertices);
@@ -277,18 +278,12 @@ TEST_CASE("scan fits reach arms raised overhead and a seated pose from the rest-
 namespace {
 
 // A scan as the fit benchmark (tests/bench) makes one: a random body and pose in a random heading,
-// 20,000 points with the simulator's noise, holes and outliers; fitted with the default options.
-// Returns the solution and its mean vertex error.
+// 20,000 points (fit_scan). Draws from rng in the benchmark's order.
 std::pair<fitting::FitSolution, double> fit_benchmark_scan(const Model& m, const fitting::LinearModel& lin, std::mt19937& rng) {
     auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng), Eigen::Vector3d::Zero());
     std::uniform_real_distribution<double> heading(-M_PI, M_PI);
-    simulation::transform_body(truth, Eigen::AngleAxisd(heading(rng), Eigen::Vector3d::UnitY()).toRotationMatrix(),
-                               Eigen::Vector3d(0.1, 0.2, 1.5));
-    fitting::Frame frame;
-    frame.clouds.push_back(simulation::simulate_cloud(m, truth, simulation::CloudSpec{}, rng));
-    auto sol = fitting::fit(lin, {frame}, fitting::FitOptions{});
-    const double err = simulation::mean_vertex_error(simulation::fitted_vertices(m, sol.frames[0]), truth.vertices);
-    return {std::move(sol), err};
+    const double angle = heading(rng);
+    return fit_scan(m, lin, truth, angle, Eigen::Vector3d(0.1, 0.2, 1.5), rng, 20000);
 }
 
 }  // namespace

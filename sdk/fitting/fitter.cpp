@@ -498,7 +498,6 @@ private:
         std::vector<FitState> candidates;
         for (const StartCandidate& c : found) candidates.push_back(place(c.placement.R, c.placement.scale, c.placement.t));
         ++searched_frames_;
-        FitState best = candidates[0];
         double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
         std::vector<std::pair<double, FitState>> checked;  // explained measure after the short fit, state
         for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -512,14 +511,14 @@ private:
             find_pairs(coarse, f);
             const double cost = explained(f);
             checked.emplace_back(cost, states_[f]);
-            if (cost < best_cost) best_cost = cost, best = states_[f], best_prior = pose_priors(f, nullptr, nullptr);
+            if (cost < best_cost) best_cost = cost, best_prior = pose_priors(f, nullptr, nullptr);
         }
-        // The others, best first, for restarts (run()); the first is the one chosen.
+        // Best first (the first of equals): the start, then the others for restarts (run()).
         std::stable_sort(checked.begin(), checked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         if (F_ == 1)
             for (std::size_t i = 1; i < checked.size(); ++i) alternative_starts_.push_back(checked[i].second);
         std::fill(shape_.begin(), shape_.end(), 0.0);
-        return best;
+        return checked.front().second;
     }
 
     // Arms and legs the coarse stage cannot reach (limb_search.hpp): the first `count` limbs, for
