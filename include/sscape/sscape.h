@@ -330,10 +330,20 @@ SSC_API ssc_status ssc_body_create(ssc_model* model, const ssc_body_def* def, ss
 SSC_API void ssc_body_destroy(ssc_body* body);
 
 /**
+ * The accepted range of a shape coefficient: [-SSC_SHAPE_COEFFICIENT_LIMIT, SSC_SHAPE_COEFFICIENT_LIMIT]
+ * standard deviations. A population spans about +-3; beyond a few, bodies stop looking human, and
+ * far beyond they grow without bound. Every function that takes shape coefficients refuses values
+ * outside this range (SSC_ERROR_INVALID_ARGUMENT, the message gives the range), and every function
+ * that computes them (fitting, sliders, made to measure) returns values inside it.
+ */
+#define SSC_SHAPE_COEFFICIENT_LIMIT 20.0f
+
+/**
  * Sets the shape.
- * @param coefficients  count values in standard deviations (finite); may be NULL when count is 0.
+ * @param coefficients  count values in standard deviations, finite and within
+ *                      +-SSC_SHAPE_COEFFICIENT_LIMIT; may be NULL when count is 0.
  * @param count         at most ssc_model_shape_count; the remaining components are set to 0.
- * @return SSC_ERROR_INVALID_ARGUMENT for NULL, a count too large or a non-finite value; the body
+ * @return SSC_ERROR_INVALID_ARGUMENT for NULL, a count too large or a value out of range; the body
  *         is unchanged then.
  * Threads: the body's thread.
  */
@@ -572,7 +582,9 @@ typedef struct ssc_slider_info {
     const char* description;  /**< One sentence. */
     float mean;               /**< The training population's mean: the mean body's value. */
     float minimum;            /**< 0.5th percentile of the population: a slider's useful range ... */
-    float maximum;            /**< ... to the 99.5th percentile. Values beyond extrapolate. */
+    float maximum;            /**< ... to the 99.5th percentile. Values beyond extrapolate, within the
+                                   accepted range: minimum - (maximum - minimum) to
+                                   maximum + (maximum - minimum). */
 } ssc_slider_info;
 
 /** Number of sliders the model has. Threads: any. */
@@ -598,7 +610,12 @@ SSC_API ssc_status ssc_body_get_sliders(const ssc_body* body, float* out, uint32
 
 /**
  * Moves one slider to a value, keeping the rest of the body's shape (and the other sliders' values).
- * @param index  below ssc_model_slider_count. @param value  finite, in the slider's unit.
+ * @param index  below ssc_model_slider_count.
+ * @param value  in the slider's unit, within its accepted range (ssc_slider_info: the population's
+ *               range widened by its own width on each side; stature 1.5 to 1.95 m accepts 1.05 to 2.4 m).
+ * @return SSC_ERROR_INVALID_ARGUMENT for a value outside the accepted range (the message gives the
+ *         range) or one that would take a shape coefficient beyond SSC_SHAPE_COEFFICIENT_LIMIT; the
+ *         body is unchanged then.
  * Threads: the body's thread.
  */
 SSC_API ssc_status ssc_body_set_slider(ssc_body* body, uint32_t index, float value);
@@ -606,7 +623,8 @@ SSC_API ssc_status ssc_body_set_slider(ssc_body* body, uint32_t index, float val
 /**
  * Replaces the body's shape by the one the slider values give (every slider, in slider order): the
  * population's typical body with those values.
- * @param values  count finite floats. @param count  must equal ssc_model_slider_count.
+ * @param values  count values, each within its slider's accepted range (as ssc_body_set_slider).
+ * @param count   must equal ssc_model_slider_count.
  * Threads: the body's thread.
  */
 SSC_API ssc_status ssc_body_set_sliders(ssc_body* body, const float* values, uint32_t count);
@@ -633,7 +651,11 @@ SSC_API void ssc_made_to_measure_def_init(ssc_made_to_measure_def* def, size_t s
  * On the default model, stature, chest, waist and hip girth of held-out bodies are reached within a
  * millimetre (sscape train prints the figures).
  * @param measurements  count ssc_measurement values.
- * @param values        count finite positive targets, in the measurements' units (SI).
+ * @param values        count targets, in the measurements' units (SI). Where the model's attributes
+ *                      describe the measurement (stature, girths, mass: the sliders' statistics), within
+ *                      the population's range widened by its width on each side, as for sliders;
+ *                      otherwise positive and at most 5 m, 10 m^2, 1 m^3 or 1000 kg. Values outside
+ *                      give SSC_ERROR_INVALID_ARGUMENT with the accepted range.
  * @param count         at least 1.
  * @param def           may be NULL (defaults).
  * @param achieved      out, may be NULL: every measurement of the result (as ssc_body_measure).

@@ -1,11 +1,11 @@
 #include "common/error.hpp"
+#include "common/files.hpp"
 #include "sscape_format/basis_codec.hpp"
 #include "sscape_format/container.hpp"
 #include "sscape_format/model_io.hpp"
 #include "sscape_model_generated.h"
 
 #include <cstring>
-#include <fstream>
 
 static_assert(FLATBUFFERS_LITTLEENDIAN, "the reader copies FlatBuffers vectors directly: little-endian hosts only");
 
@@ -167,17 +167,9 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
 }
 
 ModelData read_model_file(const std::string& path, const ReadOptions& options) {
-    std::ifstream f(path, std::ios::binary | std::ios::ate);
-    if (!f) fail(SSC_ERROR_IO, "cannot open '" + path + "'");
-    const std::streamoff size = f.tellg();
-    if (size < 0) fail(SSC_ERROR_IO, "cannot read the size of '" + path + "'");
-    // A container is at most header + a zstd bound of the content cap: refuse larger files unread.
+    // A container is at most header + a zstd bound of the content cap: larger files are refused unread.
     const uint64_t cap = options.max_model_bytes ? options.max_model_bytes : kDefaultMaxModelBytes;
-    if (static_cast<uint64_t>(size) > kHeaderSize + cap + cap / 128 + (1 << 17))
-        fail(SSC_ERROR_MODEL_CORRUPT, "'" + path + "' is " + std::to_string(size) + " bytes: larger than any model accepted");
-    std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
-    f.seekg(0);
-    if (size > 0 && !f.read(reinterpret_cast<char*>(bytes.data()), size)) fail(SSC_ERROR_IO, "cannot read '" + path + "'");
+    const std::string bytes = read_regular_file(path, kHeaderSize + cap + cap / 128 + (1 << 17), SSC_ERROR_MODEL_CORRUPT);
     try {
         return read_model(bytes.data(), bytes.size(), options);
     } catch (const Error& e) {

@@ -1,4 +1,4 @@
-#include "common/atomic_file.hpp"
+#include "common/files.hpp"
 #include "common/error.hpp"
 #include "sscape_format/basis_codec.hpp"
 #include "sscape_format/container.hpp"

@@ -1,6 +1,7 @@
 // Batch synthesis on the context's worker threads.
 #include "guard.hpp"
 #include "handles.hpp"
+#include "synthesis/shape_range.hpp"
 #include "synthesis/batch.hpp"
 #include "synthesis/rotation.hpp"
 
@@ -32,13 +33,13 @@ ssc_status ssc_model_synthesize_batch(const ssc_model* model, const ssc_batch_de
         if (n == 0) return;
         SSC_REQUIRE_ARG(d.shape_count <= K, "shape_count is " + std::to_string(d.shape_count) + "; the model has " +
                                             std::to_string(K) + " components");
-        SSC_REQUIRE_ARG(d.pose_format == SSC_ROTATION_QUATERNION || d.pose_format == SSC_ROTATION_AXIS_ANGLE,
-                    "pose_format is not a known ssc_rotation_format");
+        const int32_t format = enum_value(d.pose_format);
+        SSC_REQUIRE_ARG(format == SSC_ROTATION_QUATERNION || format == SSC_ROTATION_AXIS_ANGLE,
+                        "desc->pose_format " + std::to_string(format) + " is not an ssc_rotation_format value");
         check_output(d.vertices, d.vertices_capacity, uint64_t(n) * V, 0, 12);
         if (d.normals) check_output(d.normals, d.normals_capacity, uint64_t(n) * V, 0, 12);
         if (d.shapes) {
-            for (std::size_t i = 0; i < n * d.shape_count; ++i)
-                SSC_REQUIRE_ARG(std::isfinite(d.shapes[i]), "shapes[" + std::to_string(i) + "] is not finite");
+            check_shape_coefficients(d.shapes, n * d.shape_count, "desc->shapes");
         } else {
             SSC_REQUIRE_ARG(d.shape_count == 0, "shape_count must be 0 when shapes is NULL");
         }

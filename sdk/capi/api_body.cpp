@@ -2,6 +2,7 @@
 #include "guard.hpp"
 #include "handles.hpp"
 #include "synthesis/rotation.hpp"
+#include "synthesis/shape_range.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -95,7 +96,7 @@ ssc_status ssc_body_set_shape(ssc_body* body, const float* coefficients, uint32_
         SSC_REQUIRE_ARG(count <= K, "count is " + std::to_string(count) + "; the model has " + std::to_string(K) + " components");
         if (count) {
             need(coefficients, "coefficients");
-            check_finite(coefficients, count, "coefficients");
+            check_shape_coefficients(coefficients, count, "coefficients");
         }
         body->body.set_shape(coefficients, count);
     });

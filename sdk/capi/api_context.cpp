@@ -71,7 +71,9 @@ ssc_status ssc_context_create(const ssc_context_def* def, ssc_context** out) {
         need(out, "out");
         const ssc_context_def d = read_def(def, ssc_context_def_init, "def");
         SSC_REQUIRE_ARG((d.alloc == nullptr) == (d.free == nullptr), "alloc and free must be set together");
-        SSC_REQUIRE_ARG(d.log_level >= SSC_LOG_DEBUG && d.log_level <= SSC_LOG_ERROR, "log_level is out of range");
+        const int32_t level = enum_value(d.log_level);
+        SSC_REQUIRE_ARG(level >= SSC_LOG_DEBUG && level <= SSC_LOG_ERROR,
+                        "def->log_level is " + std::to_string(level) + "; expected SSC_LOG_DEBUG (0) to SSC_LOG_ERROR (3)");
         unsigned workers = d.worker_count;
         if (workers == 0) workers = std::max(1u, std::thread::hardware_concurrency());
         SSC_REQUIRE_ARG(workers <= 1024, "worker_count is larger than 1024");

@@ -187,7 +187,8 @@ ssc_status ssc_fitter_add_depth_image(ssc_fitter* fitter, uint32_t frame, const 
         need(image, "image");
         const ssc_depth_image_def d = read_def(image, ssc_depth_image_def_init, "image");
         need(d.samples, "image->samples");
-        SSC_REQUIRE_ARG_S(d.format == SSC_DEPTH_U16_MM || d.format == SSC_DEPTH_F32_M, "image->format " << int(d.format) << " is unknown");
+        const int32_t format = enum_value(d.format);
+        SSC_REQUIRE_ARG_S(format == SSC_DEPTH_U16_MM || format == SSC_DEPTH_F32_M, "image->format " << format << " is unknown");
         SSC_REQUIRE_ARG_S(d.width >= 5 && d.height >= 5 && d.width <= 16384 && d.height <= 16384,
                           "image size " << d.width << " x " << d.height << " (5..16384 each)");
         const std::size_t sample = d.format == SSC_DEPTH_U16_MM ? 2 : 4;

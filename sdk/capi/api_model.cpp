@@ -212,7 +212,7 @@ ssc_status ssc_model_get_metadata(const ssc_model* m, ssc_metadata_key key, cons
         need(out, "out");
         const auto& md = data(m).metadata;
         const std::string* s = nullptr;
-        switch (key) {
+        switch (enum_value(key)) {
             case SSC_METADATA_NAME: s = &md.name; break;
             case SSC_METADATA_VERSION: s = &md.model_version; break;
             case SSC_METADATA_UNITS: s = &md.units; break;
@@ -220,7 +220,7 @@ ssc_status ssc_model_get_metadata(const ssc_model* m, ssc_metadata_key key, cons
             case SSC_METADATA_LICENSE: s = &md.license; break;
             case SSC_METADATA_PROVENANCE: s = &md.provenance; break;
             case SSC_METADATA_DESCRIPTION: s = &md.description; break;
-            default: fail(SSC_ERROR_INVALID_ARGUMENT, "unknown metadata key " + std::to_string(int(key)));
+            default: fail(SSC_ERROR_INVALID_ARGUMENT, "unknown metadata key " + std::to_string(enum_value(key)));
         }
         *out = s->c_str();
     });
@@ -229,7 +229,6 @@ ssc_status ssc_model_get_metadata(const ssc_model* m, ssc_metadata_key key, cons
 ssc_status ssc_model_get_skin(const ssc_model* m, uint16_t* joints, float* weights, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(m, "model");
-        SSC_REQUIRE_ARG(joints || weights, "joints and weights are both NULL");
         const uint32_t V = m->model.vertex_count();
         if (joints) check_output(joints, capacity, V, 0, 8);
         if (weights) check_output(weights, capacity, V, 0, 16);

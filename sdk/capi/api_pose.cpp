@@ -62,7 +62,8 @@ ssc_status ssc_body_set_pose_limited(ssc_body* body, const float* rotations, uin
     return guarded(__func__, [&] {
         need(body, "body");
         need(rotations, "rotations");
-        SSC_REQUIRE_ARG(mode == SSC_LIMITS_REJECT || mode == SSC_LIMITS_CLAMP, "mode is not an ssc_limit_mode value");
+        const int32_t m = enum_value(mode);
+        SSC_REQUIRE_ARG(m == SSC_LIMITS_REJECT || m == SSC_LIMITS_CLAMP, "mode " + std::to_string(m) + " is not an ssc_limit_mode value");
         const uint32_t J = body->body.model().joint_count();
         std::vector<float> quats = checked_pose(body, SSC_ROTATION_QUATERNION, rotations, joint_count, translation);
         uint32_t violations = 0;

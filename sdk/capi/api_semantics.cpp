@@ -2,6 +2,7 @@
 #include "guard.hpp"
 #include "handles.hpp"
 #include "semantics/made_to_measure.hpp"
+#include "synthesis/shape_range.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -22,12 +23,11 @@ Eigen::VectorXd shape_of(const ssc_body* body) {
     return c;
 }
 
+// Checked after narrowing to float: a finite double can still become an infinite float.
 void set_shape(ssc_body* body, const Eigen::VectorXd& c) {
     std::vector<float> f(std::size_t(c.size()));
-    for (Eigen::Index k = 0; k < c.size(); ++k) {
-        SSC_REQUIRE_ARG(std::isfinite(c(k)), "the slider values give a non-finite shape");
-        f[std::size_t(k)] = float(c(k));
-    }
+    for (Eigen::Index k = 0; k < c.size(); ++k) f[std::size_t(k)] = float(c(k));
+    check_shape_coefficients(f.data(), f.size(), "the slider values give shape coefficient");
     body->body.set_shape(f.data(), uint32_t(f.size()));
 }
 
@@ -89,8 +89,8 @@ ssc_status ssc_body_set_slider(ssc_body* body, uint32_t index, float value) {
         need(body, "body");
         const uint32_t S = slider_count(body->model);
         SSC_REQUIRE_ARG(index < S, "slider " + std::to_string(index) + " is out of range (count " + std::to_string(S) + ")");
-        SSC_REQUIRE_ARG(std::isfinite(value), "value is not finite");
         const auto& am = body->model->attributes;
+        am.check_accepted(am.sliders()[index], value);
         const Eigen::VectorXd c = shape_of(body);
         const double current = am.shape_to_sliders(c)(index);
         set_shape(body, c + am.slider_directions().col(index) * (double(value) - current));
@@ -106,7 +106,7 @@ ssc_status ssc_body_set_sliders(ssc_body* body, const float* values, uint32_t co
         need(values, "values");
         Eigen::VectorXd v(S);
         for (uint32_t i = 0; i < S; ++i) {
-            SSC_REQUIRE_ARG(std::isfinite(values[i]), "values[" + std::to_string(i) + "] is not finite");
+            body->model->attributes.check_accepted(body->model->attributes.sliders()[i], values[i]);
             v(i) = values[i];
         }
         set_shape(body, body->model->attributes.sliders_to_shape(v));

@@ -38,6 +38,17 @@ void need(const T* p, const char* name) {
     SSC_REQUIRE_ARG(p != nullptr, std::string(name) + " is NULL");
 }
 
+// The integer behind an enum argument from C. C callers may pass any int (-1, 42); loading such
+// a value as the C++ enum type is undefined behaviour, so its bytes are read as an integer instead,
+// before any range check.
+template <class E>
+int32_t enum_value(const E& e) {
+    static_assert(sizeof(E) == sizeof(int32_t), "C API enums are 32-bit (their FORCE32 enumerator)");
+    int32_t v;
+    std::memcpy(&v, &e, sizeof v);
+    return v;
+}
+
 // Checks an output array of count elements of elem_bytes at stride (0 = packed); returns the stride.
 std::size_t check_output(const void* out, uint64_t capacity, uint64_t count, std::size_t stride, std::size_t elem_bytes);
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "anatomy/joint_limits.hpp"
+#include "common/error.hpp"
 #include "common/alloc.hpp"
 #include "common/thread_pool.hpp"
 #include "fitting/fitter.hpp"
@@ -43,17 +44,31 @@ struct ssc_model {
     ssc_model(ssc_context* ctx, ssc::format::ModelData data)
         : context(ctx), model(std::move(data), &ctx->allocator), attributes(model.data()), limits(ssc::anatomy::joint_limits(model)) {}
 
-    // Built on first use: its edge lists cost milliseconds that loading should not pay. Thread-safe;
-    // throws (SSC_ERROR_NOT_FOUND) for a model without the landmarks the definitions need, and
-    // tries again on the next call.
+    // Built on first use: its edge lists cost milliseconds that loading should not pay. Thread-safe.
+    // A model without the landmarks the definitions need fails (SSC_ERROR_NOT_FOUND) and that
+    // failure is kept: later calls report it without building again. Running out of memory is not
+    // kept, so a later call may succeed. (A mutex, not std::call_once: a once-callable that throws is
+    // retried, which some pthread_once implementations and ThreadSanitizer handle badly.)
     const ssc::measure::Measurer& measurer() const {
-        std::call_once(measurer_once_, [this] { measurer_ = std::make_unique<ssc::measure::Measurer>(model); });
+        std::lock_guard<std::mutex> lock(measurer_mutex_);
+        if (!measurer_ && measurer_error_.empty()) {
+            try {
+                measurer_ = std::make_unique<ssc::measure::Measurer>(model);
+            } catch (const ssc::Error& e) {
+                if (e.status() == SSC_ERROR_OUT_OF_MEMORY) throw;
+                measurer_status_ = e.status();
+                measurer_error_ = e.what();
+            }
+        }
+        if (!measurer_) ssc::fail(measurer_status_, measurer_error_);
         return *measurer_;
     }
 
 private:
-    mutable std::once_flag measurer_once_;
+    mutable std::mutex measurer_mutex_;
     mutable std::unique_ptr<ssc::measure::Measurer> measurer_;
+    mutable ssc_status measurer_status_ = SSC_ERROR_INTERNAL;
+    mutable std::string measurer_error_;
 };
 
 struct ssc_body {

@@ -3,7 +3,7 @@
 #include "cli.hpp"
 
 #include "capi/handles.hpp"
-#include "common/atomic_file.hpp"
+#include "common/files.hpp"
 #include "measure/measurements.hpp"
 #include "render/measure_picture.hpp"
 

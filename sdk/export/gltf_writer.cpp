@@ -1,6 +1,6 @@
 #include "gltf_writer.hpp"
 
-#include "common/atomic_file.hpp"
+#include "common/files.hpp"
 #include "common/error.hpp"
 
 #include <Eigen/Geometry>

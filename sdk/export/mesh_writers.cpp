@@ -1,6 +1,6 @@
 #include "mesh_writers.hpp"
 
-#include "common/atomic_file.hpp"
+#include "common/files.hpp"
 #include "common/error.hpp"
 
 #include <algorithm>

@@ -12,6 +12,7 @@
 #include "fitting/nearest.hpp"
 #include "fitting/normal_equations.hpp"
 #include "fitting/posed_surface.hpp"
+#include "synthesis/shape_range.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -214,7 +215,8 @@ public:
         states_.assign(F_, kin_[0].zero_state());
         if (start && !o_.auto_start) {
             for (uint32_t f = 0; f < F_; ++f) states_[f] = (*start)[f];
-            for (uint32_t k = 0; k < K_ && k < (*start)[0].shape.size(); ++k) shape_[k] = (*start)[0].shape[k];
+            for (uint32_t k = 0; k < K_ && k < (*start)[0].shape.size(); ++k)
+                shape_[k] = std::clamp((*start)[0].shape[k], -double(kShapeLimit), double(kShapeLimit));
             for (auto& s : states_) s.shape.resize(K_, 0.0);
         } else {
             for (uint32_t f = 0; f < F_; ++f) states_[f] = initial_state(f);
@@ -770,7 +772,8 @@ private:
     }
 
     void apply(const VectorXd& delta) {
-        for (uint32_t k = 0; k < K_; ++k) shape_[k] += delta[k];
+        // Box constraint: the shape stays where the C API accepts it back (shape_range.hpp).
+        for (uint32_t k = 0; k < K_; ++k) shape_[k] = std::clamp(shape_[k] + delta[k], -double(kShapeLimit), double(kShapeLimit));
         std::vector<double> local(K_ + B_, 0.0);
         for (uint32_t f = 0; f < F_; ++f) {
             for (uint32_t i = 0; i < B_; ++i) local[K_ + i] = delta[K_ + f * B_ + i];

@@ -12,6 +12,7 @@
 #include "fitting/kinematics.hpp"
 
 #include "common/error.hpp"
+#include "synthesis/shape_range.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -284,7 +285,8 @@ Vector3d Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor, uint
 }
 
 void Kinematics::apply(const double* delta, FitState& s) const {
-    for (uint32_t k = 0; k < K_; ++k) s.shape[k] += delta[k];
+    // The shape stays where the C API accepts it back (shape_range.hpp).
+    for (uint32_t k = 0; k < K_; ++k) s.shape[k] = std::clamp(s.shape[k] + delta[k], -double(kShapeLimit), double(kShapeLimit));
     for (uint32_t j = 0; j < J_; ++j) {
         const Vector3d w(delta + rotation_offset(j));
         if (w.squaredNorm() == 0) continue;

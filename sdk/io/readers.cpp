@@ -1,12 +1,12 @@
 #include "io/readers.hpp"
 
 #include "common/error.hpp"
+#include "common/files.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 namespace ssc::io {
@@ -15,37 +15,58 @@ namespace {
 
 constexpr std::size_t kMaxFileBytes = std::size_t(2) << 30;  // 2 GiB: larger inputs are refused, not half read
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(SSC_ERROR_IO, "cannot open " + path);
-    in.seekg(0, std::ios::end);
-    const auto size = in.tellg();
-    if (size < 0 || std::size_t(size) > kMaxFileBytes) fail(SSC_ERROR_IO, path + ": unreadable or larger than 2 GiB");
-    std::string data(std::size_t(size), '\0');
-    in.seekg(0);
-    in.read(data.data(), size);
-    if (!in) fail(SSC_ERROR_IO, "cannot read " + path);
-    return data;
-}
+std::string slurp(const std::string& path) { return read_regular_file(path, kMaxFileBytes); }
 
 [[noreturn]] void bad(const std::string& path, const std::string& what) { fail(SSC_ERROR_INVALID_ARGUMENT, path + ": " + what); }
+[[noreturn]] void internal_error(const std::string& path, const std::string& what) { fail(SSC_ERROR_INTERNAL, path + ": " + what); }
 
 bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
-// Normals from faces (area weighted), for files that give faces but no normals.
+// A unit vector along v, or zero when v has no direction: computed without overflow, so huge
+// finite components still give a finite unit vector.
+Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& v) {
+    if (!v.allFinite()) return Eigen::Vector3d::Zero();
+    const double len = v.stableNorm();
+    return len > 0 && std::isfinite(len) ? Eigen::Vector3d(v / len) : Eigen::Vector3d::Zero();
+}
+
+// Normals from faces (area weighted), for files that give faces but no normals. Computed on the
+// points scaled into the unit cube: finite coordinates near the largest double would otherwise make
+// edge vectors and cross products overflow to Inf and the normals NaN.
 std::vector<Eigen::Vector3d> face_normals(const std::vector<Eigen::Vector3d>& pts, const std::vector<uint32_t>& tris) {
+    double extent = 0;
+    for (const auto& p : pts) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+    const double scale = extent > 0 ? 1.0 / extent : 1.0;
     std::vector<Eigen::Vector3d> n(pts.size(), Eigen::Vector3d::Zero());
     for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
-        const Eigen::Vector3d f = (pts[tris[t + 1]] - pts[tris[t]]).cross(pts[tris[t + 2]] - pts[tris[t]]);
+        const Eigen::Vector3d a = pts[tris[t]] * scale;
+        const Eigen::Vector3d f = (pts[tris[t + 1]] * scale - a).cross(pts[tris[t + 2]] * scale - a);
         for (int i = 0; i < 3; ++i) n[tris[t + i]] += f;
     }
     // Points on no face get no normal: then the whole set goes without (the fitter estimates them).
     for (auto& v : n) {
-        const double len = v.norm();
-        if (len == 0) return {};
-        v /= len;
+        v = unit_or_zero(v);
+        if (v.squaredNorm() == 0) return {};
     }
     return n;
+}
+
+// Normals given per point in a file: all usable unit vectors, or none (the fitter estimates them).
+std::vector<Eigen::Vector3d> given_normals(std::vector<Eigen::Vector3d> normals) {
+    for (auto& n : normals) {
+        n = unit_or_zero(n);
+        if (n.squaredNorm() == 0) return {};
+    }
+    return normals;
+}
+
+// What every point reader returns: some points, and either no normals or one finite unit normal per point.
+PointFile checked(PointFile f, const std::string& path) {
+    if (f.points.empty()) bad(path, "holds no points");
+    if (f.normals.size() != f.points.size()) f.normals.clear();
+    for (const auto& n : f.normals)
+        if (!n.allFinite() || std::abs(n.squaredNorm() - 1.0) > 1e-6) internal_error(path, "a reader returned a normal that is not a finite unit vector");
+    return f;
 }
 
 // --- PLY -----------------------------------------------------------------------------------------
@@ -128,8 +149,7 @@ private:
     std::istringstream text_;
 };
 
-PointFile read_ply(const std::string& path) {
-    const std::string data = slurp(path);
+PointFile ply_points(const std::string& data, const std::string& path) {
     const std::size_t end = data.find("end_header");
     if (data.compare(0, 3, "ply") != 0 || end == std::string::npos) bad(path, "not a PLY file (no 'ply' magic or 'end_header')");
     std::size_t body = data.find('\n', end);
@@ -173,8 +193,16 @@ PointFile read_ply(const std::string& path) {
     if (format < 0) bad(path, "PLY header has no format line");
     PlyCursor cur(path, data, body, format);
     PointFile out;
+    std::vector<Eigen::Vector3d> normals;
     std::vector<uint32_t> tris;
+    bool seen_vertex = false;
     for (const auto& e : elements) {
+        if (e.name == "vertex") {
+            if (seen_vertex) bad(path, "PLY file has more than one 'vertex' element");
+            seen_vertex = true;
+        }
+        // An element without properties holds no data: there is nothing to read for any of its entries.
+        if (e.props.empty()) continue;
         // Hostile counts: every element needs at least one byte per property, so a count larger
         // than the remaining file is an error before anything is allocated for it.
         if (e.count > cur.remaining()) bad(path, "PLY element '" + e.name + "' claims " + std::to_string(e.count) + " entries, more than the file holds");
@@ -215,29 +243,20 @@ PointFile read_ply(const std::string& path) {
                 const Eigen::Vector3d p(values[std::size_t(ix)], values[std::size_t(iy)], values[std::size_t(iz)]);
                 if (!finite(p)) bad(path, "PLY vertex " + std::to_string(r) + " is not finite");
                 out.points.push_back(p);
-                if (has_normals) {
-                    Eigen::Vector3d n(values[std::size_t(inx)], values[std::size_t(iny)], values[std::size_t(inz)]);
-                    const double len = n.norm();
-                    out.normals.push_back(std::isfinite(len) && len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero());
-                }
+                if (has_normals) normals.emplace_back(values[std::size_t(inx)], values[std::size_t(iny)], values[std::size_t(inz)]);
             }
             for (std::size_t k = 1; k + 1 < poly.size(); ++k) tris.insert(tris.end(), {poly[0], poly[k], poly[k + 1]});
         }
     }
     // Normals of zero length (or none at all) leave the estimate to the fitter.
-    for (const auto& n : out.normals)
-        if (n.squaredNorm() == 0) {
-            out.normals.clear();
-            break;
-        }
+    out.normals = given_normals(std::move(normals));
     if (out.normals.empty() && !tris.empty()) out.normals = face_normals(out.points, tris);
     return out;
 }
 
 // --- OBJ -----------------------------------------------------------------------------------------
 
-PointFile read_obj(const std::string& path) {
-    const std::string data = slurp(path);
+PointFile obj_points(const std::string& data, const std::string& path) {
     std::istringstream in(data);
     std::string line;
     PointFile out;
@@ -269,15 +288,7 @@ PointFile read_obj(const std::string& path) {
     if (!tris.empty()) {
         out.normals = face_normals(out.points, tris);
     } else if (vn.size() == out.points.size()) {
-        out.normals = vn;
-        for (auto& n : out.normals) {
-            const double len = n.norm();
-            if (len == 0) {
-                out.normals.clear();
-                break;
-            }
-            n /= len;
-        }
+        out.normals = given_normals(std::move(vn));
     }
     return out;
 }
@@ -291,14 +302,18 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
+PointFile parse_ply(const std::string& data, const std::string& name) { return checked(ply_points(data, name), name); }
+PointFile parse_obj(const std::string& data, const std::string& name) { return checked(obj_points(data, name), name); }
+
 PointFile read_points(const std::string& path) {
-    PointFile f;
-    if (ends_with(path, ".ply")) f = read_ply(path);
-    else if (ends_with(path, ".obj")) f = read_obj(path);
-    else bad(path, "unknown point file type (expected .ply or .obj)");
-    if (f.points.empty()) bad(path, "holds no points");
-    return f;
+    if (ends_with(path, ".ply")) return parse_ply(slurp(path), path);
+    if (ends_with(path, ".obj")) return parse_obj(slurp(path), path);
+    bad(path, "unknown point file type (expected .ply or .obj)");
 }
+
+std::vector<LandmarkRecord> read_lnd(const std::string& path) { return parse_lnd(slurp(path), path); }
+
+DepthImage read_pgm_depth(const std::string& path) { return parse_pgm_depth(slurp(path), path); }
 
 std::string normalized_landmark_name(const std::string& name) {
     std::string out;
@@ -307,8 +322,7 @@ std::string normalized_landmark_name(const std::string& name) {
     return out;
 }
 
-std::vector<LandmarkRecord> read_lnd(const std::string& path) {
-    const std::string data = slurp(path);
+std::vector<LandmarkRecord> parse_lnd(const std::string& data, const std::string& path) {
     std::istringstream in(data);
     std::string line;
     bool rows = false, ended = false;
@@ -352,8 +366,7 @@ std::vector<LandmarkRecord> read_lnd(const std::string& path) {
     return out;
 }
 
-DepthImage read_pgm_depth(const std::string& path) {
-    const std::string data = slurp(path);
+DepthImage parse_pgm_depth(const std::string& data, const std::string& path) {
     std::size_t pos = 0;
     DepthImage img;
     auto comment = [&](const std::string& line) {

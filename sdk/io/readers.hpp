@@ -30,6 +30,7 @@ struct PointFile {
 
 // PLY (ascii or binary little/big endian; x y z, optional nx ny nz; faces give normals when the
 // file has none) and OBJ (v lines, optional vn per vertex or f lines for normals). By extension.
+// The result holds at least one point, and either no normals or one finite unit normal per point.
 PointFile read_points(const std::string& path);
 
 struct DepthImage {
@@ -46,6 +47,13 @@ struct DepthImage {
 // Binary PGM (P5) with maxval > 255 (16-bit big-endian samples), values in millimetres; the camera
 // comments above are read when present (malformed ones are an error, other comments are ignored).
 DepthImage read_pgm_depth(const std::string& path);
+
+// The same readers over bytes already in memory (what the fuzz targets call); `name` stands for
+// the file in messages.
+std::vector<LandmarkRecord> parse_lnd(const std::string& data, const std::string& name);
+PointFile parse_ply(const std::string& data, const std::string& name);
+PointFile parse_obj(const std::string& data, const std::string& name);
+DepthImage parse_pgm_depth(const std::string& data, const std::string& name);
 
 // Landmark names compared as the CAESAR files spell them: case, spaces and punctuation ignored
 // ("Lt. Metacarpal-Phal. II" == "lt metacarpal phal ii").

@@ -1,6 +1,6 @@
 #include "io/writers.hpp"
 
-#include "common/atomic_file.hpp"
+#include "common/files.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -57,8 +57,12 @@ std::vector<std::vector<Vector3d>> horizontal_sections(const float* xyz, const s
         // Levels i with the edge crossing y_i = top - i * step, by the same sign test as
         // plane_section: (a.y < y) != (b.y < y), i.e. y in (min, max].
         const double lo = std::min(a.y(), b.y()), hi = std::max(a.y(), b.y());
-        const int first = std::max(0, int(std::ceil((top - hi) / step)) - 1);
-        const int last = std::min(count - 1, int(std::floor((top - lo) / step)) + 1);
+        if (!std::isfinite(lo) || !std::isfinite(hi)) continue;
+        // Level bounds clamped in double before converting: far-away edges give quotients no int holds.
+        const double from = std::ceil((top - hi) / step) - 1, to = std::floor((top - lo) / step) + 1;
+        if (!(from <= count - 1) || !(to >= 0)) continue;  // wholly above or below the levels (or NaN)
+        const int first = from <= 0 ? 0 : int(from);
+        const int last = to >= count - 1 ? count - 1 : int(to);
         for (int i = first; i <= last; ++i) {
             const double y = top - i * step;
             const double da = a.y() - y, db = b.y() - y;

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace ssc::measure {
 
@@ -81,6 +82,41 @@ const char* const kNeededNames[kNeededCount] = {
     "Rt. Radial Styloid", "Rt. Knee Crease", "Rt. Lateral Malleolus"};
 
 Vector3d at(const float* p, std::size_t i) { return Vector3d(p[3 * i], p[3 * i + 1], p[3 * i + 2]); }
+
+// Searched levels (hip, calf) are cut every 5 mm, but never more than kMaxLevels of them: a search
+// range longer than a real body's gets a wider step, so the work stays bounded by the mesh.
+constexpr double kLevelStep = 0.005;
+constexpr int kMaxLevels = 200;
+
+struct Levels {
+    double step;
+    int count;
+};
+Levels search_levels(double range) {
+    if (!(range >= 0)) return {kLevelStep, 0};  // an empty range: no level to search
+    const double step = std::max(kLevelStep, range / (kMaxLevels - 1));
+    return {step, std::min(kMaxLevels, int(std::floor(range / step)) + 1)};
+}
+
+// Bodies the definitions can be taken on: finite, and no larger than any person (a shape far
+// outside the population, or a model in other units, is refused rather than measured).
+void check_measurable(const float* xyz, uint32_t V, const float* joints, uint32_t J) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+    for (uint32_t v = 0; v < V; ++v) {
+        const Vector3d p = at(xyz, v);
+        SSC_REQUIRE_ARG(p.allFinite(), "the body's vertex " + std::to_string(v) + " is not finite");
+        lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    }
+    for (uint32_t j = 0; j < 3 * J; ++j) SSC_REQUIRE_ARG(std::isfinite(joints[j]), "the body's joints are not finite");
+    const double extent = V ? (hi - lo).maxCoeff() : 0;
+    if (extent > kMaxBodyExtent) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.4g m", extent);
+        fail(SSC_ERROR_INVALID_ARGUMENT, std::string("the body spans ") + text + "; measurements are defined for bodies within " +
+                                             std::to_string(int(kMaxBodyExtent)) +
+                                             " m (its shape is far outside the model's population)");
+    }
+}
 
 }  // namespace
 
@@ -156,6 +192,7 @@ std::vector<double> Measurer::measure(const float* xyz, const float* joints, std
     const uint32_t V = model_.vertex_count();
     const uint32_t* tris = d.mesh.triangles.data();
     const std::size_t T = d.mesh.triangles.size() / 3;
+    check_measurable(xyz, V, joints, model_.joint_count());
     std::vector<double> out(kCount, 0.0);
     std::vector<Path> path(kCount);
     Vector3d lm[kNeededCount];
@@ -186,7 +223,7 @@ std::vector<double> Measurer::measure(const float* xyz, const float* joints, std
     // Underbust: the inframammary fold is the concave corner of the front profile below the bust
     // points, where the breast's underside meets the chest wall: the largest second difference of
     // the profile's forward reach (a flat chest has none to speak of and gets a level just below).
-    const double step = 0.005;
+    const double step = kLevelStep;
     if (want(kUnderbust)) {
         std::vector<double> front;
         for (const auto& section : horizontal_sections(xyz, torso_, bust, step, 31)) {  // bust - 0 .. bust - 15 cm
@@ -210,11 +247,11 @@ std::vector<double> Measurer::measure(const float* xyz, const float* joints, std
     // Hip: the level where the buttocks reach farthest back (the body faces +z).
     if (want(kHip)) {
         double hip = 0.5 * (lm[kCrotch].y() + crest), back = 1e30;
-        const int hip_levels = int(std::floor((crest - lm[kCrotch].y() - 0.02) / step)) + 1;
-        const auto hip_sections = horizontal_sections(xyz, trunk_legs_, crest, step, hip_levels);  // crest down to crotch + 2 cm
-        for (int i = hip_levels - 1; i >= 0; --i)  // upwards, so ties keep the lowest level
+        const Levels levels = search_levels(crest - lm[kCrotch].y() - 0.02);  // crest down to crotch + 2 cm
+        const auto hip_sections = horizontal_sections(xyz, trunk_legs_, crest, levels.step, levels.count);
+        for (int i = levels.count - 1; i >= 0; --i)  // upwards, so ties keep the lowest level
             for (const Vector3d& p : hip_sections[std::size_t(i)])
-                if (p.z() < back) back = p.z(), hip = crest - i * step;
+                if (p.z() < back) back = p.z(), hip = crest - i * levels.step;
         girth(kHip, horizontal(hip), trunk_legs_);
     }
 
@@ -227,11 +264,11 @@ std::vector<double> Measurer::measure(const float* xyz, const float* joints, std
         double calf = 0;
         std::vector<Vector3d> calf_path;
         const double knee = lm[kKneeCreaseR].y();
-        const int calf_levels = int(std::floor((knee - lm[kMalleolusR].y()) / step)) + 1;
-        const auto calf_sections = horizontal_sections(xyz, right_leg_, knee, step, calf_levels);
-        for (int i = 0; i < calf_levels; ++i) {
+        const Levels levels = search_levels(knee - lm[kMalleolusR].y());
+        const auto calf_sections = horizontal_sections(xyz, right_leg_, knee, levels.step, levels.count);
+        for (int i = 0; i < levels.count; ++i) {
             std::vector<Vector3d> hull;
-            const double g = tape_girth(calf_sections[std::size_t(i)], horizontal(knee - i * step), &hull);
+            const double g = tape_girth(calf_sections[std::size_t(i)], horizontal(knee - i * levels.step), &hull);
             if (g > calf) calf = g, calf_path = hull;
         }
         out[kCalf] = calf;

@@ -22,6 +22,10 @@ namespace ssc::measure {
 // lung volume; the training population uses the same figure to reach its BMI targets.
 inline constexpr double kBodyDensity = 1010.0;
 
+// The largest body measured (metres, along any axis of its rest pose): larger ones are refused
+// with SSC_ERROR_INVALID_ARGUMENT.
+inline constexpr double kMaxBodyExtent = 5.0;
+
 enum class Unit { Metre, SquareMetre, CubicMetre, Kilogram };
 
 struct Definition {
@@ -56,7 +60,8 @@ public:
     // (packed xyz, 3V floats) and rest joint positions (3J floats). `paths`, when given, receives
     // one path per measurement (empty for area, volume and mass).
     // `only`, when given (one flag per measurement), limits the work to the flagged measurements;
-    // the others are returned as 0.
+    // the others are returned as 0. Throws ssc::Error(SSC_ERROR_INVALID_ARGUMENT) for a body with
+    // non-finite vertices or joints, or one larger than kMaxBodyExtent.
     std::vector<double> measure(const float* xyz, const float* joints, std::vector<Path>* paths = nullptr,
                                 const std::vector<bool>* only = nullptr) const;
     // The same for a body's current shape (its pose does not matter).

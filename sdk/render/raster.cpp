@@ -1,12 +1,14 @@
 #include "raster.hpp"
 
 #include "common/error.hpp"
+#include "common/files.hpp"
 
 #include <png.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace ssc::render {
 namespace {
@@ -111,10 +113,19 @@ bool draw_visible_point(Image& img, const std::vector<float>& depth, const Viewp
 
 namespace {
 
+void append_png(png_structp png, png_bytep data, png_size_t size) {
+    auto* out = static_cast<std::string*>(png_get_io_ptr(png));
+    try {
+        out->append(reinterpret_cast<const char*>(data), size);
+    } catch (...) {  // no C++ exception may unwind through libpng's C frames
+        png_error(png, "out of memory");
+    }
+}
+
 // libpng reports errors by longjmp: keep the setjmp frame free of locals that change after it.
-bool encode_png(png_structp png, png_infop info, FILE* f, const Image& img) {
+bool encode_png(png_structp png, png_infop info, std::string* out, const Image& img) {
     if (setjmp(png_jmpbuf(png))) return false;
-    png_init_io(png, f);
+    png_set_write_fn(png, out, append_png, nullptr);
     png_set_IHDR(png, info, img.width, img.height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
@@ -126,18 +137,13 @@ bool encode_png(png_structp png, png_infop info, FILE* f, const Image& img) {
 }  // namespace
 
 void write_png(const std::string& path, const Image& img) {
-    const std::string tmp = path + ".tmp";
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) fail(SSC_ERROR_IO, "cannot open '" + tmp + "' for writing");
+    std::string bytes;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
-    bool ok = png && info && encode_png(png, info, f, img);
+    const bool ok = png && info && encode_png(png, info, &bytes, img);
     png_destroy_write_struct(png ? &png : nullptr, info ? &info : nullptr);
-    ok = (std::fclose(f) == 0) && ok;
-    if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        fail(SSC_ERROR_IO, "cannot write PNG '" + path + "'");
-    }
+    if (!ok) fail(SSC_ERROR_IO, "cannot encode PNG '" + path + "'");
+    write_file_atomically(path, bytes.data(), bytes.size());
 }
 
 }  // namespace ssc::render

@@ -4,6 +4,9 @@
 
 #include <Eigen/Cholesky>
 
+#include <algorithm>
+#include <cstdio>
+
 namespace ssc::semantics {
 
 AttributeModel::AttributeModel(const format::ModelData& d) : K_(d.component_count()) {
@@ -41,6 +44,25 @@ int AttributeModel::find(const std::string& name) const {
     for (std::size_t a = 0; a < attributes_.size(); ++a)
         if (attributes_[a].name == name) return int(a);
     return -1;
+}
+
+std::pair<double, double> AttributeModel::accepted_range(int attribute) const {
+    const auto& a = attributes_.at(std::size_t(attribute));
+    const double width = double(a.maximum) - double(a.minimum);
+    double lo = double(a.minimum) - width;
+    if (!a.unit.empty()) lo = std::max(lo, 0.0);
+    return {lo, double(a.maximum) + width};
+}
+
+void AttributeModel::check_accepted(int attribute, double value) const {
+    const auto [lo, hi] = accepted_range(attribute);
+    if (value >= lo && value <= hi) return;  // false for NaN
+    const auto& a = attributes_[std::size_t(attribute)];
+    char text[160];
+    std::snprintf(text, sizeof text, "%s %g%s%s is outside the accepted range %g to %g%s%s (the population spans %g to %g)",
+                  a.name.c_str(), value, a.unit.empty() ? "" : " ", a.unit.c_str(), lo, hi, a.unit.empty() ? "" : " ",
+                  a.unit.c_str(), double(a.minimum), double(a.maximum));
+    fail(SSC_ERROR_INVALID_ARGUMENT, text);
 }
 
 Eigen::VectorXd AttributeModel::conditional_shape(const std::vector<std::pair<int, double>>& known) const {

@@ -29,6 +29,13 @@ public:
     const std::vector<format::Attribute>& attributes() const { return attributes_; }
     int find(const std::string& name) const;  // -1 when absent
 
+    // The values accepted for an attribute (slider values, made-to-measure targets): the
+    // population's range (0.5th to 99.5th percentile) widened by its own width on each side, and
+    // not below zero for a quantity with a unit (m, kg, years).
+    std::pair<double, double> accepted_range(int attribute) const;
+    // Throws ssc::Error(SSC_ERROR_INVALID_ARGUMENT) for a value outside accepted_range, giving the range.
+    void check_accepted(int attribute, double value) const;
+
     // E[coefficients | the given attributes] (pairs of attribute index and value), K entries;
     // all zeros (the mean body) when nothing is given or the model has no attributes.
     Eigen::VectorXd conditional_shape(const std::vector<std::pair<int, double>>& known) const;

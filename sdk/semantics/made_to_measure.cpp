@@ -2,10 +2,12 @@
 
 #include "common/error.hpp"
 #include "synthesis/body.hpp"
+#include "synthesis/shape_range.hpp"
 
 #include <Eigen/Cholesky>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace ssc::semantics {
@@ -22,6 +24,29 @@ double unit_scale(measure::Unit u) {
     return 1;
 }
 
+// Targets a body can have: the population's widened range where the attribute model describes the
+// measurement (AttributeModel::accepted_range), else a bound no person exceeds.
+void check_target(const AttributeModel& attributes, const measure::Definition& def, double value) {
+    const int a = attributes.find(def.name);
+    if (a >= 0) return attributes.check_accepted(a, value);
+    double limit = 1;
+    const char* unit = "";
+    switch (def.unit) {
+        case measure::Unit::Metre: limit = measure::kMaxBodyExtent, unit = "m"; break;
+        case measure::Unit::SquareMetre: limit = 10, unit = "m^2"; break;
+        case measure::Unit::CubicMetre: limit = 1, unit = "m^3"; break;
+        case measure::Unit::Kilogram: limit = 1000, unit = "kg"; break;
+    }
+    if (value > 0 && value <= limit) return;  // false for NaN
+    char text[160];
+    std::snprintf(text, sizeof text, "the requested %s %g %s is outside the accepted range: above 0, at most %g %s", def.name, value,
+                  unit, limit, unit);
+    fail(SSC_ERROR_INVALID_ARGUMENT, text);
+}
+
+// The box every shape stays in (shape_range.hpp).
+Eigen::VectorXd in_range(const Eigen::VectorXd& c) { return c.cwiseMax(-double(kShapeLimit)).cwiseMin(double(kShapeLimit)); }
+
 constexpr double kStartPull = 1e-2;  // weight of |c - start|^2 against 1 mm^2 of residual
 constexpr double kStep = 0.05;       // forward-difference step, standard deviations
 
@@ -37,8 +62,7 @@ MadeToMeasureResult make_to_measure(const Model& model, const measure::Measurer&
                         "measurement " + std::to_string(t.measurement) + " is out of range");
         SSC_REQUIRE_ARG(!seen[std::size_t(t.measurement)], std::string("measurement '") + defs[std::size_t(t.measurement)].name +
                                                                "' is requested twice");
-        SSC_REQUIRE_ARG(std::isfinite(t.value) && t.value > 0, std::string("the requested ") + defs[std::size_t(t.measurement)].name +
-                                                                   " is not a finite positive value");
+        check_target(attributes, defs[std::size_t(t.measurement)], t.value);
         seen[std::size_t(t.measurement)] = true;
     }
     for (const auto& [a, v] : options.known)
@@ -52,7 +76,7 @@ MadeToMeasureResult make_to_measure(const Model& model, const measure::Measurer&
         if (a >= 0) known.emplace_back(a, t.value);
     }
     const uint32_t K = model.component_count();
-    const Eigen::VectorXd start = attributes.conditional_shape(known);
+    const Eigen::VectorXd start = in_range(attributes.conditional_shape(known));
     Eigen::VectorXd c = start;
 
     const Eigen::Index M = Eigen::Index(targets.size());
@@ -96,7 +120,7 @@ MadeToMeasureResult make_to_measure(const Model& model, const measure::Measurer&
         for (int attempt = 0; attempt < 6 && !improved; ++attempt) {
             Eigen::MatrixXd H = JtJ;
             H.diagonal().array() += kStartPull + mu;
-            const Eigen::VectorXd x = c - H.ldlt().solve(g);
+            const Eigen::VectorXd x = in_range(c - H.ldlt().solve(g));
             const double trial = evaluate(x, trial_r);
             if (trial < cost) {
                 c = x, r = trial_r, cost = trial;

@@ -1,6 +1,6 @@
 #include "evaluate.hpp"
 
-#include "common/atomic_file.hpp"
+#include "common/files.hpp"
 
 #include <Eigen/Dense>
 

@@ -1,6 +1,6 @@
 #include "population.hpp"
 
-#include "common/atomic_file.hpp"
+#include "common/files.hpp"
 
 #include <algorithm>
 #include <cmath>
