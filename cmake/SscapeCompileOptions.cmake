@@ -1,7 +1,7 @@
 # Compile settings shared by every sscape target.
 
 if(SSCAPE_SANITIZE)
-  add_compile_options(-fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_compile_options(-fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow)
   add_link_options(-fsanitize=address,undefined,float-cast-overflow)
 endif()
 
@@ -12,6 +12,15 @@ if(SSCAPE_ARCH AND CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64")
     add_compile_options(-march=${SSCAPE_ARCH})
   endif()
 endif()
+
+# Hardening of what ships: stack protector everywhere, fortified libc calls where optimising
+# (glibc needs -O; the sanitizers replace those checks), full RELRO and immediate binding for the
+# shared library and programs.
+add_compile_options(-fstack-protector-strong)
+if(NOT SSCAPE_SANITIZE)
+  add_compile_options($<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-D_FORTIFY_SOURCE=2>)
+endif()
+add_link_options(-Wl,-z,relro,-z,now)
 
 # Our own targets: warnings on, hidden symbols, position-independent (they go into the .so).
 function(sscape_defaults target)

@@ -279,3 +279,52 @@ TEST_CASE("a body split over a pool's threads gives what one thread gives", "[sy
     CHECK(std::abs(p1[0] - one.rest_planar()[0]) > 1e-3f);
     ssc_model_release(handle);
 }
+
+TEST_CASE("every instruction set's shape and skinning kernels give the baseline's bits", "[synthesis][isa]") {
+    // The library is built for plain x86-64 and picks AVX2 or AVX-512 kernels at run time; the
+    // plain kernels are what an older CPU runs. Paths the CPU lacks fall back (and are reported).
+    ssc_model* handle = nullptr;
+    REQUIRE(ssc_model_load_default(nullptr, &handle) == SSC_OK);
+    const ssc::Model& m = handle->model;
+    namespace k = ssc::kernels;
+    INFO("this CPU supports " << k::isa_name(k::supported_isa()) << "; active: " << k::isa_name(k::active_isa()));
+    const uint32_t K = m.component_count(), J = m.joint_count(), V = m.vertex_count();
+    // Batches of 1, 3 and 9 bodies take every tile shape of the kernels.
+    for (std::size_t count : {std::size_t(1), std::size_t(3), std::size_t(9)}) {
+        std::vector<std::vector<float>> scaled(count, std::vector<float>(K));
+        for (std::size_t g = 0; g < count; ++g) {
+            std::vector<float> c(K);
+            for (uint32_t i = 0; i < K; ++i) c[i] = float(2.0 * std::sin(0.37 * double(i) + double(g)));
+            k::scale_coefficients(m, c.data(), scaled[g].data());
+        }
+        std::vector<const float*> in(count);
+        for (std::size_t g = 0; g < count; ++g) in[g] = scaled[g].data();
+        std::vector<std::vector<float>> rest[3];
+        for (int isa = 0; isa < 3; ++isa) {
+            rest[isa].assign(count, std::vector<float>(m.padded_rows(), -1.f));
+            std::vector<float*> out(count);
+            for (std::size_t g = 0; g < count; ++g) out[g] = rest[isa][g].data();
+            k::shape_rows(m, count, in.data(), out.data(), 0, m.padded_rows() / ssc::Model::kChunk, k::Isa(isa));
+        }
+        CHECK(rest[1] == rest[0]);
+        CHECK(rest[2] == rest[0]);
+    }
+    // Skinning of a posed body.
+    ssc::Body body(m, nullptr);
+    std::vector<float> shape(K, 0.5f), quats(4ull * J);
+    for (uint32_t j = 0; j < J; ++j) {
+        const Eigen::Quaternionf q(Eigen::AngleAxisf(0.5f * std::sin(1.7f * float(j)), Eigen::Vector3f(1, std::cos(float(j)), 0.3f).normalized()));
+        quats[4 * j] = q.x(), quats[4 * j + 1] = q.y(), quats[4 * j + 2] = q.z(), quats[4 * j + 3] = q.w();
+    }
+    body.set_shape(shape.data(), K);
+    body.set_pose(quats.data(), nullptr);
+    std::vector<float> posed[3];
+    for (int isa = 0; isa < 3; ++isa) {
+        posed[isa].assign(3ull * V, -1.f);
+        k::skin_slots(m, body.rest_planar(), body.skinning(), posed[isa].data(), 0, k::skin_slot_count(m), k::Isa(isa));
+    }
+    CHECK(posed[1] == posed[0]);
+    CHECK(posed[2] == posed[0]);
+    CHECK(std::vector<float>(body.posed(), body.posed() + 3ull * V) == posed[0]);  // what the body itself gives
+    ssc_model_release(handle);
+}

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <exception>
 #include <sstream>
+#include <stdexcept>
 
 namespace ssc::cli {
 
@@ -105,7 +106,11 @@ int main(int argc, char** argv) {
         if (command == "info") return ssc::cli::cmd_info(args);
         if (command == "synth") return ssc::cli::cmd_synth(args);
         if (command == "make-test-model") return ssc::cli::cmd_make_test_model(args);
+#if SSCAPE_WITH_TRAINING
         if (command == "train") return ssc::cli::cmd_train(args);
+#else
+        if (command == "train") throw std::runtime_error("this sscape was built without training (SSCAPE_BUILD_TRAINING=OFF)");
+#endif
         if (command == "fit") return ssc::cli::cmd_fit(args);
         if (command == "simulate") return ssc::cli::cmd_simulate(args);
         if (command == "measure") return ssc::cli::cmd_measure(args);

@@ -3,7 +3,9 @@
 #include "common/error.hpp"
 #include "common/files.hpp"
 
+#if SSCAPE_WITH_PNG
 #include <png.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -113,6 +115,7 @@ bool draw_visible_point(Image& img, const std::vector<float>& depth, const Viewp
 
 namespace {
 
+#if SSCAPE_WITH_PNG
 void append_png(png_structp png, png_bytep data, png_size_t size) {
     auto* out = static_cast<std::string*>(png_get_io_ptr(png));
     try {
@@ -134,8 +137,11 @@ bool encode_png(png_structp png, png_infop info, std::string* out, const Image& 
     return true;
 }
 
+#endif
+
 }  // namespace
 
+#if SSCAPE_WITH_PNG
 void write_png(const std::string& path, const Image& img) {
     std::string bytes;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
@@ -145,5 +151,11 @@ void write_png(const std::string& path, const Image& img) {
     if (!ok) fail(SSC_ERROR_IO, "cannot encode PNG '" + path + "'");
     write_file_atomically(path, bytes.data(), bytes.size());
 }
+
+#else
+void write_png(const std::string& path, const Image&) {
+    fail(SSC_ERROR_IO, "cannot write '" + path + "': this build of sscape writes no PNG pictures (configured with SSCAPE_BUILD_PICTURES=OFF)");
+}
+#endif
 
 }  // namespace ssc::render

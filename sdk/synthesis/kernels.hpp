@@ -6,6 +6,7 @@
 //   normals, landmarks: from posed vertices
 #pragma once
 
+#include "cpu.hpp"
 #include "sscape_format/model_data.hpp"
 
 #include <cstddef>
@@ -30,6 +31,10 @@ void shape(const Model& m, std::size_t count, const float* const* scaled, float*
 // joints.
 void shape_rows(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first_panel,
                 std::size_t end_panel);
+// The same with the kernel's instruction set chosen by the caller (lowered to what the CPU
+// supports): tests compare the paths; the results are the same bits.
+void shape_rows(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first_panel,
+                std::size_t end_panel, Isa isa);
 void shape_joints(const Model& m, std::size_t count, const float* const* scaled, float* const* joints);
 
 // A skinning matrix: column-major 4x4 (last row 0 0 0 1), aligned for SIMD loads.
@@ -54,6 +59,8 @@ void skin(const Model& m, const float* rest_planar, const SkinMatrix* skinning, 
 // may each take one, with the same results.
 uint32_t skin_slot_count(const Model& m);
 void skin_slots(const Model& m, const float* rest_planar, const SkinMatrix* skinning, float* out_planar, uint32_t first, uint32_t end);
+void skin_slots(const Model& m, const float* rest_planar, const SkinMatrix* skinning, float* out_planar, uint32_t first, uint32_t end,
+                Isa isa);  // as shape_rows with an Isa
 
 // Area-weighted unit normals of the mesh with planar vertices into out (packed xyz).
 // scratch: 3 floats per triangle. Allocates nothing.

@@ -14,7 +14,7 @@
 #include <cmath>
 #include <cstring>
 
-#if defined(__AVX2__) && defined(__FMA__)
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #include <immintrin.h>
 #define SSC_SKIN_AVX2 1
 #endif
@@ -83,15 +83,23 @@ constexpr int kRowX[4] = {0, 4, 8, 12}, kRowY[4] = {1, 5, 9, 13}, kRowZ[4] = {2,
 // One run: N joints shared by every vertex, weights per vertex. Blends the 12 matrix elements
 // w_0 M_0 + w_1 M_1 + ... (FMAs in influence order) and transforms:
 // p = (m0 x + m8 z) + (m4 y + m12) per row, the same order in the SIMD and the scalar path.
-template <int N>
-void skin_run(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
+struct RunArrays {
+    const float* xs;
+    const float* ys;
+    const float* zs;
+    float* ox;
+    float* oy;
+    float* oz;
+};
+
+RunArrays arrays(const Model& m, const float* rest, float* out) {
     const uint32_t V = m.vertex_count();
-    const float* xs = rest;
-    const float* ys = rest + V;
-    const float* zs = rest + 2 * std::size_t(V);
-    float* ox = out;
-    float* oy = out + V;
-    float* oz = out + 2 * std::size_t(V);
+    return {rest, rest + V, rest + 2 * std::size_t(V), out, out + V, out + 2 * std::size_t(V)};
+}
+
+template <int N>
+void skin_run_scalar(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
+    const RunArrays a = arrays(m, rest, out);
     const uint32_t* vid = m.skin_vertices();
     const float* M[N];
     const float* W[N];
@@ -99,7 +107,37 @@ void skin_run(const Model& m, const Model::SkinRun& run, const float* mats, cons
         M[i] = mats + run.offsets[i];
         W[i] = m.skin_weights(i);
     }
+    for (uint32_t s = run.begin; s < run.end; ++s) {
+        const uint32_t v = vid[s];
+        auto blend = [&](int e) {
+            float acc = W[0][s] * M[0][e];
+            for (int i = 1; i < N; ++i) acc = std::fma(W[i][s], M[i][e], acc);
+            return acc;
+        };
+        auto row = [&](const int* e) {
+            return std::fma(blend(e[2]), a.zs[v], blend(e[0]) * a.xs[v]) + std::fma(blend(e[1]), a.ys[v], blend(e[3]));
+        };
+        a.ox[v] = row(kRowX);
+        a.oy[v] = row(kRowY);
+        a.oz[v] = row(kRowZ);
+    }
+}
+
 #ifdef SSC_SKIN_AVX2
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
+template <int N>
+void skin_run_avx2(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
+    const RunArrays a = arrays(m, rest, out);
+    const float *xs = a.xs, *ys = a.ys, *zs = a.zs;
+    float *ox = a.ox, *oy = a.oy, *oz = a.oz;
+    const uint32_t* vid = m.skin_vertices();
+    const float* M[N];
+    const float* W[N];
+    for (int i = 0; i < N; ++i) {
+        M[i] = mats + run.offsets[i];
+        W[i] = m.skin_weights(i);
+    }
     for (uint32_t b = run.begin; b < run.end; b += Model::kSkinBlock) {
         const bool contiguous = m.skin_block_contiguous()[b / Model::kSkinBlock];
         const uint32_t v0 = vid[b];
@@ -146,22 +184,17 @@ void skin_run(const Model& m, const Model::SkinRun& run, const float* mats, cons
             }
         }
     }
-#else
-    for (uint32_t s = run.begin; s < run.end; ++s) {
-        const uint32_t v = vid[s];
-        auto blend = [&](int e) {
-            float acc = W[0][s] * M[0][e];
-            for (int i = 1; i < N; ++i) acc = std::fma(W[i][s], M[i][e], acc);
-            return acc;
-        };
-        auto row = [&](const int* e) {
-            return std::fma(blend(e[2]), zs[v], blend(e[0]) * xs[v]) + std::fma(blend(e[1]), ys[v], blend(e[3]));
-        };
-        ox[v] = row(kRowX);
-        oy[v] = row(kRowY);
-        oz[v] = row(kRowZ);
-    }
+}
+#pragma GCC pop_options
 #endif
+
+template <int N>
+void skin_run(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out, Isa isa) {
+#ifdef SSC_SKIN_AVX2
+    if (isa != Isa::Baseline) return skin_run_avx2<N>(m, run, mats, rest, out);
+#endif
+    (void)isa;
+    skin_run_scalar<N>(m, run, mats, rest, out);
 }
 
 }  // namespace
@@ -173,6 +206,11 @@ void skin(const Model& m, const float* rest, const SkinMatrix* skinning, float* 
 uint32_t skin_slot_count(const Model& m) { return m.skin_runs().empty() ? 0 : m.skin_runs().back().end; }
 
 void skin_slots(const Model& m, const float* rest, const SkinMatrix* skinning, float* out, uint32_t first, uint32_t end) {
+    skin_slots(m, rest, skinning, out, first, end, active_isa());
+}
+
+void skin_slots(const Model& m, const float* rest, const SkinMatrix* skinning, float* out, uint32_t first, uint32_t end, Isa isa) {
+    if (int(isa) > int(supported_isa())) isa = supported_isa();
     const float* mats = skinning[0].m;
     for (const auto& full : m.skin_runs()) {
         if (full.end <= first || full.begin >= end) continue;
@@ -180,10 +218,10 @@ void skin_slots(const Model& m, const float* rest, const SkinMatrix* skinning, f
         run.begin = std::max(run.begin, first);
         run.end = std::min(run.end, end);
         switch (run.influences) {
-            case 1: skin_run<1>(m, run, mats, rest, out); break;
-            case 2: skin_run<2>(m, run, mats, rest, out); break;
-            case 3: skin_run<3>(m, run, mats, rest, out); break;
-            default: skin_run<4>(m, run, mats, rest, out); break;
+            case 1: skin_run<1>(m, run, mats, rest, out, isa); break;
+            case 2: skin_run<2>(m, run, mats, rest, out, isa); break;
+            case 3: skin_run<3>(m, run, mats, rest, out, isa); break;
+            default: skin_run<4>(m, run, mats, rest, out, isa); break;
         }
     }
 }

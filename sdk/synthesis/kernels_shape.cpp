@@ -9,6 +9,10 @@
 // stream. A batch tiles bodies so each basis panel, once loaded, feeds several bodies'
 // accumulators held in registers, which makes it FMA-bound instead; AVX-512, where the CPU has it
 // (chosen at run time), doubles that throughput.
+//
+// The library is compiled for plain x86-64; the AVX2 and AVX-512 kernels are compiled for their
+// instruction sets by target pragmas and chosen per call (cpu.hpp).
+#include "cpu.hpp"
 #include "kernels.hpp"
 #include "model.hpp"
 
@@ -16,12 +20,10 @@
 #include <cmath>
 #include <cstdint>
 
-#if defined(__AVX2__) && defined(__FMA__)
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #include <immintrin.h>
 #define SSC_SHAPE_AVX2 1
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #define SSC_SHAPE_AVX512 1
-#endif
 #endif
 
 namespace ssc::kernels {
@@ -30,6 +32,8 @@ namespace {
 constexpr std::size_t kChunk = Model::kChunk;  // rows per panel
 
 #ifdef SSC_SHAPE_AVX2
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
 // G bodies x P panels of 16 rows (2 ymm each) starting at panel `first`.
 template <int G, int P>
 void tile_avx2(const Model& m, std::size_t first, const float* const* scaled, float* const* rest) {
@@ -74,10 +78,11 @@ void shape_avx2(const Model& m, std::size_t count, const float* const* scaled, f
         else pass_avx2<1, 4>(m, scaled + g, rest + g, first, end), g += 1;
     }
 }
+#pragma GCC pop_options
 #endif
 
 #ifdef SSC_SHAPE_AVX512
-#define SSC_AVX512 __attribute__((target("avx512f")))
+#define SSC_AVX512 __attribute__((target("avx2,fma,avx512f")))
 
 template <int G, int P>
 SSC_AVX512 void tile_avx512(const Model& m, std::size_t first, const float* const* scaled, float* const* rest) {
@@ -126,10 +131,6 @@ SSC_AVX512 void shape_avx512(const Model& m, std::size_t count, const float* con
     }
 }
 
-bool cpu_has_avx512() {
-    // Reads the CPU-feature word libgcc fills at start-up (it also checks OS register support).
-    return __builtin_cpu_supports("avx512f");
-}
 #endif
 
 [[maybe_unused]] void shape_scalar(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first,
@@ -157,14 +158,19 @@ void shape(const Model& m, std::size_t count, const float* const* scaled, float*
 
 void shape_rows(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first_panel,
                 std::size_t end_panel) {
+    shape_rows(m, count, scaled, rest, first_panel, end_panel, active_isa());
+}
+
+void shape_rows(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first_panel,
+                std::size_t end_panel, Isa isa) {
+    if (int(isa) > int(supported_isa())) isa = supported_isa();
 #if defined(SSC_SHAPE_AVX512)
-    if (cpu_has_avx512()) shape_avx512(m, count, scaled, rest, first_panel, end_panel);
-    else shape_avx2(m, count, scaled, rest, first_panel, end_panel);
-#elif defined(SSC_SHAPE_AVX2)
-    shape_avx2(m, count, scaled, rest, first_panel, end_panel);
-#else
-    shape_scalar(m, count, scaled, rest, first_panel, end_panel);
+    if (isa == Isa::Avx512) return shape_avx512(m, count, scaled, rest, first_panel, end_panel);
 #endif
+#if defined(SSC_SHAPE_AVX2)
+    if (isa != Isa::Baseline) return shape_avx2(m, count, scaled, rest, first_panel, end_panel);
+#endif
+    shape_scalar(m, count, scaled, rest, first_panel, end_panel);
 }
 
 void shape_joints(const Model& m, std::size_t count, const float* const* scaled, float* const* joints) {
@@ -184,9 +190,10 @@ void planar_to_xyz(const float* planar, uint32_t n, float* out, std::size_t stri
     const float* ys = planar + n;
     const float* zs = planar + 2 * std::size_t(n);
     uint32_t v = 0;
-#ifdef SSC_SHAPE_AVX2
-    // Streaming (non-temporal) stores skip reading the destination into cache first: they halve the
-    // memory traffic of large batch outputs that the caller will not read back soon.
+#if defined(__SSE2__)
+    // SSE2 is part of x86-64 itself. Streaming (non-temporal) stores skip reading the destination
+    // into cache first: they halve the memory traffic of large batch outputs that the caller will
+    // not read back soon.
     streaming = streaming && reinterpret_cast<std::uintptr_t>(out) % 16 == 0;
     if (stride == 12) {  // packed: interleave 4 vertices per step with SSE shuffles
         for (; v + 4 <= n; v += 4) {

@@ -1,0 +1,24 @@
+// Which instruction sets the hand-written kernels use.
+//
+// The library is compiled for plain x86-64, so it runs on any x86-64 CPU. The synthesis kernels
+// that pay for wider vectors (shape, skinning) also come compiled for AVX2 + FMA and AVX-512, and
+// each call takes the widest one that the CPU and the operating system support. Every path gives
+// the same bits (the kernels fix the order of their fused multiply-adds), so the choice changes
+// speed, never results.
+//
+// SSCAPE_ISA=baseline|avx2|avx512 in the environment lowers the choice for the whole process (it
+// never raises it past what the CPU supports): for tests of the fallback paths, and to time them.
+#pragma once
+
+namespace ssc::kernels {
+
+enum class Isa { Baseline = 0, Avx2 = 1, Avx512 = 2 };
+
+// The widest set this CPU and OS support.
+Isa supported_isa();
+// supported_isa() lowered by SSCAPE_ISA; read once, on first use, then fixed for the process.
+Isa active_isa();
+// "baseline", "avx2" or "avx512".
+const char* isa_name(Isa isa);
+
+}  // namespace ssc::kernels
