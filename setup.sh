@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # sscape setup: installs the Debian packages the build needs, builds, and runs a job.
 #   ./setup.sh         install, build (Release), run the main job: random bodies of the default model
-#   ./setup.sh test    install, build, run the whole test suite, also under ASan + UBSan
-# Environment: JOBS (parallel build jobs, default: number of cores).
+#   ./setup.sh test    install, build, run the whole test suite, also under ASan + UBSan, then fuzz
+# Environment: JOBS (parallel build jobs, default: number of cores), FUZZ_SECONDS (per fuzz target, default 60).
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -12,6 +12,8 @@ jobs="${JOBS:-$(nproc)}"
 
 packages=(cmake make g++ pkg-config libeigen3-dev libnanoflann-dev libflatbuffers-dev flatbuffers-compiler
           libzstd-dev libxxhash-dev libpng-dev nlohmann-json3-dev gnuplot-nox catch2 libbenchmark-dev)
+# The test suite also fuzzes, with clang's libFuzzer.
+if [ "$mode" = test ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -26,11 +28,11 @@ else
   echo "setup: all Debian packages present"
 fi
 
-build() {  # build DIR [cmake args...]
+build() {  # build DIR [cmake args...]; TARGET=name builds only that target
   local dir="$1"; shift
   echo "setup: building in $dir"
   cmake -S . -B "$dir" "$@" > "$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; exit 1; }
-  cmake --build "$dir" -j "$jobs"
+  cmake --build "$dir" -j "$jobs" ${TARGET:+--target "$TARGET"}
 }
 
 # The Khronos glTF validator, for the export test (npm registry; pinned).
@@ -60,4 +62,8 @@ else
   build build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSSCAPE_SANITIZE=ON -DSSCAPE_BUILD_BENCHMARKS=OFF
   npm_tools build-sanitize
   (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest -j "$jobs" --output-on-failure)
+  # The fuzz targets (model loading, each reader), about a minute each; long runs: see README.
+  CC=clang CXX=clang++ TARGET=fuzz_all build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSSCAPE_FUZZ=ON \
+      -DSSCAPE_BUILD_TESTS=OFF -DSSCAPE_BUILD_BENCHMARKS=OFF -DSSCAPE_BUILD_TRAINING=OFF -DSSCAPE_BUILD_SAMPLES=OFF
+  tests/fuzz/run.sh build-fuzz "${FUZZ_SECONDS:-60}"
 fi

@@ -5,6 +5,13 @@ if(SSCAPE_SANITIZE)
   add_link_options(-fsanitize=address,undefined,float-cast-overflow)
 endif()
 
+# Fuzzing (clang): everything instrumented for coverage and checked by the sanitizers; the fuzz
+# targets link libFuzzer's main (tests/fuzz).
+if(SSCAPE_FUZZ)
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
 if(SSCAPE_ARCH AND CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64")
   include(CheckCXXCompilerFlag)
   check_cxx_compiler_flag("-march=${SSCAPE_ARCH}" SSCAPE_HAS_ARCH_FLAG)
@@ -17,7 +24,7 @@ endif()
 # (glibc needs -O; the sanitizers replace those checks), full RELRO and immediate binding for the
 # shared library and programs.
 add_compile_options(-fstack-protector-strong)
-if(NOT SSCAPE_SANITIZE)
+if(NOT SSCAPE_SANITIZE AND NOT SSCAPE_FUZZ)
   add_compile_options($<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-D_FORTIFY_SOURCE=2>)
 endif()
 add_link_options(-Wl,-z,relro,-z,now)

@@ -21,6 +21,23 @@
  *   - Strings are UTF-8, owned by the object they come from, valid while it lives.
  *   - Booleans are uint32_t (0 = false, anything else = true).
  *
+ * Stability (what the version promises):
+ *   - Declared with SSC_API: stable. Within one major version (SSC_VERSION_MAJOR, the soname
+ *     libsscape.so.MAJOR) a function keeps its name, parameters and meaning, enum values and status
+ *     codes are never changed or reused, and structs only grow at their end (struct_size tells the
+ *     library which fields a caller knows). A program built against an older minor version runs
+ *     against a newer library unchanged.
+ *   - Declared with SSC_EXPERIMENTAL: works, is tested and is supported, but its shape may still
+ *     change in a minor version (parameters, option fields, defaults, results): fitting, semantic
+ *     sliders, bodies made to measure, and what comes next (scan registration). Callers that need a
+ *     frozen interface pin the exact library version; SSC_EXPERIMENTAL marks each such declaration
+ *     (as meshoptimizer's MESHOPTIMIZER_EXPERIMENTAL does), and a function leaves the experimental
+ *     set only by becoming stable.
+ *   - Before 1.0 the major version is 0, and the stable set is the one described above: a change to
+ *     it would come with a new soname, libsscape.so.1.
+ *   - The model file format has its own version (model_format/README.md); any library reads every
+ *     file of its container major version.
+ *
  * Objects:
  *   ssc_context  allocator, log callback, worker threads. Thread-safe.
  *   ssc_model    an immutable, reference-counted body model. Thread-safe: share it freely.
@@ -52,6 +69,9 @@ extern "C" {
 #else
 #  define SSC_API __attribute__((visibility("default")))
 #endif
+
+/** Marks a declaration whose shape may still change in a minor version (see Stability above). */
+#define SSC_EXPERIMENTAL SSC_API
 
 #define SSC_VERSION_MAJOR 0
 #define SSC_VERSION_MINOR 1
@@ -565,7 +585,7 @@ SSC_API ssc_status ssc_body_measure(ssc_body* body, float* out, uint32_t capacit
 SSC_API ssc_status ssc_body_measure_by_name(ssc_body* body, const char* name, float* out);
 
 /* ---------------------------------------------------------------------------------------------- */
-/* Semantic sliders                                                                                */
+/* Semantic sliders (SSC_EXPERIMENTAL: may change in a minor version)                              */
 
 /**
  * Sliders set a body by what people understand (stature, mass, age, sex, muscularity, proportions)
@@ -588,7 +608,7 @@ typedef struct ssc_slider_info {
 } ssc_slider_info;
 
 /** Number of sliders the model has. Threads: any. */
-SSC_API uint32_t ssc_model_slider_count(const ssc_model* model);
+SSC_EXPERIMENTAL uint32_t ssc_model_slider_count(const ssc_model* model);
 
 /**
  * Describes a slider.
@@ -596,17 +616,17 @@ SSC_API uint32_t ssc_model_slider_count(const ssc_model* model);
  * @param out    out: out->struct_size must be set; only that many bytes are written.
  * Ownership: strings owned by the model. Threads: any.
  */
-SSC_API ssc_status ssc_model_get_slider_info(const ssc_model* model, uint32_t index, ssc_slider_info* out);
+SSC_EXPERIMENTAL ssc_status ssc_model_get_slider_info(const ssc_model* model, uint32_t index, ssc_slider_info* out);
 
 /** Finds a slider by name; SSC_ERROR_NOT_FOUND for a name the model lacks. Threads: any. */
-SSC_API ssc_status ssc_model_find_slider(const ssc_model* model, const char* name, uint32_t* out_index);
+SSC_EXPERIMENTAL ssc_status ssc_model_find_slider(const ssc_model* model, const char* name, uint32_t* out_index);
 
 /**
  * The body's slider values (read from its shape), in slider order.
  * @param out       capacity floats; at least ssc_model_slider_count.
  * Threads: the body's thread.
  */
-SSC_API ssc_status ssc_body_get_sliders(const ssc_body* body, float* out, uint32_t capacity);
+SSC_EXPERIMENTAL ssc_status ssc_body_get_sliders(const ssc_body* body, float* out, uint32_t capacity);
 
 /**
  * Moves one slider to a value, keeping the rest of the body's shape (and the other sliders' values).
@@ -618,7 +638,7 @@ SSC_API ssc_status ssc_body_get_sliders(const ssc_body* body, float* out, uint32
  *         body is unchanged then.
  * Threads: the body's thread.
  */
-SSC_API ssc_status ssc_body_set_slider(ssc_body* body, uint32_t index, float value);
+SSC_EXPERIMENTAL ssc_status ssc_body_set_slider(ssc_body* body, uint32_t index, float value);
 
 /**
  * Replaces the body's shape by the one the slider values give (every slider, in slider order): the
@@ -627,10 +647,10 @@ SSC_API ssc_status ssc_body_set_slider(ssc_body* body, uint32_t index, float val
  * @param count   must equal ssc_model_slider_count.
  * Threads: the body's thread.
  */
-SSC_API ssc_status ssc_body_set_sliders(ssc_body* body, const float* values, uint32_t count);
+SSC_EXPERIMENTAL ssc_status ssc_body_set_sliders(ssc_body* body, const float* values, uint32_t count);
 
 /* ---------------------------------------------------------------------------------------------- */
-/* Bodies made to measure                                                                          */
+/* Bodies made to measure (SSC_EXPERIMENTAL: may change in a minor version)                        */
 
 /** Options of ssc_body_make_to_measure. Initialise with ssc_made_to_measure_def_init. */
 typedef struct ssc_made_to_measure_def {
@@ -642,7 +662,7 @@ typedef struct ssc_made_to_measure_def {
 } ssc_made_to_measure_def;
 
 /** Fills def with the defaults; size = sizeof *def. Threads: any. */
-SSC_API void ssc_made_to_measure_def_init(ssc_made_to_measure_def* def, size_t size);
+SSC_EXPERIMENTAL void ssc_made_to_measure_def_init(ssc_made_to_measure_def* def, size_t size);
 
 /**
  * Sets the body's shape to reproduce the requested measurements (any subset, each at most once).
@@ -666,7 +686,7 @@ SSC_API void ssc_made_to_measure_def_init(ssc_made_to_measure_def* def, size_t s
  *         measurements need; the body is unchanged on error.
  * Threads: the body's thread. Takes about 0.1 s on one core (the measurements are re-taken per step).
  */
-SSC_API ssc_status ssc_body_make_to_measure(ssc_body* body, const uint32_t* measurements, const float* values,
+SSC_EXPERIMENTAL ssc_status ssc_body_make_to_measure(ssc_body* body, const uint32_t* measurements, const float* values,
                                             uint32_t count, const ssc_made_to_measure_def* def, float* achieved,
                                             uint32_t achieved_capacity, uint32_t* out_converged);
 
@@ -711,7 +731,7 @@ SSC_API ssc_status ssc_model_synthesize_batch(const ssc_model* model, const ssc_
 
 
 /* ---------------------------------------------------------------------------------------------- */
-/* Fitting                                                                                         */
+/* Fitting (SSC_EXPERIMENTAL: may change in a minor version)                                       */
 
 /**
  * A fitter finds the shape, pose (per-joint rotations), translation and optionally a global scale
@@ -738,7 +758,7 @@ typedef struct ssc_fitter_def {
 } ssc_fitter_def;
 
 /** Fills def with defaults; size = sizeof(*def). Threads: any. */
-SSC_API void ssc_fitter_def_init(ssc_fitter_def* def, size_t size);
+SSC_EXPERIMENTAL void ssc_fitter_def_init(ssc_fitter_def* def, size_t size);
 
 /**
  * Creates a fitter with no observations.
@@ -749,16 +769,16 @@ SSC_API void ssc_fitter_def_init(ssc_fitter_def* def, size_t size);
  * copy of the shape basis it uses (24 bytes per vertex and component). Threads: any; the fitter
  * itself is used from one thread at a time.
  */
-SSC_API ssc_status ssc_fitter_create(ssc_model* model, const ssc_fitter_def* def, ssc_fitter** out);
+SSC_EXPERIMENTAL ssc_status ssc_fitter_create(ssc_model* model, const ssc_fitter_def* def, ssc_fitter** out);
 
 /** Destroys a fitter and drops its model reference. NULL is ignored. Threads: the fitter's thread. */
-SSC_API void ssc_fitter_destroy(ssc_fitter* fitter);
+SSC_EXPERIMENTAL void ssc_fitter_destroy(ssc_fitter* fitter);
 
 /** Removes every observation and result (the fitter is as created). Threads: the fitter's thread. */
-SSC_API ssc_status ssc_fitter_clear(ssc_fitter* fitter);
+SSC_EXPERIMENTAL ssc_status ssc_fitter_clear(ssc_fitter* fitter);
 
 /** Frames that have observations or results (the highest frame index used plus one). */
-SSC_API uint32_t ssc_fitter_frame_count(const ssc_fitter* fitter);
+SSC_EXPERIMENTAL uint32_t ssc_fitter_frame_count(const ssc_fitter* fitter);
 
 /**
  * Adds landmark observations to a frame.
@@ -771,7 +791,7 @@ SSC_API uint32_t ssc_fitter_frame_count(const ssc_fitter* fitter);
  *         added then.
  * Ownership: the arrays are copied. Threads: the fitter's thread.
  */
-SSC_API ssc_status ssc_fitter_add_landmarks(ssc_fitter* fitter, uint32_t frame, const uint32_t* indices,
+SSC_EXPERIMENTAL ssc_status ssc_fitter_add_landmarks(ssc_fitter* fitter, uint32_t frame, const uint32_t* indices,
                                             const float* positions, const float* weights, uint32_t count);
 
 /**
@@ -779,7 +799,7 @@ SSC_API ssc_status ssc_fitter_add_landmarks(ssc_fitter* fitter, uint32_t frame, 
  * @return SSC_ERROR_NOT_FOUND (nothing added) when a name is not one of the model's landmarks; the
  *         message names it.
  */
-SSC_API ssc_status ssc_fitter_add_landmarks_by_name(ssc_fitter* fitter, uint32_t frame, const char* const* names,
+SSC_EXPERIMENTAL ssc_status ssc_fitter_add_landmarks_by_name(ssc_fitter* fitter, uint32_t frame, const char* const* names,
                                                     const float* positions, const float* weights, uint32_t count);
 
 /**
@@ -793,7 +813,7 @@ SSC_API ssc_status ssc_fitter_add_landmarks_by_name(ssc_fitter* fitter, uint32_t
  *         [0, 1]; nothing is added then.
  * Ownership: the arrays are copied. Threads: the fitter's thread.
  */
-SSC_API ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float* points, const float* normals,
+SSC_EXPERIMENTAL ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float* points, const float* normals,
                                          const float* confidence, uint32_t count, size_t stride);
 
 /** Sample formats of depth images. */
@@ -825,7 +845,7 @@ typedef struct ssc_depth_image_def {
 } ssc_depth_image_def;
 
 /** Fills def with defaults (no samples, no intrinsics); size = sizeof(*def). Threads: any. */
-SSC_API void ssc_depth_image_def_init(ssc_depth_image_def* def, size_t size);
+SSC_EXPERIMENTAL void ssc_depth_image_def_init(ssc_depth_image_def* def, size_t size);
 
 /**
  * Adds a depth image to a frame as a point cloud: each usable pixel is back-projected into the
@@ -843,7 +863,7 @@ SSC_API void ssc_depth_image_def_init(ssc_depth_image_def* def, size_t size);
  *         rigid transform, or fewer than 16 usable pixels; nothing is added then.
  * Ownership: nothing is kept of the caller's arrays. Threads: the fitter's thread.
  */
-SSC_API ssc_status ssc_fitter_add_depth_image(ssc_fitter* fitter, uint32_t frame, const ssc_depth_image_def* image,
+SSC_EXPERIMENTAL ssc_status ssc_fitter_add_depth_image(ssc_fitter* fitter, uint32_t frame, const ssc_depth_image_def* image,
                                               uint32_t* points_added);
 
 /** Called once per solver iteration with the current cost; return non-zero to cancel. */
@@ -880,11 +900,11 @@ typedef struct ssc_fit_report {
  * worker threads of the model's context (ssc_context_def.worker_count; 1 = none); the results do
  * not depend on their number.
  */
-SSC_API ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* user, ssc_fit_report* report);
+SSC_EXPERIMENTAL ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* user, ssc_fit_report* report);
 
 /** The fitted shape (standard deviations); capacity >= ssc_model_shape_count (unused components 0).
  *  @return SSC_ERROR_INVALID_ARGUMENT before a successful solve. Threads: the fitter's thread. */
-SSC_API ssc_status ssc_fitter_get_shape(const ssc_fitter* fitter, float* out, uint32_t capacity);
+SSC_EXPERIMENTAL ssc_status ssc_fitter_get_shape(const ssc_fitter* fitter, float* out, uint32_t capacity);
 
 /**
  * The fitted pose of a frame: joint_capacity >= ssc_model_joint_count quaternions (x y z w, each
@@ -892,12 +912,12 @@ SSC_API ssc_status ssc_fitter_get_shape(const ssc_fitter* fitter, float* out, ui
  * float). Any output may be NULL. The fitted surface is scale * (posed body) + translation.
  * Threads: the fitter's thread.
  */
-SSC_API ssc_status ssc_fitter_get_pose(const ssc_fitter* fitter, uint32_t frame, float* rotations, uint32_t joint_capacity,
+SSC_EXPERIMENTAL ssc_status ssc_fitter_get_pose(const ssc_fitter* fitter, uint32_t frame, float* rotations, uint32_t joint_capacity,
                                        float* translation, float* scale);
 
 /** The fitted surface of a frame (scale and translation applied): capacity in vertices, stride in
  *  bytes (0 = packed). Threads: the fitter's thread. */
-SSC_API ssc_status ssc_fitter_get_vertices(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity,
+SSC_EXPERIMENTAL ssc_status ssc_fitter_get_vertices(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity,
                                            size_t stride);
 
 /**
@@ -907,10 +927,10 @@ SSC_API ssc_status ssc_fitter_get_vertices(const ssc_fitter* fitter, uint32_t fr
  * @param capacity  floats out holds: at least the frame's point count.
  * Threads: the fitter's thread.
  */
-SSC_API ssc_status ssc_fitter_get_point_residuals(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity);
+SSC_EXPERIMENTAL ssc_status ssc_fitter_get_point_residuals(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity);
 
 /** Number of points added to a frame (0 for an unknown frame). */
-SSC_API uint32_t ssc_fitter_point_count(const ssc_fitter* fitter, uint32_t frame);
+SSC_EXPERIMENTAL uint32_t ssc_fitter_point_count(const ssc_fitter* fitter, uint32_t frame);
 
 #ifdef __cplusplus
 }

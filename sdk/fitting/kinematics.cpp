@@ -79,7 +79,7 @@ LinearModel::LinearModel(const Model& m, uint32_t components)
     }
 }
 
-Kinematics::Kinematics(const LinearModel& lin) : lin_(lin), model_(lin.model), K_(lin.K), J_(lin.J), V_(lin.V) {
+Kinematics::Kinematics(const LinearModel& lin) : lin_(lin), model_(lin.model), K_(lin.K), J_(lin.J) {
     rest_joint_.resize(J_);
     posed_joint_.resize(J_);
     world_.resize(J_);

@@ -112,7 +112,7 @@ private:
 
     const LinearModel& lin_;
     const Model& model_;
-    uint32_t K_, J_, V_;
+    uint32_t K_, J_;
     // Current state.
     std::vector<double> shape_;
     std::vector<double> weighted_shape_;  // step[k] * shape_[k]: multiplies the quantized basis

@@ -5,6 +5,7 @@
 // o_j = W_parent^T (p_j - p_parent). Posed: G_j = G_parent * [R_j * P_j | o_j], with P_j the pose
 // rotation; the root is [R_root * P_root | p_root + translation]. The bind transform is
 // [W_j | p_j], and skinning uses G_j * bind_j^-1, which is the identity in the zero pose.
+#include "cpu.hpp"
 #include "kernels.hpp"
 #include "model.hpp"
 
@@ -124,8 +125,7 @@ void skin_run_scalar(const Model& m, const Model::SkinRun& run, const float* mat
 }
 
 #ifdef SSC_SKIN_AVX2
-#pragma GCC push_options
-#pragma GCC target("avx2,fma")
+SSC_TARGET_AVX2_BEGIN
 template <int N>
 void skin_run_avx2(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
     const RunArrays a = arrays(m, rest, out);
@@ -185,7 +185,7 @@ void skin_run_avx2(const Model& m, const Model::SkinRun& run, const float* mats,
         }
     }
 }
-#pragma GCC pop_options
+SSC_TARGET_END
 #endif
 
 template <int N>

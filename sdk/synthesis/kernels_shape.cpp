@@ -32,8 +32,7 @@ namespace {
 constexpr std::size_t kChunk = Model::kChunk;  // rows per panel
 
 #ifdef SSC_SHAPE_AVX2
-#pragma GCC push_options
-#pragma GCC target("avx2,fma")
+SSC_TARGET_AVX2_BEGIN
 // G bodies x P panels of 16 rows (2 ymm each) starting at panel `first`.
 template <int G, int P>
 void tile_avx2(const Model& m, std::size_t first, const float* const* scaled, float* const* rest) {
@@ -78,7 +77,7 @@ void shape_avx2(const Model& m, std::size_t count, const float* const* scaled, f
         else pass_avx2<1, 4>(m, scaled + g, rest + g, first, end), g += 1;
     }
 }
-#pragma GCC pop_options
+SSC_TARGET_END
 #endif
 
 #ifdef SSC_SHAPE_AVX512

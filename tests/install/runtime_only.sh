@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Configures and builds sscape as an engine that only wants the runtime would: no command line,
-# training, pictures, tests, benchmarks or samples. The build needs only Eigen, FlatBuffers, zstd
-# and xxHash, and the library it makes depends on nothing but the C and C++ runtimes.
+# training, pictures, tests, benchmarks or samples. The build needs only Eigen, FlatBuffers and zstd
+# (and the header-only nanoflann and xxHash), and the library it makes depends on nothing but the C
+# and C++ runtimes.
 # usage: runtime_only.sh SOURCE_DIR WORK_DIR
 set -euo pipefail
 source="$1" work="$2"

@@ -1,0 +1,113 @@
+// Writes the fuzz targets' seed corpora, made by the project's own writers from a small procedural
+// model (so the seeds are valid files of each kind, small enough to mutate quickly):
+//   OUT/model_memory/   .sscape files          OUT/model_payload/  their FlatBuffers payloads
+//   OUT/ply/            binary and ASCII PLY   OUT/obj/            OBJ with and without normals
+//   OUT/lnd/            CAESAR .lnd            OUT/pgm/            16-bit PGM with camera comments
+// usage: fuzz_seeds OUT
+#include "export/mesh_writers.hpp"
+#include "io/writers.hpp"
+#include "sscape_format/container.hpp"
+#include "sscape_format/model_io.hpp"
+#include "synthesis/body.hpp"
+#include "synthesis/kernels.hpp"
+#include "synthesis/model.hpp"
+#include "testing/synthetic_model.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <tuple>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void put(const fs::path& path, const void* data, std::size_t size) {
+    std::ofstream(path, std::ios::binary).write(static_cast<const char*>(data), std::streamsize(size));
+}
+void put(const fs::path& path, const std::string& text) { put(path, text.data(), text.size()); }
+
+ssc::testing::SyntheticModel small_model(ssc::testing::SyntheticSkeleton skeleton, uint32_t vertices, uint32_t components) {
+    ssc::testing::SyntheticSpec spec;
+    spec.skeleton = skeleton;
+    spec.vertex_count = vertices;
+    spec.components = components;
+    spec.seed = 3;
+    return ssc::testing::build_synthetic_model(spec);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: %s OUT\n", argv[0]);
+        return 2;
+    }
+    const fs::path out = argv[1];
+    for (const char* d : {"model_memory", "model_payload", "ply", "obj", "lnd", "pgm"}) fs::create_directories(out / d);
+
+    // Models: small meshes on the 6-joint skeleton (the humanoid one needs a full-size mesh).
+    int n = 0;
+    for (const auto& [skeleton, V, K] : {std::tuple{ssc::testing::SyntheticSkeleton::Mini6, 300u, 4u},
+                                        std::tuple{ssc::testing::SyntheticSkeleton::Mini6, 600u, 6u}}) {
+        const auto model = small_model(skeleton, V, K);
+        const std::vector<unsigned char> file = ssc::format::write_model(model.data);
+        put(out / "model_memory" / ("model" + std::to_string(n) + ".sscape"), file.data(), file.size());
+        ssc::Vec<unsigned char> payload;
+        ssc::format::unpack_container(file.data(), file.size(), ssc::format::kDefaultMaxModelBytes, payload);
+        put(out / "model_payload" / ("payload" + std::to_string(n) + ".bin"), payload.data(), payload.size());
+        ++n;
+    }
+
+    // A body of the small model as meshes and point clouds.
+    const auto synthetic = small_model(ssc::testing::SyntheticSkeleton::Mini6, 300, 4);
+    const ssc::Model model(synthetic.data, nullptr);
+    ssc::Body body(model, nullptr);
+    const uint32_t V = model.vertex_count();
+    std::vector<float> xyz(3ull * V);
+    ssc::kernels::planar_to_xyz(body.posed(), V, xyz.data(), 12);
+    const auto& tris = model.data().mesh.triangles;
+    ssc::exporters::MeshView mesh;
+    mesh.vertex_count = V;
+    mesh.positions = xyz.data();
+    mesh.triangle_count = uint32_t(tris.size() / 3);
+    mesh.triangles = tris.data();
+    ssc::exporters::write_ply((out / "ply" / "mesh_binary.ply").string(), mesh);
+    ssc::exporters::write_obj((out / "obj" / "mesh.obj").string(), mesh);
+    mesh.normals = body.normals();
+    mesh.triangle_count = 0;
+    ssc::exporters::write_ply((out / "ply" / "points_normals_binary.ply").string(), mesh);
+    ssc::exporters::write_obj((out / "obj" / "points_normals.obj").string(), mesh);
+    put(out / "ply" / "ascii.ply",
+        "ply\nformat ascii 1.0\ncomment a triangle with normals\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nproperty float nx\nproperty float ny\nproperty float nz\nelement face 1\n"
+        "property list uchar int vertex_indices\nend_header\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n");
+    std::string big = "ply\nformat binary_big_endian 1.0\nelement vertex 2\nproperty double x\nproperty double y\nproperty double z\n"
+                      "end_header\n";
+    for (double v : {0.0, 1.0, 2.0, -1.0, 0.5, 3.0}) {
+        unsigned char b[8];
+        std::memcpy(b, &v, 8);
+        for (int i = 7; i >= 0; --i) big.push_back(char(b[i]));
+    }
+    put(out / "ply" / "big_endian.ply", big);
+
+    // Landmarks and a depth image.
+    std::vector<ssc::io::LandmarkRecord> landmarks;
+    for (uint32_t l = 0; l < 5; ++l)
+        landmarks.push_back({l + 1, l == 0 ? "Sellion" : l == 1 ? "Rt. Acromion" : "Lt. Dactylion", Eigen::Vector3d(0.1 * l, 1.0 + l, -0.2)});
+    ssc::io::write_lnd((out / "lnd" / "subject.lnd").string(), "fuzz seed", landmarks);
+    ssc::io::DepthImage depth;
+    depth.width = 8, depth.height = 6;
+    depth.depth.assign(48, 0.f);
+    for (std::size_t i = 0; i < depth.depth.size(); ++i) depth.depth[i] = i % 5 ? 1.5f + 0.01f * float(i) : 0.f;
+    depth.has_intrinsics = true, depth.fx = depth.fy = 6, depth.cx = 4, depth.cy = 3;
+    depth.has_pose = true;
+    ssc::io::write_pgm_depth((out / "pgm" / "camera.pgm").string(), depth);
+    depth.has_intrinsics = depth.has_pose = false;
+    ssc::io::write_pgm_depth((out / "pgm" / "plain.pgm").string(), depth);
+    std::printf("seed corpora written to %s\n", out.c_str());
+    return 0;
+}
