@@ -84,6 +84,9 @@ constexpr int kRowX[4] = {0, 4, 8, 12}, kRowY[4] = {1, 5, 9, 13}, kRowZ[4] = {2,
 // One run: N joints shared by every vertex, weights per vertex. Blends the 12 matrix elements
 // w_0 M_0 + w_1 M_1 + ... (FMAs in influence order) and transforms:
 // p = (m0 x + m8 z) + (m4 y + m12) per row, the same order in the SIMD and the scalar path.
+// What a run reads and writes: planar rest and output coordinates, and per influence its matrix
+// and its weights.
+template <int N>
 struct RunArrays {
     const float* xs;
     const float* ys;
@@ -91,23 +94,27 @@ struct RunArrays {
     float* ox;
     float* oy;
     float* oz;
+    const float* M[N];
+    const float* W[N];
 };
 
-RunArrays arrays(const Model& m, const float* rest, float* out) {
+template <int N>
+RunArrays<N> arrays(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
     const uint32_t V = m.vertex_count();
-    return {rest, rest + V, rest + 2 * std::size_t(V), out, out + V, out + 2 * std::size_t(V)};
+    RunArrays<N> a{rest, rest + V, rest + 2 * std::size_t(V), out, out + V, out + 2 * std::size_t(V), {}, {}};
+    for (int i = 0; i < N; ++i) {
+        a.M[i] = mats + run.offsets[i];
+        a.W[i] = m.skin_weights(i);
+    }
+    return a;
 }
 
 template <int N>
 void skin_run_scalar(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
-    const RunArrays a = arrays(m, rest, out);
+    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
+    const float* const* M = a.M;
+    const float* const* W = a.W;
     const uint32_t* vid = m.skin_vertices();
-    const float* M[N];
-    const float* W[N];
-    for (int i = 0; i < N; ++i) {
-        M[i] = mats + run.offsets[i];
-        W[i] = m.skin_weights(i);
-    }
     for (uint32_t s = run.begin; s < run.end; ++s) {
         const uint32_t v = vid[s];
         auto blend = [&](int e) {
@@ -128,16 +135,12 @@ void skin_run_scalar(const Model& m, const Model::SkinRun& run, const float* mat
 SSC_TARGET_AVX2_BEGIN
 template <int N>
 void skin_run_avx2(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
-    const RunArrays a = arrays(m, rest, out);
+    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
     const float *xs = a.xs, *ys = a.ys, *zs = a.zs;
     float *ox = a.ox, *oy = a.oy, *oz = a.oz;
+    const float* const* M = a.M;
+    const float* const* W = a.W;
     const uint32_t* vid = m.skin_vertices();
-    const float* M[N];
-    const float* W[N];
-    for (int i = 0; i < N; ++i) {
-        M[i] = mats + run.offsets[i];
-        W[i] = m.skin_weights(i);
-    }
     for (uint32_t b = run.begin; b < run.end; b += Model::kSkinBlock) {
         const bool contiguous = m.skin_block_contiguous()[b / Model::kSkinBlock];
         const uint32_t v0 = vid[b];
