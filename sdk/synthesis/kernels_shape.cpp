@@ -172,7 +172,12 @@ void shape_rows(const Model& m, std::size_t count, const float* const* scaled, f
     shape_scalar(m, count, scaled, rest, first_panel, end_panel);
 }
 
-void shape_joints(const Model& m, std::size_t count, const float* const* scaled, float* const* joints) {
+namespace {
+
+// Inlined into both versions below: with FMA enabled std::fma is one instruction, without it a
+// call into libm (exact either way, so the same bits).
+[[gnu::always_inline]] inline void shape_joints_body(const Model& m, std::size_t count, const float* const* scaled,
+                                                     float* const* joints) {
     const uint32_t J = m.joint_count(), K = m.component_count();
     for (std::size_t g = 0; g < count; ++g) {
         float* out = joints[g];
@@ -182,6 +187,23 @@ void shape_joints(const Model& m, std::size_t count, const float* const* scaled,
             out[i] = acc;
         }
     }
+}
+
+#ifdef SSC_SHAPE_AVX2
+SSC_TARGET_AVX2_BEGIN
+void shape_joints_avx2(const Model& m, std::size_t count, const float* const* scaled, float* const* joints) {
+    shape_joints_body(m, count, scaled, joints);
+}
+SSC_TARGET_END
+#endif
+
+}  // namespace
+
+void shape_joints(const Model& m, std::size_t count, const float* const* scaled, float* const* joints) {
+#ifdef SSC_SHAPE_AVX2
+    if (active_isa() != Isa::Baseline) return shape_joints_avx2(m, count, scaled, joints);
+#endif
+    shape_joints_body(m, count, scaled, joints);
 }
 
 void planar_to_xyz(const float* planar, uint32_t n, float* out, std::size_t stride, bool streaming) {
