@@ -1,10 +1,11 @@
 // Which instruction sets the hand-written kernels use.
 //
-// The library is compiled for plain x86-64, so it runs on any x86-64 CPU. The synthesis kernels
-// that pay for wider vectors (shape, skinning) also come compiled for AVX2 + FMA and AVX-512, and
-// each call takes the widest one that the CPU and the operating system support. Every path gives
-// the same bits (the kernels fix the order of their fused multiply-adds), so the choice changes
-// speed, never results.
+// The library is compiled for plain x86-64, so it runs on any x86-64 CPU. The kernels that pay for
+// wider vectors (shape, rest joints, skinning; the fitter's normal-equation products) also come
+// compiled for AVX2 + FMA (the shape for AVX-512 too), and each call takes the widest one that the
+// CPU and the operating system support. The synthesis paths give the same bits (they fix the order
+// of their fused multiply-adds), so there the choice changes speed, never results; the fitter's
+// baseline product is Eigen's, whose sums round differently in the last bits.
 //
 // SSCAPE_ISA=baseline|avx2|avx512 in the environment lowers the choice for the whole process (it
 // never raises it past what the CPU supports): for tests of the fallback paths, and to time them.
