@@ -17,56 +17,63 @@ namespace {
 
 #ifdef SSC_PRODUCT_AVX2
 SSC_TARGET_AVX2_BEGIN
+// Columns c and c1 of P, T vectors of 4 entries from entry i, summed over rows [r0, r1) of R: 2T
+// accumulators held in registers. The last vector loads and stores only the lanes in `last`
+// (entries past n are never touched).
+template <int T>
+inline void product_tile(const double* R, std::size_t r0, std::size_t r1, std::size_t n, std::size_t c, std::size_t c1,
+                         std::size_t i, __m256i last, double* p0, double* p1) {
+    const __m256i all = _mm256_set1_epi64x(-1);
+    __m256d a[2][T];
+    for (int k = 0; k < T; ++k) {
+        const __m256i m = k + 1 < T ? all : last;
+        a[0][k] = _mm256_maskload_pd(p0 + i + 4 * k, m);
+        a[1][k] = _mm256_maskload_pd(p1 + i + 4 * k, m);
+    }
+    for (std::size_t r = r0; r < r1; ++r) {
+        const double* row = R + r * n;
+        const __m256d b0 = _mm256_broadcast_sd(row + c), b1 = _mm256_broadcast_sd(row + c1);
+        for (int k = 0; k < T; ++k) {
+            const __m256d x = k + 1 < T ? _mm256_loadu_pd(row + i + 4 * k) : _mm256_maskload_pd(row + i + 4 * k, last);
+            a[0][k] = _mm256_fmadd_pd(b0, x, a[0][k]);
+            a[1][k] = _mm256_fmadd_pd(b1, x, a[1][k]);
+        }
+    }
+    for (int k = 0; k < T; ++k) {
+        const __m256i m = k + 1 < T ? all : last;
+        _mm256_maskstore_pd(p0 + i + 4 * k, m, a[0][k]);
+        _mm256_maskstore_pd(p1 + i + 4 * k, m, a[1][k]);
+    }
+}
+
 // The upper triangle of R^T R (R: `rows` x n, row-major) into P (n x n, column-major):
-// P(i, c), i <= c, = sum over r of R(r, i) R(r, c), fused multiply-adds in row order.
-// Register tiles of 2 columns x 16 rows of P (8 accumulators: what two FMA ports need in flight),
-// over tiles of 32 rows of R that stay in L1. Narrower tiles and a scalar loop finish each column.
-// Without AVX2 Eigen's product serves (SSE2): its sums round differently in the last bits.
+// P(i, c), i <= c, = sum over r of R(r, i) R(r, c), fused multiply-adds in row order. Columns go
+// in pairs; each pair's entries down to the diagonal, rounded up to whole vectors (the extra
+// entries lie below the diagonal, which is not read), in register tiles of up to 2 x 16, over
+// tiles of 32 rows of R that stay in L1. Without AVX2, Eigen's product serves (SSE2): its sums
+// round differently in the last bits.
 void upper_product_avx2(const double* R, std::size_t rows, std::size_t n, double* P) {
     constexpr std::size_t kRowTile = 32;
-    // Column c is summed to row c + 1 (pairs of columns share tiles): zero that far.
-    for (std::size_t c = 0; c < n; ++c) std::memset(P + c * n, 0, sizeof(double) * std::min(n, c + 2));
+    auto vectors = [](std::size_t c) { return (c + 2 + 3) / 4; };  // a pair from c: rows 0..c+1, whole vectors
+    for (std::size_t c = 0; c < n; ++c) std::memset(P + c * n, 0, sizeof(double) * std::min(n, 4 * vectors(c - c % 2)));
     for (std::size_t r0 = 0; r0 < rows; r0 += kRowTile) {
         const std::size_t r1 = std::min(rows, r0 + kRowTile);
         for (std::size_t c = 0; c < n; c += 2) {
-            const bool pair = c + 1 < n;
-            const std::size_t c1 = pair ? c + 1 : c;
+            const std::size_t c1 = c + 1 < n ? c + 1 : c;
             double* p0 = P + c * n;
             double* p1 = P + c1 * n;
-            const std::size_t height = c1 + 1;  // entries of column c1 on or above the diagonal
-            std::size_t i = 0;
-            for (; i + 16 <= height; i += 16) {
-                __m256d a[2][4];
-                for (int k = 0; k < 4; ++k) a[0][k] = _mm256_loadu_pd(p0 + i + 4 * k), a[1][k] = _mm256_loadu_pd(p1 + i + 4 * k);
-                for (std::size_t r = r0; r < r1; ++r) {
-                    const double* row = R + r * n;
-                    const __m256d b0 = _mm256_broadcast_sd(row + c), b1 = _mm256_broadcast_sd(row + c1);
-                    for (int k = 0; k < 4; ++k) {
-                        const __m256d x = _mm256_loadu_pd(row + i + 4 * k);
-                        a[0][k] = _mm256_fmadd_pd(b0, x, a[0][k]);
-                        a[1][k] = _mm256_fmadd_pd(b1, x, a[1][k]);
-                    }
-                }
-                for (int k = 0; k < 4; ++k) _mm256_storeu_pd(p0 + i + 4 * k, a[0][k]), _mm256_storeu_pd(p1 + i + 4 * k, a[1][k]);
-            }
-            for (; i + 4 <= height; i += 4) {
-                __m256d a0 = _mm256_loadu_pd(p0 + i), a1 = _mm256_loadu_pd(p1 + i);
-                for (std::size_t r = r0; r < r1; ++r) {
-                    const double* row = R + r * n;
-                    const __m256d x = _mm256_loadu_pd(row + i);
-                    a0 = _mm256_fmadd_pd(_mm256_broadcast_sd(row + c), x, a0);
-                    a1 = _mm256_fmadd_pd(_mm256_broadcast_sd(row + c1), x, a1);
-                }
-                _mm256_storeu_pd(p0 + i, a0), _mm256_storeu_pd(p1 + i, a1);
-            }
-            for (; i < height; ++i) {
-                double a0 = p0[i], a1 = p1[i];
-                for (std::size_t r = r0; r < r1; ++r) {
-                    const double* row = R + r * n;
-                    a0 = std::fma(row[c], row[i], a0);
-                    a1 = std::fma(row[c1], row[i], a1);
-                }
-                p0[i] = a0, p1[i] = a1;
+            const std::size_t q = vectors(c);
+            // Lanes of the pair's last vector that lie inside the column.
+            const std::size_t lanes = std::min<std::size_t>(4, n - 4 * (q - 1));
+            const __m256i last = _mm256_cmpgt_epi64(_mm256_set1_epi64x(int64_t(lanes)), _mm256_setr_epi64x(0, 1, 2, 3));
+            const __m256i all = _mm256_set1_epi64x(-1);
+            std::size_t v = 0;
+            for (; v + 4 < q; v += 4) product_tile<4>(R, r0, r1, n, c, c1, 4 * v, all, p0, p1);
+            switch (q - v) {
+                case 4: product_tile<4>(R, r0, r1, n, c, c1, 4 * v, last, p0, p1); break;
+                case 3: product_tile<3>(R, r0, r1, n, c, c1, 4 * v, last, p0, p1); break;
+                case 2: product_tile<2>(R, r0, r1, n, c, c1, 4 * v, last, p0, p1); break;
+                default: product_tile<1>(R, r0, r1, n, c, c1, 4 * v, last, p0, p1); break;
             }
         }
     }
