@@ -190,7 +190,7 @@ typedef struct ssc_model ssc_model;
  * Loads a .sscape model file. The file is untrusted: it is verified completely (container,
  * checksum, schema, semantic checks) before the model exists.
  * @param ctx   context for allocation, logging and batch threads; NULL = a private default context.
- * @param path  UTF-8 file path.
+ * @param path  UTF-8 path of a regular file (a directory, FIFO or device gives SSC_ERROR_IO at once).
  * @param out   receives the model with one reference; set only on success.
  * @return SSC_OK, SSC_ERROR_INVALID_ARGUMENT, SSC_ERROR_IO, SSC_ERROR_MODEL_CORRUPT,
  *         SSC_ERROR_UNSUPPORTED_VERSION, SSC_ERROR_OUT_OF_MEMORY.
@@ -575,7 +575,9 @@ SSC_API ssc_status ssc_measurement_find(const char* name, uint32_t* out_measurem
  * Measures the body: every measurement, out[m] for measurement m, in the units of ssc_unit (SI).
  * @param out       capacity floats; at least ssc_measurement_count().
  * Errors: SSC_ERROR_NOT_FOUND when the model lacks the landmarks, joints or body-part vertex sets the
- * definitions need (the message names them); nothing is written then.
+ * definitions need (the message names them); SSC_ERROR_INVALID_ARGUMENT for a body larger than 5 m
+ * along any axis of its rest pose (a shape far outside the population, or a model in other units).
+ * Nothing is written on error. The work is bounded by the mesh, whatever the body's size.
  * Threads: the body's thread.
  */
 SSC_API ssc_status ssc_body_measure(ssc_body* body, float* out, uint32_t capacity);
