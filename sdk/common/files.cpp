@@ -74,6 +74,33 @@ int create_named(const std::string& path, std::string& tmp) {
     return -1;
 }
 
+bool write_synced(int fd, const void* data, std::size_t size) { return write_all(fd, data, size) && ::fsync(fd) == 0; }
+
+// Writes the bytes to a complete, synced file beside `path`, named `tmp` on success. First an
+// unnamed O_TMPFILE that is linked to its name only once complete; where the file system has no
+// O_TMPFILE (or /proc is missing, which the link needs), a named O_EXCL temporary. On failure
+// nothing is left behind and `error` says why.
+bool write_temporary(const std::string& path, const void* data, std::size_t size, std::string& tmp, std::string& error) {
+    {
+        Fd unnamed;
+        unnamed.fd = ::open(folder_of(path).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+        if (unnamed.fd >= 0) {
+            if (!write_synced(unnamed.fd, data, size)) return error = why(), false;
+            if (link_unnamed(unnamed.fd, tmp, path)) return true;
+        }
+    }
+    Fd named;
+    named.fd = create_named(path, tmp);
+    if (named.fd < 0) return error = why(), false;
+    bool ok = write_synced(named.fd, data, size);
+    if (!ok) error = why();
+    const int fd = named.fd;
+    named.fd = -1;
+    if (::close(fd) != 0 && ok) ok = false, error = why();
+    if (!ok) ::unlink(tmp.c_str());
+    return ok;
+}
+
 }  // namespace
 
 std::string read_regular_file(const std::string& path, uint64_t max_bytes, ssc_status too_large) {
@@ -103,46 +130,12 @@ std::string read_regular_file(const std::string& path, uint64_t max_bytes, ssc_s
 
 void write_file_atomically(const std::string& path, const void* data, std::size_t size) {
     SSC_REQUIRE_ARG(!path.empty() && path.back() != '/', "'" + path + "' is not a file name");
-    std::string tmp;
-    bool named = false;
-    Fd f;
-    f.fd = ::open(folder_of(path).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
-    if (f.fd < 0) {
-        f.fd = create_named(path, tmp);
-        if (f.fd < 0) fail(SSC_ERROR_IO, "cannot create a file beside '" + path + "': " + why());
-        named = true;
-    }
-    const bool written = write_all(f.fd, data, size) && ::fsync(f.fd) == 0;
-    const std::string error = written ? "" : why();
-    if (written && !named) {
-        named = link_unnamed(f.fd, tmp, path);
-        if (!named) {  // no /proc: write again under a named temporary
-            ::close(f.fd);
-            f.fd = create_named(path, tmp);
-            if (f.fd < 0) fail(SSC_ERROR_IO, "cannot create a file beside '" + path + "': " + why());
-            named = true;
-            if (!write_all(f.fd, data, size) || ::fsync(f.fd) != 0) {
-                const std::string e = why();
-                ::unlink(tmp.c_str());
-                fail(SSC_ERROR_IO, "cannot write '" + path + "': " + e);
-            }
-        }
-    }
-    if (!written) {
-        if (named) ::unlink(tmp.c_str());
-        fail(SSC_ERROR_IO, "cannot write '" + path + "': " + error);
-    }
-    if (::close(f.fd) != 0) {
-        f.fd = -1;
-        const std::string e = why();
-        ::unlink(tmp.c_str());
-        fail(SSC_ERROR_IO, "cannot write '" + path + "': " + e);
-    }
-    f.fd = -1;
+    std::string tmp, error;
+    if (!write_temporary(path, data, size, tmp, error)) fail(SSC_ERROR_IO, "cannot write '" + path + "': " + error);
     if (::rename(tmp.c_str(), path.c_str()) != 0) {
-        const std::string e = why();
+        error = why();
         ::unlink(tmp.c_str());
-        fail(SSC_ERROR_IO, "cannot replace '" + path + "': " + e);
+        fail(SSC_ERROR_IO, "cannot replace '" + path + "': " + error);
     }
 }
 

@@ -216,7 +216,7 @@ public:
         if (start && !o_.auto_start) {
             for (uint32_t f = 0; f < F_; ++f) states_[f] = (*start)[f];
             for (uint32_t k = 0; k < K_ && k < (*start)[0].shape.size(); ++k)
-                shape_[k] = std::clamp((*start)[0].shape[k], -double(kShapeLimit), double(kShapeLimit));
+                shape_[k] = within_shape_range((*start)[0].shape[k]);
             for (auto& s : states_) s.shape.resize(K_, 0.0);
         } else {
             for (uint32_t f = 0; f < F_; ++f) states_[f] = initial_state(f);
@@ -773,7 +773,7 @@ private:
 
     void apply(const VectorXd& delta) {
         // Box constraint: the shape stays where the C API accepts it back (shape_range.hpp).
-        for (uint32_t k = 0; k < K_; ++k) shape_[k] = std::clamp(shape_[k] + delta[k], -double(kShapeLimit), double(kShapeLimit));
+        for (uint32_t k = 0; k < K_; ++k) shape_[k] = within_shape_range(shape_[k] + delta[k]);
         std::vector<double> local(K_ + B_, 0.0);
         for (uint32_t f = 0; f < F_; ++f) {
             for (uint32_t i = 0; i < B_; ++i) local[K_ + i] = delta[K_ + f * B_ + i];

@@ -286,7 +286,7 @@ Vector3d Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor, uint
 
 void Kinematics::apply(const double* delta, FitState& s) const {
     // The shape stays where the C API accepts it back (shape_range.hpp).
-    for (uint32_t k = 0; k < K_; ++k) s.shape[k] = std::clamp(s.shape[k] + delta[k], -double(kShapeLimit), double(kShapeLimit));
+    for (uint32_t k = 0; k < K_; ++k) s.shape[k] = within_shape_range(s.shape[k] + delta[k]);
     for (uint32_t j = 0; j < J_; ++j) {
         const Vector3d w(delta + rotation_offset(j));
         if (w.squaredNorm() == 0) continue;

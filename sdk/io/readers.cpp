@@ -63,7 +63,8 @@ std::vector<Eigen::Vector3d> given_normals(std::vector<Eigen::Vector3d> normals)
 // What every point reader returns: some points, and either no normals or one finite unit normal per point.
 PointFile checked(PointFile f, const std::string& path) {
     if (f.points.empty()) bad(path, "holds no points");
-    if (f.normals.size() != f.points.size()) f.normals.clear();
+    if (!f.normals.empty() && f.normals.size() != f.points.size())
+        internal_error(path, "a reader returned " + std::to_string(f.normals.size()) + " normals for " + std::to_string(f.points.size()) + " points");
     for (const auto& n : f.normals)
         if (!n.allFinite() || std::abs(n.squaredNorm() - 1.0) > 1e-6) internal_error(path, "a reader returned a normal that is not a finite unit vector");
     return f;

@@ -113,9 +113,9 @@ bool draw_visible_point(Image& img, const std::vector<float>& depth, const Viewp
     return true;
 }
 
+#if SSCAPE_WITH_PNG
 namespace {
 
-#if SSCAPE_WITH_PNG
 void append_png(png_structp png, png_bytep data, png_size_t size) {
     auto* out = static_cast<std::string*>(png_get_io_ptr(png));
     try {
@@ -137,11 +137,8 @@ bool encode_png(png_structp png, png_infop info, std::string* out, const Image& 
     return true;
 }
 
-#endif
-
 }  // namespace
 
-#if SSCAPE_WITH_PNG
 void write_png(const std::string& path, const Image& img) {
     std::string bytes;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);

@@ -45,7 +45,7 @@ void check_target(const AttributeModel& attributes, const measure::Definition& d
 }
 
 // The box every shape stays in (shape_range.hpp).
-Eigen::VectorXd in_range(const Eigen::VectorXd& c) { return c.cwiseMax(-double(kShapeLimit)).cwiseMin(double(kShapeLimit)); }
+Eigen::VectorXd in_range(const Eigen::VectorXd& c) { return c.unaryExpr(&within_shape_range); }
 
 constexpr double kStartPull = 1e-2;  // weight of |c - start|^2 against 1 mm^2 of residual
 constexpr double kStep = 0.05;       // forward-difference step, standard deviations

@@ -9,6 +9,7 @@
 
 #include <sscape/sscape.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -17,6 +18,9 @@
 namespace ssc {
 
 inline constexpr float kShapeLimit = SSC_SHAPE_COEFFICIENT_LIMIT;
+
+// A computed coefficient moved into [-kShapeLimit, kShapeLimit]: the box solvers keep to.
+inline double within_shape_range(double c) { return std::clamp(c, -double(kShapeLimit), double(kShapeLimit)); }
 
 // Throws ssc::Error(SSC_ERROR_INVALID_ARGUMENT) naming the first coefficient that is not finite
 // or lies outside [-kShapeLimit, kShapeLimit]; `what` names the array in the message.
