@@ -10,6 +10,7 @@
 #include "fitting/nearest.hpp"
 #include "fitting/normal_equations.hpp"
 #include "fitting/robust.hpp"
+#include "fitting/scan_normals.hpp"
 #include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
 
@@ -262,6 +263,37 @@ TEST_CASE("scan fits of a mildly posed body are accurate", "[fitting]") {
     INFO("mean vertex error " << err * 1e3 << " mm, point mean " << sol.report.point_mean * 1e3 << " mm");
     CHECK(err < 0.012);
     CHECK(sol.report.inlier_fraction > 0.6);
+}
+
+TEST_CASE("a scan with some normals missing keeps the given ones and estimates the rest, signed", "[fitting]") {
+    // Real scans carry zero normals here and there; they used to make the reader drop every normal.
+    const Model& m = default_model().model();
+    std::mt19937 rng(22);
+    const auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, 0.4), Eigen::Vector3d::Zero());
+    simulation::CloudSpec spec;
+    spec.points = 20000;
+    spec.outliers = 0;
+    auto cloud = simulation::simulate_cloud(m, truth, spec, rng);
+    const auto reference = cloud.normals;
+    std::vector<Eigen::Vector3d> normals = reference;
+    for (std::size_t i = 0; i < normals.size(); i += 3) normals[i].setZero();  // a third unknown
+    const fitting::PointIndex index(cloud.points);
+    CHECK(fitting::estimate_missing_normals(cloud.points, index, normals));
+    std::size_t agree = 0, estimated = 0;
+    for (std::size_t i = 0; i < normals.size(); ++i) {
+        REQUIRE(std::abs(normals[i].norm() - 1) < 1e-9);
+        if (i % 3 != 0) {
+            CHECK(normals[i] == reference[i]);  // given normals are kept as they are
+            continue;
+        }
+        ++estimated;
+        agree += normals[i].dot(reference[i]) > 0.7;  // same sign, within 45 degrees
+    }
+    INFO(agree << " of " << estimated << " estimated normals agree with the surface's");
+    CHECK(double(agree) / double(estimated) > 0.95);
+    // With none given, nothing can sign them.
+    std::vector<Eigen::Vector3d> none(cloud.points.size(), Eigen::Vector3d::Zero());
+    CHECK_FALSE(fitting::estimate_missing_normals(cloud.points, index, none));
 }
 
 TEST_CASE("scan fits reach arms raised overhead and a seated pose from the rest-pose start", "[fitting]") {

@@ -173,10 +173,22 @@ TEST_CASE("point readers return one normal per point or none", "[hostile][io]") 
     REQUIRE(ply.normals.size() == 3);
     CHECK(ply.normals[0].allFinite());
     CHECK(std::abs(ply.normals[0].norm() - 1) < 1e-12);
-    // Normals that cannot be normalised (zero length) leave the estimate to the fitter.
-    const auto zero_normals = ssc::io::parse_obj("v 0 0 0\nv 1 0 0\nvn 0 0 0\nvn 0 0 1\n", "zero.obj");
+    // A normal that cannot be normalised (zero length, common in real scans) is unknown (zero): the
+    // fitter estimates it; the usable ones are kept.
+    const auto zero_normals = ssc::io::parse_obj("v 0 0 0\nv 1 0 0\nvn 0 0 0\nvn 0 0 2\n", "zero.obj");
     CHECK(zero_normals.points.size() == 2);
-    CHECK(zero_normals.normals.empty());
+    REQUIRE(zero_normals.normals.size() == 2);
+    CHECK(zero_normals.normals[0] == Eigen::Vector3d::Zero());
+    CHECK(zero_normals.normals[1] == Eigen::Vector3d::UnitZ());
+    const auto ply_zero = ssc::io::parse_ply("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                             "property float nx\nproperty float ny\nproperty float nz\nend_header\n"
+                                             "0 0 0 0 0 0\n1 0 0 0 0 0\n0 1 0 3 0 0\n", "zero.ply");
+    REQUIRE(ply_zero.normals.size() == 3);
+    CHECK(ply_zero.normals[0] == Eigen::Vector3d::Zero());
+    CHECK(ply_zero.normals[1] == Eigen::Vector3d::Zero());
+    CHECK(ply_zero.normals[2] == Eigen::Vector3d::UnitX());
+    // None usable: none at all.
+    CHECK(ssc::io::parse_obj("v 0 0 0\nv 1 0 0\nvn 0 0 0\nvn 0 0 0\n", "none.obj").normals.empty());
 }
 
 TEST_CASE("a PLY element without properties is skipped, not looped over", "[hostile][io]") {

@@ -807,11 +807,13 @@ SSC_EXPERIMENTAL ssc_status ssc_fitter_add_landmarks_by_name(ssc_fitter* fitter,
 /**
  * Adds a point cloud (scan vertices, depth samples) to a frame.
  * @param points      count points, 3 floats each at stride bytes (0 = packed), metres.
- * @param normals     NULL, or count unit normals (outward) at the same stride; estimated when NULL.
+ * @param normals     NULL, or count normals (outward) at the same stride: unit vectors, or (0, 0, 0)
+ *                    where a point's normal is unknown. Unknown normals (all of them when NULL) are
+ *                    estimated from the neighbouring points and oriented like the known ones near them.
  * @param confidence  NULL, or count weights in [0, 1] (packed floats).
  * @param count       at least 16 points.
  * @return SSC_ERROR_INVALID_ARGUMENT for NULL, a bad frame or stride, too few points, non-finite
- *         values or coordinates beyond 1e6 in magnitude, non-unit normals or confidences outside
+ *         values or coordinates beyond 1e6 in magnitude, normals neither unit nor zero, confidences outside
  *         [0, 1]; nothing is added then.
  * Ownership: the arrays are copied. Threads: the fitter's thread.
  */

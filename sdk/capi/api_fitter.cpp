@@ -159,8 +159,9 @@ ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float
             SSC_REQUIRE_ARG_S(fitting::measured_point(c.points.back()), "point " << i << " is not finite or beyond " << fitting::kMaxCoordinate);
             if (normals) {
                 c.normals.push_back(at(normals, i));
-                SSC_REQUIRE_ARG_S(c.normals.back().allFinite() && std::abs(c.normals.back().norm() - 1) < 1e-3,
-                                  "normal " << i << " is not a unit vector");
+                const Eigen::Vector3d& n = c.normals.back();
+                SSC_REQUIRE_ARG_S(n.allFinite() && (n.squaredNorm() == 0 || std::abs(n.norm() - 1) < 1e-3),
+                                  "normal " << i << " is neither a unit vector nor zero (unknown)");
             }
             if (confidence) {
                 SSC_REQUIRE_ARG_S(confidence[i] >= 0 && confidence[i] <= 1, "confidence[" << i << "] is not in [0, 1]");

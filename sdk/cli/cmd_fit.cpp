@@ -14,10 +14,33 @@
 namespace ssc::cli {
 namespace {
 
+double units_to_metres(const std::string& u) { return u == "m" ? 1.0 : u == "cm" ? 1e-2 : u == "mm" ? 1e-3 : 0.0; }
+
+// Refuses an input that, read in the units assumed for it, cannot be a body or part of one: a
+// millimetre scan read as metres spans kilometres, a metre landmark file read as millimetres spans
+// millimetres. Says which units were assumed and which would give a body's size. Returns the span.
+double check_body_size(const std::string& path, const std::vector<Eigen::Vector3d>& metres, const std::string& units, bool given) {
+    constexpr double kSmallest = 0.05, kLargest = 3.0;  // a hand or a face scan .. a tall person with arms raised
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+    for (const auto& p : metres) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    const double span = metres.size() > 1 ? (hi - lo).maxCoeff() : 0.0;
+    if (metres.size() < 2 || (span >= kSmallest && span <= kLargest)) return span;
+    std::string message = path + ": read in " + units + (given ? " (--units)" : " (the default for this kind of file)") + " it spans " +
+                          std::to_string(span) + " m, but a body or body part spans " + std::to_string(kSmallest) + " to " +
+                          std::to_string(kLargest) + " m";
+    std::string hint = "; give its units with --units m|cm|mm";
+    for (const std::string u : {"m", "cm", "mm"}) {
+        const double other = span * units_to_metres(u) / units_to_metres(units);
+        if (u != units && other >= 0.3 && other <= 2.6) hint = "; with --units " + u + " it would span " + std::to_string(other) + " m";
+    }
+    throw std::runtime_error(message + hint);
+}
+
 struct Options {
     std::string model, out, png;
     std::vector<std::string> landmarks, points, depth;
-    double points_scale = 1;  // to metres
+    std::string units;  // --units: m, cm or mm for every point and landmark file; empty: each format's default
+    double units_scale = 1;  // --units to metres
     std::vector<float> intrinsics;  // fx fy cx cy for depth images whose files do not give them
     bool scale = false, hands = false, frames = false;
     uint32_t components = 0, iterations = 0;
@@ -37,11 +60,9 @@ Options parse(const std::vector<std::string>& args) {
             if (o.intrinsics.size() != 4) throw UsageError("--intrinsics needs FX,FY,CX,CY (pixels)");
         } else if (a == "--frames") o.frames = true;
         else if (a == "--units") {
-            const std::string& u = value();
-            if (u == "m") o.points_scale = 1;
-            else if (u == "mm") o.points_scale = 1e-3;
-            else if (u == "cm") o.points_scale = 1e-2;
-            else throw UsageError("--units must be m, cm or mm");
+            o.units = value();
+            o.units_scale = units_to_metres(o.units);
+            if (o.units_scale == 0) throw UsageError("--units must be m, cm or mm, not '" + o.units + "'");
         } else if (a == "--scale") o.scale = true;
         else if (a == "--hands") o.hands = true;
         else if (a == "--components") o.components = parse_count(value(), a);
@@ -103,24 +124,42 @@ int cmd_fit(const std::vector<std::string>& args) {
             }
             indices.push_back(it->second);
             for (int a = 0; a < 3; ++a) positions.push_back(float(r.position[a]));
-            if (frame == 0) shown.push_back(r.position);
         }
         if (indices.size() < 3) throw UsageError(path + ": fewer than 3 usable landmarks");
+        // read_lnd applies the format's millimetres; --units overrides them.
+        const std::string units = o.units.empty() ? "mm" : o.units;
+        const double to_given = o.units.empty() ? 1.0 : o.units_scale / 1e-3;
+        std::vector<Eigen::Vector3d> metres;
+        for (std::size_t i = 0; i < indices.size(); ++i) {
+            for (int a = 0; a < 3; ++a) positions[3 * i + std::size_t(a)] = float(positions[3 * i + std::size_t(a)] * to_given);
+            metres.emplace_back(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+        }
+        if (frame == 0) shown.insert(shown.end(), metres.begin(), metres.end());
+        const double span = check_body_size(path, metres, units, !o.units.empty());
         check(ssc_fitter_add_landmarks(guard.fitter, frame, indices.data(), positions.data(), nullptr, uint32_t(indices.size())), path);
-        std::printf("%s: %zu landmarks (%u hand landmarks left out; --hands uses them)\n", path.c_str(), indices.size(), skipped_hands);
+        std::printf("%s: %zu landmarks in %s%s, spanning %.2f m (%u hand landmarks left out; --hands uses them)\n", path.c_str(),
+                    indices.size(), units.c_str(), o.units.empty() ? " (the .lnd convention; --units sets it)" : "", span, skipped_hands);
     }
     for (const auto& path : o.points) {
         const io::PointFile pf = io::read_points(path);
         const uint32_t frame = frame_for();
+        const std::string units = o.units.empty() ? "m" : o.units;
+        std::vector<Eigen::Vector3d> metres;
+        for (const auto& p : pf.points) metres.push_back(p * o.units_scale);
+        const double span = check_body_size(path, metres, units, !o.units.empty());
         std::vector<float> pts, nrm;
-        for (const auto& p : pf.points) {
-            for (int a = 0; a < 3; ++a) pts.push_back(float(p[a] * o.points_scale));
-            if (frame == 0) shown.push_back(p * o.points_scale);
+        for (const auto& p : metres) {
+            for (int a = 0; a < 3; ++a) pts.push_back(float(p[a]));
+            if (frame == 0) shown.push_back(p);
         }
-        for (const auto& n : pf.normals)
+        std::size_t unknown = pf.normals.empty() ? pf.points.size() : 0;
+        for (const auto& n : pf.normals) {
             for (int a = 0; a < 3; ++a) nrm.push_back(float(n[a]));
+            unknown += n.squaredNorm() == 0;
+        }
         check(ssc_fitter_add_points(guard.fitter, frame, pts.data(), nrm.empty() ? nullptr : nrm.data(), nullptr, uint32_t(pf.points.size()), 0), path);
-        std::printf("%s: %zu points%s\n", path.c_str(), pf.points.size(), pf.normals.empty() ? " (normals estimated)" : " with normals");
+        std::printf("%s: %zu points in %s%s, spanning %.2f m; %zu normals estimated\n", path.c_str(), pf.points.size(), units.c_str(),
+                    o.units.empty() ? " (the default; --units sets it)" : "", span, unknown);
     }
     for (const auto& path : o.depth) {
         const io::DepthImage img = io::read_pgm_depth(path);

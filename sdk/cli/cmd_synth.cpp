@@ -2,6 +2,7 @@
 
 #include "export/gltf_writer.hpp"
 #include "export/mesh_writers.hpp"
+#include "render/landmark_picture.hpp"
 #include "render/raster.hpp"
 
 #include <algorithm>
@@ -16,7 +17,7 @@ namespace {
 struct Options {
     std::string model, out;
     std::vector<float> shape, translation;
-    std::string pose, png, limits;
+    std::string pose, png, landmarks_png, limits;
     std::vector<std::pair<std::string, float>> sliders, measurements;  // NAME=VALUE lists
     float sex = std::nanf(""), age = std::nanf("");
     uint32_t random = 0, seed = 1;
@@ -57,6 +58,7 @@ Options parse(const std::vector<std::string>& args) {
         else if (a == "--seed") o.seed = parse_count(value(), a);
         else if (a == "--normals") o.normals = true;
         else if (a == "--png") o.png = value();
+        else if (a == "--landmarks-png") o.landmarks_png = value();
         else if (a == "--sliders") o.sliders = parse_named(value(), a);
         else if (a == "--measure") o.measurements = parse_named(value(), a);
         else if (a == "--sex") {
@@ -83,6 +85,8 @@ Options parse(const std::vector<std::string>& args) {
     if (!is_glb(o.out)) exporters::check_mesh_path(o.out);
     if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
         throw UsageError("--png needs a file name ending in .png");
+    if (!o.landmarks_png.empty() && (o.landmarks_png.size() < 4 || o.landmarks_png.substr(o.landmarks_png.size() - 4) != ".png"))
+        throw UsageError("--landmarks-png needs a file name ending in .png");
     return o;
 }
 
@@ -306,6 +310,15 @@ int cmd_synth(const std::vector<std::string>& args) {
             exporters::write_mesh(path, mesh);
         }
         if (!o.png.empty() && rendered.size() < 20) rendered.push_back(verts);
+        if (!o.landmarks_png.empty() && i == 0) {
+            const uint32_t L = ssc_model_landmark_count(model);
+            if (L == 0) throw std::runtime_error("--landmarks-png: the model has no landmarks");
+            std::vector<float> at(3ull * L);
+            check(ssc_body_get_landmarks(guard.body, at.data(), L, 0), "landmarks");
+            render::write_landmark_picture(o.landmarks_png, verts, tris, at);
+            std::printf("drew the %u landmarks of %s (front, back, side; head and trunk close up) to %s\n", L, path.c_str(),
+                        o.landmarks_png.c_str());
+        }
         float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
         for (uint32_t v = 0; v < V; ++v)
             for (int a = 0; a < 3; ++a) {

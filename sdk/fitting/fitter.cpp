@@ -5,6 +5,7 @@
 #include "fitting/limb_search.hpp"
 #include "fitting/rigid_start.hpp"
 #include "fitting/robust.hpp"
+#include "fitting/scan_normals.hpp"
 
 #include "common/error.hpp"
 #include "common/rigid.hpp"
@@ -186,12 +187,11 @@ public:
                     fd.normals.push_back(c.normals.empty() ? Vector3d::Zero() : c.normals[i]);
                     fd.confidence.push_back(c.confidence.empty() ? 1.0 : c.confidence[i]);
                 }
-                if (c.normals.empty() && !c.points.empty()) fd.oriented = false;
             }
             if (!fd.points.empty()) {
                 fd.scan_grid.build(fd.points);
                 fd.scan_grid.index_empty_space(kEmptyShells, *pool_);
-                if (!fd.oriented) estimate_normals(fd);
+                estimate_missing_normals(fd);
                 fd.scan_sample.resize(fd.points.size());
                 for (uint32_t i = 0; i < fd.scan_sample.size(); ++i) fd.scan_sample[i] = i;
                 std::shuffle(fd.scan_sample.begin(), fd.scan_sample.end(), rng);
@@ -429,22 +429,13 @@ private:
         return false;
     }
 
-    // Scan normals from the 12 nearest neighbours (plane fit); their sign is unknown.
-    void estimate_normals(FrameData& fd) {
-        uint32_t idx[12];
-        double d2[12];
+    // Normals the input did not give (zero) estimated from the neighbouring points.
+    void estimate_missing_normals(FrameData& fd) {
+        bool missing = false;
+        for (const auto& n : fd.normals) missing = missing || n.squaredNorm() == 0;
+        if (!missing) return;
         build_scan_tree(fd);
-        for (std::size_t i = 0; i < fd.points.size(); ++i) {
-            const std::size_t n = fd.scan_index->nearest_k(fd.points[i], 12, idx, d2);
-            if (n < 3) continue;
-            Vector3d c = Vector3d::Zero();
-            for (std::size_t k = 0; k < n; ++k) c += fd.points[idx[k]];
-            c /= double(n);
-            Matrix3d cov = Matrix3d::Zero();
-            for (std::size_t k = 0; k < n; ++k) cov += (fd.points[idx[k]] - c) * (fd.points[idx[k]] - c).transpose();
-            Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
-            fd.normals[i] = es.eigenvectors().col(0);
-        }
+        fd.oriented = fitting::estimate_missing_normals(fd.points, *fd.scan_index, fd.normals);
     }
 
     // The start search's grid over a frame's cloud (CloudView::coarse_grid).
@@ -1062,8 +1053,8 @@ void validate(const LinearModel& lin, const std::vector<Frame>& frames, const Fi
                 SSC_REQUIRE_ARG_S(measured_point(c.points[i]),
                                   "fit: frame " << f << ": point " << i << " is not finite or has a coordinate beyond " << kMaxCoordinate);
                 if (!c.normals.empty())
-                    SSC_REQUIRE_ARG_S(finite(c.normals[i]) && std::abs(c.normals[i].norm() - 1) < 1e-3,
-                                    "fit: frame " << f << ": normal " << i << " is not a unit vector");
+                    SSC_REQUIRE_ARG_S(finite(c.normals[i]) && (c.normals[i].squaredNorm() == 0 || std::abs(c.normals[i].norm() - 1) < 1e-3),
+                                    "fit: frame " << f << ": normal " << i << " is neither a unit vector nor zero (unknown)");
                 if (!c.confidence.empty())
                     SSC_REQUIRE_ARG_S(c.confidence[i] >= 0 && c.confidence[i] <= 1, "fit: frame " << f << ": confidence " << i << " is not in [0, 1]");
             }

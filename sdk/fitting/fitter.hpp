@@ -45,7 +45,7 @@ struct LandmarkTarget {
 
 struct PointCloud {
     std::vector<Vector3d> points;      // metres
-    std::vector<Vector3d> normals;     // empty or one unit normal per point
+    std::vector<Vector3d> normals;     // empty, or one per point: unit, or zero where unknown (estimated)
     std::vector<double> confidence;    // empty or one weight in [0, 1] per point
 };
 

@@ -30,6 +30,17 @@ Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& v) {
     return len > 0 && std::isfinite(len) ? Eigen::Vector3d(v / len) : Eigen::Vector3d::Zero();
 }
 
+// Unit normals where usable, zero where not; empty when none is usable.
+std::vector<Eigen::Vector3d> usable_normals(std::vector<Eigen::Vector3d> normals) {
+    bool any = false;
+    for (auto& v : normals) {
+        v = unit_or_zero(v);
+        any = any || v.squaredNorm() > 0;
+    }
+    if (!any) normals.clear();
+    return normals;
+}
+
 // Normals from faces (area weighted), for files that give faces but no normals. Computed on the
 // points scaled into the unit cube: finite coordinates near the largest double would otherwise make
 // edge vectors and cross products overflow to Inf and the normals NaN.
@@ -43,30 +54,24 @@ std::vector<Eigen::Vector3d> face_normals(const std::vector<Eigen::Vector3d>& pt
         const Eigen::Vector3d f = (pts[tris[t + 1]] * scale - a).cross(pts[tris[t + 2]] * scale - a);
         for (int i = 0; i < 3; ++i) n[tris[t + i]] += f;
     }
-    // Points on no face get no normal: then the whole set goes without (the fitter estimates them).
-    for (auto& v : n) {
-        v = unit_or_zero(v);
-        if (v.squaredNorm() == 0) return {};
-    }
-    return n;
+    // Points on no face get a zero normal (unknown: the fitter estimates it); none at all when no
+    // point got one.
+    return usable_normals(std::move(n));
 }
 
-// Normals given per point in a file: all usable unit vectors, or none (the fitter estimates them).
-std::vector<Eigen::Vector3d> given_normals(std::vector<Eigen::Vector3d> normals) {
-    for (auto& n : normals) {
-        n = unit_or_zero(n);
-        if (n.squaredNorm() == 0) return {};
-    }
-    return normals;
-}
+// Normals given per point in a file: each usable one kept as a unit vector, the others (zero,
+// non-finite: common in real scans) set to zero, meaning unknown; none when no point has one.
+std::vector<Eigen::Vector3d> given_normals(std::vector<Eigen::Vector3d> normals) { return usable_normals(std::move(normals)); }
 
-// What every point reader returns: some points, and either no normals or one finite unit normal per point.
+// What every point reader returns: some points, and either no normals or one normal per point, a
+// finite unit vector or zero (unknown).
 PointFile checked(PointFile f, const std::string& path) {
     if (f.points.empty()) bad(path, "holds no points");
     if (!f.normals.empty() && f.normals.size() != f.points.size())
         internal_error(path, "a reader returned " + std::to_string(f.normals.size()) + " normals for " + std::to_string(f.points.size()) + " points");
     for (const auto& n : f.normals)
-        if (!n.allFinite() || std::abs(n.squaredNorm() - 1.0) > 1e-6) internal_error(path, "a reader returned a normal that is not a finite unit vector");
+        if (!n.allFinite() || (n.squaredNorm() != 0 && std::abs(n.squaredNorm() - 1.0) > 1e-6))
+            internal_error(path, "a reader returned a normal that is neither a finite unit vector nor zero");
     return f;
 }
 
@@ -249,9 +254,15 @@ PointFile ply_points(const std::string& data, const std::string& path) {
             for (std::size_t k = 1; k + 1 < poly.size(); ++k) tris.insert(tris.end(), {poly[0], poly[k], poly[k + 1]});
         }
     }
-    // Normals of zero length (or none at all) leave the estimate to the fitter.
+    // Normals the file does not give usably come from the faces where it has them, else from the fitter.
     out.normals = given_normals(std::move(normals));
-    if (out.normals.empty() && !tris.empty()) out.normals = face_normals(out.points, tris);
+    if (!tris.empty()) {
+        const auto from_faces = face_normals(out.points, tris);
+        if (out.normals.empty()) out.normals = from_faces;
+        else if (!from_faces.empty())
+            for (std::size_t i = 0; i < out.normals.size(); ++i)
+                if (out.normals[i].squaredNorm() == 0) out.normals[i] = from_faces[i];
+    }
     return out;
 }
 

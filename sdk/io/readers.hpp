@@ -25,12 +25,14 @@ std::vector<LandmarkRecord> read_lnd(const std::string& path);
 
 struct PointFile {
     std::vector<Eigen::Vector3d> points;   // in the file's units (the caller scales)
-    std::vector<Eigen::Vector3d> normals;  // empty, or one unit normal per point
+    std::vector<Eigen::Vector3d> normals;  // empty, or one per point: unit, or zero where unknown
 };
 
 // PLY (ascii or binary little/big endian; x y z, optional nx ny nz; faces give normals when the
 // file has none) and OBJ (v lines, optional vn per vertex or f lines for normals). By extension.
-// The result holds at least one point, and either no normals or one finite unit normal per point.
+// The result holds at least one point, and either no normals or one per point: a finite unit
+// normal, or zero where the file gives none usable for that point (a zero or non-finite normal,
+// a point on no face); the fitter estimates those.
 PointFile read_points(const std::string& path);
 
 struct DepthImage {

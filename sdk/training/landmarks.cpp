@@ -1,12 +1,14 @@
 #include "landmarks.hpp"
 
 #include "common/error.hpp"
+#include "skeleton_fit.hpp"
 
 #include <Eigen/Geometry>
 
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <utility>
 
 namespace ssc::training {
 namespace {
@@ -94,6 +96,19 @@ private:
 
 }  // namespace
 
+LandmarkTemplate landmark_template(const format::ModelData& m, const float* rest_xyz) {
+    const uint32_t V = m.vertex_count(), J = uint32_t(m.skeleton.joint_names.size());
+    LandmarkTemplate t;
+    t.xyz.assign(rest_xyz, rest_xyz + 3 * std::size_t(V));
+    t.triangles.assign(m.mesh.triangles.begin(), m.mesh.triangles.end());
+    for (uint32_t v = 0; v < V; ++v) t.vertex_bone.push_back(m.skeleton.joint_names[m.skin.joints[4 * std::size_t(v)]]);
+    const auto& sk = m.skeleton;
+    const std::vector<float> joints =
+        apply_regressor(sk.regressor_offsets.data(), sk.regressor_vertices.data(), sk.regressor_weights.data(), J, rest_xyz);
+    for (uint32_t j = 0; j < J; ++j) t.joints[sk.joint_names[j]].assign(&joints[3 * j], &joints[3 * j] + 3);
+    return t;
+}
+
 const std::vector<std::string>& caesar_names() {
     static const std::vector<std::string> names = {
         "Sellion", "Rt. Infraorbitale", "Lt. Infraorbitale", "Supramenton", "Rt. Tragion", "Rt. Gonion", "Lt. Tragion",
@@ -131,6 +146,43 @@ std::vector<format::Landmark> place_caesar_landmarks(const LandmarkTemplate& t) 
     const Vector3d head = P.joint("head"), neck = P.joint("neck_01"), spine3 = P.joint("spine_03"), spine1 = P.joint("spine_01");
     const Vector3d pelvis = P.joint("pelvis");
     auto is_head = [&](uint32_t v) { return P.bone_has(v, {"head", "neck"}); };
+    // Stature: heights below are fractions of it where anatomy gives proportions, not distances.
+    double floor_y = std::numeric_limits<double>::max(), top_y = -floor_y;
+    for (std::size_t v = 0; v < t.xyz.size() / 3; ++v) floor_y = std::min(floor_y, double(t.xyz[3 * v + 1])), top_y = std::max(top_y, double(t.xyz[3 * v + 1]));
+    const double H = top_y - floor_y;
+    // The middle of the trunk's depth at a height: halfway between its front and back on the midline.
+    auto trunk_mid_depth = [&](double y) {
+        const Hit front = P.from_outside(Vector3d(0, y, pelvis.z()), -Z), back = P.from_outside(Vector3d(0, y, pelvis.z()), Z);
+        if (front.triangle == format::kNone || back.triangle == format::kNone) fail(SSC_ERROR_INTERNAL, "a trunk landmark found no trunk");
+        return pelvis.z() + 0.5 * (back.t - front.t);  // front at z0 + 1 - tf, back at z0 - 1 + tb
+    };
+    // A fold of the armpit (dir +Z: anterior, -Z: posterior) of the arm on side s with shoulder joint sh.
+    auto axilla = [&](const Vector3d& sh, double s, const Vector3d& dir) {
+        const double y = sh.y() - 0.15;
+        const Hit trunk = P.ray(Vector3d(0, y, sh.z()), s * Vector3d::UnitX());  // out through the side of the trunk
+        if (trunk.triangle == format::kNone) fail(SSC_ERROR_INTERNAL, "an Axilla rule found no trunk");
+        const Vector3d side(s * (trunk.t + 0.001), y, sh.z());
+        const Hit arm = P.ray(side, s * Vector3d::UnitX());  // across the gap to the arm
+        if (arm.triangle == format::kNone) fail(SSC_ERROR_INTERNAL, "an Axilla rule found no arm");
+        const Hit dome = P.ray(side + s * 0.5 * arm.t * Vector3d::UnitX(), Vector3d::UnitY());  // up into the armpit
+        if (dome.triangle == format::kNone) fail(SSC_ERROR_INTERNAL, "an Axilla rule found no armpit");
+        // Down the fold from 3 cm above the dome, seen from the front (back): the skin faces that way,
+        // then turns under into the armpit. The fold's lower edge, the landmark, is where it turns
+        // past 45 degrees (its depth falls faster than the height over 3 mm).
+        const double x = side.x() + s * 0.5 * arm.t, dome_y = y + dome.t;
+        std::vector<std::pair<double, Hit>> down;  // depth in front of (behind) the joint, hit
+        for (double fy = dome_y + 0.03; fy > dome_y - 0.03; fy -= 0.001) {
+            const Hit h = P.from_outside(Vector3d(x, fy, sh.z()), -dir);
+            if (h.triangle == format::kNone) break;
+            down.emplace_back(1.0 - h.t, h);  // the hit lies at sh.z + (1 - t) dir
+        }
+        Hit fold;
+        for (std::size_t i = 0; i < down.size(); ++i) {
+            if (i >= 3 && down[i - 3].first - down[i].first > 0.003) break;
+            fold = down[i].second;
+        }
+        return fold;
+    };
     auto midline = [&](uint32_t v, double w) { return std::abs(P.vertex(v).x()) < w; };
 
     // Midline profiles of the head, as seen: rays along the midline from in front (face profile) and
@@ -159,15 +211,33 @@ std::vector<format::Landmark> place_caesar_landmarks(const LandmarkTemplate& t) 
     // 1 Sellion: the deepest point of the nasal root, the most posterior face-profile point within
     // 5 cm above the nose tip.
     add_h("Sellion", profile_extreme(face, ny + 0.005, ny + 0.05, -1).hit);
-    // 4 Supramenton: the deepest point of the concavity between lower lip and chin: the most
-    // posterior face-profile point between the lower lip (most anterior point 2 to 4.5 cm below the
-    // nose tip) and the chin (most anterior point 4.5 to 9 cm below it).
-    const double lip = profile_extreme(face, ny - 0.045, ny - 0.02, 1).y;
-    const double chin = profile_extreme(face, ny - 0.09, ny - 0.045, 1).y;
-    add_h("Supramenton", profile_extreme(face, chin, lip, -1).hit);
-    // 9 Nuchale: where the back of the skull meets the neck, the most anterior back-profile point
-    // between the neck joint and the head joint.
-    add_h("Nuchale", profile_extreme(nape, neck.y(), head.y() + 0.02, 1).hit);
+    // 4 Supramenton (CAESAR: the deepest point of the hollow between the lower lip and the chin, on
+    // the front of the face): walk down the face profile from the lower lip to the first hollow. The lower
+    // lip (labrale inferius) is the most anterior point within 2.5 cm below the mouth slit; the slit
+    // is where a profile ray enters the mouth (a sample 1 cm behind its neighbours), or, with closed
+    // lips, the deepest point between the lips. Profile rays that enter the mouth are dropped: the
+    // old rule picked one and put this landmark 10 cm inside the mouth.
+    std::vector<ProfilePoint> outer;
+    double slit = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t i = 0; i < face.size(); ++i) {
+        const double above = i + 1 < face.size() ? face[i + 1].z : face[i].z, below = i > 0 ? face[i - 1].z : face[i].z;
+        if (face[i].z < std::min(above, below) - 0.01) {
+            if (face[i].y > ny - 0.045 && face[i].y < ny - 0.01) slit = face[i].y;
+            continue;
+        }
+        outer.push_back(face[i]);
+    }
+    if (std::isnan(slit)) slit = profile_extreme(outer, ny - 0.035, ny - 0.015, -1).y;
+    const double lower_lip = profile_extreme(outer, slit - 0.025, slit - 0.001, 1).y;
+    const ProfilePoint* fold = nullptr;
+    for (auto it = outer.rbegin(); it != outer.rend(); ++it) {  // top to bottom
+        if (it->y >= lower_lip) continue;
+        if (fold && it->z > fold->z + 0.0002) break;  // the profile turns forward again: the chin
+        if (!fold || it->z < fold->z) fold = &*it;
+        if (it->y < lower_lip - 0.03) break;  // no chin bulge (receding chin): stop 3 cm down
+    }
+    if (!fold) fail(SSC_ERROR_INTERNAL, "the Supramenton rule found no chin");
+    add_h("Supramenton", fold->hit);
     // 24 Cervicale: the spinous process of C7 at the base of the neck: straight behind the neck joint.
     add_h("Cervicale", P.ray(neck - 0.01 * Y, -Z));
     // 11 Suprasternale: the jugular notch, midline front at the height of the clavicle joints.
@@ -207,13 +277,17 @@ std::vector<format::Landmark> place_caesar_landmarks(const LandmarkTemplate& t) 
             return !is_head(v) && !P.bone_has(v, {"arm", "hand", "thumb", "index", "middle", "ring", "pinky"}) && s * p.x() > 0.04 &&
                    s * p.x() < 0.16 && p.y() < sst.y() - 0.05 && p.y() > sst.y() - 0.30;
         }, Z));
-        // 29/41 Acromion: the lateral tip of the shoulder, straight above the shoulder joint, 1.5 cm out.
+        // 29/41 Acromion (CAESAR and ISO 8559-1: the lateral edge of the acromion): straight above
+        // the shoulder joint, 1.5 cm out.
         const Vector3d sh = P.joint("upperarm" + sfx);
         add_h(S + "Acromion", P.ray(sh + s * 0.015 * X, Y));
-        // 30/42 and 32/44 Axilla: the front and back folds of the armpit, 8 cm below the shoulder joint
-        // and 3 cm medial of it.
-        add_h(S + "Axilla, Ant", P.ray(sh + Vector3d(-s * 0.03, -0.08, 0), Z));
-        add_h(S + "Axilla, Post.", P.ray(sh + Vector3d(-s * 0.03, -0.08, 0), -Z));
+        // 30/42 and 32/44 Axilla, Ant. / Post. (CAESAR: the lowest points of the front / back armpit
+        // folds, where the arm meets the chest / back): find the armpit's dome with a ray
+        // up through the gap between the trunk and the arm 15 cm below the shoulder, then follow the
+        // front (back) skin down to the fold's lower edge. The old rule took fixed offsets from the
+        // shoulder joint and was 4-10 cm off on real scans.
+        add_h(S + "Axilla, Ant", axilla(sh, s, Z));
+        add_h(S + "Axilla, Post.", axilla(sh, s, -Z));
         // Elbow: the forearm axis and the lateral direction (away from the body in the frontal plane).
         const Vector3d el = P.joint("lowerarm" + sfx), wr = P.joint("hand" + sfx);
         const Vector3d axis = (wr - el).normalized();
@@ -225,8 +299,11 @@ std::vector<format::Landmark> place_caesar_landmarks(const LandmarkTemplate& t) 
         add_h(S + "Radiale", P.ray(el + 0.02 * axis, lateral));      // 36/48 head of the radius, 2 cm below
         // Wrist (A-pose: palms face the thighs, thumbs forward): radial styloid on the thumb side (front),
         // ulnar styloid on the little-finger side (back), 1 cm above the wrist joint.
-        add_h(S + "Radial Styloid", P.ray(wr - 0.01 * axis, Z));
-        add_h(S + "Ulnar Styloid", P.ray(wr - 0.01 * axis, -Z));
+        // The rays cross the forearm at right angles: along Z itself they cut the forward-slanting
+        // forearm obliquely and met the thumb's base, 10 cm from the ulnar styloid.
+        const Vector3d forward = (Z - Z.dot(axis) * axis).normalized();
+        add_h(S + "Radial Styloid", P.ray(wr - 0.01 * axis, forward));
+        add_h(S + "Ulnar Styloid", P.ray(wr - 0.01 * axis, -forward));
         // Knuckles (metacarpophalangeal joints II and V) on the back of the hand (lateral in A-pose).
         add_h(S + (side < 0 ? "Metacarpal Phal. II" : "Metacarpal-Phal. II"), P.ray(P.joint("index_01" + sfx), lateral));
         add_h(S + "Metacarpal-Phal. V", P.ray(P.joint("pinky_01" + sfx), lateral));
@@ -236,17 +313,31 @@ std::vector<format::Landmark> place_caesar_landmarks(const LandmarkTemplate& t) 
 
         // Torso.
         const Vector3d hip = P.joint("thigh" + sfx);
-        // 16/18 10th Rib: the lowest point of the rib cage at the side, 22 cm below the suprasternale,
-        // 3 cm in front of the spine (rays go from inside the trunk out, so hanging arms never block).
-        add_h(S + "10th Rib", P.ray(Vector3d(0, sst.y() - 0.22, spine1.z() + 0.03), s * X));
-        // 17/19 ASIS: the front of the iliac crest, 7 cm above the hip joint, over the hip joint.
+        // 20/22 Iliocristale (CAESAR: the highest point of the hip bone's crest, at the side of the
+        // body, in the mid-axillary line): 7.5 % of stature above the hip joint (the crest stands about
+        // 12 cm above the femoral head in an adult pelvis), at mid-depth of the trunk at that height.
+        const double crest_y = hip.y() + 0.075 * H;
+        const double crest_z = trunk_mid_depth(crest_y);
+        add_h(S + "Iliocristale", P.ray(Vector3d(0, crest_y, crest_z), s * X));
+        // 16/18 10th Rib (CAESAR: the lowest point of the lower border of the rib cage, the 10th rib,
+        // on the front-side of the torso below the chest): one lumbar vertebra (2.5 % of stature) above the iliac
+        // crest, as the subcostal plane (L3) lies one vertebra above the supracristal plane (L4);
+        // three quarters of the way from the midline to the side, on the front. The old rule put it
+        // on the side of the trunk 5 cm higher: on real scans it was 10-16 cm off, mostly too far back.
+        const double rib_level = crest_y + 0.025 * H;
+        const Hit side_hit = P.ray(Vector3d(0, rib_level, trunk_mid_depth(rib_level)), s * X);
+        if (side_hit.triangle == format::kNone) fail(SSC_ERROR_INTERNAL, "the 10th Rib rule found no side of the trunk");
+        add_h(S + "10th Rib", P.from_outside(Vector3d(s * 0.75 * side_hit.t, rib_level, pelvis.z()), -Z));
+        // 17/19 ASIS (CAESAR: the anterior superior iliac spine, the front tip of the crest): on
+        // the front, over the hip joint, 7 cm above it.
         add_h(S + "ASIS", P.from_outside(Vector3d(hip.x(), hip.y() + 0.07, pelvis.z()), -Z));
-        // 20/22 Iliocristale: the top of the iliac crest at the side, 11 cm above the hip joint.
-        add_h(S + "Iliocristale", P.ray(Vector3d(0, hip.y() + 0.11, pelvis.z()), s * X));
-        // 21/23 Trochanterion: the top of the greater trochanter: straight out from the hip joint.
+        // 21/23 Trochanterion (CAESAR: the top of the femur's greater trochanter): straight out from the hip
+        // joint, level with the femoral head.
         add_h(S + "Trochanterion", P.ray(hip, s * X));
-        // 26/27 PSIS: the dimples over the posterior iliac spines, 4.5 cm off the midline, 6 cm above the hip joint.
-        add_h(S + "PSIS", P.from_outside(Vector3d(s * 0.045, hip.y() + 0.06, pelvis.z()), Z));
+        // 26/27 PSIS (CAESAR: the posterior superior iliac spine, the dimples above the buttocks):
+        // at the second sacral vertebra, 4 % of stature (about 7 cm) below the iliac crest's top,
+        // 4.5 cm off the midline.
+        add_h(S + "PSIS", P.from_outside(Vector3d(s * 0.045, crest_y - 0.04 * H, pelvis.z()), Z));
 
         // Leg.
         const Vector3d knee = P.joint("calf" + sfx), ankle = P.joint("foot" + sfx), ball = P.joint("ball" + sfx);
@@ -269,17 +360,20 @@ std::vector<format::Landmark> place_caesar_landmarks(const LandmarkTemplate& t) 
     // 25 10th Rib Midspine: the midline of the back at the height of the 10th ribs.
     const double rib_y = 0.5 * (pos("Rt. 10th Rib").y() + pos("Lt. 10th Rib").y());
     add_h("10th Rib Midspine", P.from_outside(Vector3d(0, rib_y, spine1.z()), Z));
-    // 28 Waist, Preferred, Post.: midline of the back at the natural waist, the height between the
-    // 10th ribs and the iliac crests where the torso is narrowest.
-    const double crest_y = 0.5 * (pos("Rt. Iliocristale").y() + pos("Lt. Iliocristale").y());
-    double waist_y = rib_y, narrowest = std::numeric_limits<double>::max();
-    for (double y = crest_y; y <= rib_y; y += 0.005) {
-        const Hit l = P.ray(Vector3d(0, y, spine1.z()), X), r = P.ray(Vector3d(0, y, spine1.z()), -X);
-        if (l.triangle == format::kNone || r.triangle == format::kNone) continue;
-        const double width = l.t + r.t;  // from the midline out to each side
-        if (width < narrowest) narrowest = width, waist_y = y;
-    }
-    add_h("Waist, Preferred, Post.", P.from_outside(Vector3d(0, waist_y, spine1.z()), Z));
+    // 28 Waist, Preferred, Post. (CAESAR: on the back midline at the subject's preferred waist, where
+    // the subject wears the waistband): at the height of the iliac crests, the belt line. The old
+    // rule took the narrowest trunk level and was up to 17 cm too high on real scans.
+    const double crest = 0.5 * (pos("Rt. Iliocristale").y() + pos("Lt. Iliocristale").y());
+    add_h("Waist, Preferred, Post.", P.from_outside(Vector3d(0, crest, spine1.z()), Z));
+    // 9 Nuchale (CAESAR: the lowest midline point of the back of the skull, where the neck
+    // muscles attach): on the back profile of the head 2.5 cm below the tragions' height, the
+    // underside of the occiput. The old rule took the deepest point of the neck, 6 cm lower.
+    const double nuchale_y = 0.5 * (pos("Rt. Tragion").y() + pos("Lt. Tragion").y()) - 0.025;
+    const ProfilePoint* nuchale = nullptr;
+    for (const auto& p : nape)
+        if (!nuchale || std::abs(p.y - nuchale_y) < std::abs(nuchale->y - nuchale_y)) nuchale = &p;
+    if (!nuchale) fail(SSC_ERROR_INTERNAL, "the Nuchale rule found no back of the head");
+    add_h("Nuchale", nuchale->hit);
     // 73 Crotch: the lowest midline point of the trunk, where the legs part.
     add_v("Crotch", P.extreme([&](uint32_t v) { return midline(v, 0.004) && P.vertex(v).y() < pelvis.y() && !is_head(v); }, -Y));
 

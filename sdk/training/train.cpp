@@ -3,6 +3,7 @@
 #include "anatomy/joint_limits.hpp"
 #include "common/error.hpp"
 #include "landmarks.hpp"
+#include "render/landmark_picture.hpp"
 #include "measure/girth.hpp"
 #include "measure/measurements.hpp"
 #include "render/raster.hpp"
@@ -167,12 +168,7 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
         if (!set.vertices.empty()) m.vertex_sets.push_back(std::move(set));
     }
     say("placing the 73 CAESAR landmarks");
-    LandmarkTemplate lt;
-    lt.xyz.assign(p.mean.data(), p.mean.data() + p.mean.size());
-    lt.triangles.assign(m.mesh.triangles.begin(), m.mesh.triangles.end());
-    for (uint32_t v = 0; v < V; ++v) lt.vertex_bone.push_back(a.game_rig.bones[sj[4 * v]].name);
-    const std::vector<float> mean_joints = apply_regressor(reg.offsets.data(), reg.vertices.data(), reg.weights.data(), J, lt.xyz.data());
-    for (uint32_t j = 0; j < J; ++j) lt.joints[a.game_rig.bones[j].name].assign(&mean_joints[3 * j], &mean_joints[3 * j] + 3);
+    const LandmarkTemplate lt = landmark_template(m, p.mean.data());
     m.landmarks = place_caesar_landmarks(lt);
     format::validate_model(m);
 
@@ -233,47 +229,18 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     }
     if (!spec.report_prefix.empty()) {
         const std::string png = spec.report_prefix + "landmarks.png";
-        write_landmark_picture(png, lt.xyz, lt.triangles, m.landmarks);
+        std::vector<float> at;
+        for (const auto& l : m.landmarks)
+            for (int c = 0; c < 3; ++c)
+                at.push_back(l.vertex != format::kNone ? lt.xyz[3 * l.vertex + std::size_t(c)]
+                                                       : l.barycentric[0] * lt.xyz[3 * lt.triangles[3 * l.triangle] + std::size_t(c)] +
+                                                             l.barycentric[1] * lt.xyz[3 * lt.triangles[3 * l.triangle + 1] + std::size_t(c)] +
+                                                             l.barycentric[2] * lt.xyz[3 * lt.triangles[3 * l.triangle + 2] + std::size_t(c)]);
+        render::write_landmark_picture(png, lt.xyz, lt.triangles, at);
         report.plots.push_back(png);
     }
     format::validate_model(m);
     return m;
-}
-
-void write_landmark_picture(const std::string& path, const std::vector<float>& xyz, const std::vector<uint32_t>& tris,
-                            const std::vector<format::Landmark>& landmarks) {
-    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
-    for (std::size_t i = 0; i < xyz.size(); ++i) lo[i % 3] = std::min(lo[i % 3], xyz[i]), hi[i % 3] = std::max(hi[i % 3], xyz[i]);
-    const int cell_h = 900;
-    const float scale = 0.95f * cell_h / (hi[1] - lo[1]);
-    const int cell_w = int(scale * std::max(hi[0] - lo[0], hi[2] - lo[2])) + 20;
-    // Three whole-body views, then the head (top 14 % of the body) close up from the front and side.
-    render::Image img(3 * cell_w + 2 * (cell_h / 2), cell_h);
-    std::vector<float> depth;
-    const render::View views[5] = {render::View::Front, render::View::Back, render::View::Side, render::View::Front,
-                                   render::View::Side};
-    const uint8_t skin[3] = {225, 200, 180}, red[3] = {220, 20, 20};
-    const float head_y = hi[1] - 0.07f * (hi[1] - lo[1]), head_scale = 0.9f * (cell_h / 2) / (0.14f * (hi[1] - lo[1]));
-    for (int k = 0; k < 5; ++k) {
-        const bool close = k >= 3;
-        render::Viewport vp{close ? 3 * cell_w + (k - 3) * (cell_h / 2) : k * cell_w, 0, close ? cell_h / 2 : cell_w,
-                            close ? cell_h / 2 : cell_h, 0, close ? head_y : 0.5f * (lo[1] + hi[1]), close ? head_scale : scale};
-        vp.centre_x = views[k] == render::View::Front ? 0.5f * (lo[0] + hi[0])
-                      : views[k] == render::View::Back ? -0.5f * (lo[0] + hi[0]) : -0.5f * (lo[2] + hi[2]);
-        if (close && views[k] == render::View::Side) vp.centre_x = 0.02f;
-        render::draw_mesh(img, depth, vp, views[k], xyz.data(), tris.data(), uint32_t(tris.size() / 3), skin);
-        for (const auto& l : landmarks) {
-            float p[3];
-            for (int c = 0; c < 3; ++c) {
-                if (l.vertex != format::kNone) p[c] = xyz[3 * l.vertex + c];
-                else
-                    p[c] = l.barycentric[0] * xyz[3 * tris[3 * l.triangle] + c] + l.barycentric[1] * xyz[3 * tris[3 * l.triangle + 1] + c] +
-                           l.barycentric[2] * xyz[3 * tris[3 * l.triangle + 2] + c];
-            }
-            render::draw_visible_point(img, depth, vp, views[k], p, 4, red);
-        }
-    }
-    render::write_png(path, img);
 }
 
 }  // namespace ssc::training

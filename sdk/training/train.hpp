@@ -50,8 +50,4 @@ using Progress = std::function<void(const std::string&)>;
 
 format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const Progress& progress = {});
 
-// Front, back and side views of a template with its landmarks as red dots (hidden ones left out).
-void write_landmark_picture(const std::string& path, const std::vector<float>& xyz, const std::vector<uint32_t>& tris,
-                            const std::vector<format::Landmark>& landmarks);
-
 }  // namespace ssc::training
