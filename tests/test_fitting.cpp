@@ -2,6 +2,7 @@
 // runtime's synthesis, accuracy on simulated measurements of the default model, and bad input.
 #include "capi/handles.hpp"
 #include "common/error.hpp"
+#include "fitting/arrow_system.hpp"
 #include "fitting/depth_image.hpp"
 #include "fitting/fitter.hpp"
 #include "anatomy/joint_limits.hpp"
@@ -135,6 +136,72 @@ TEST_CASE("normal equations from stacked blocks equal the sum of every block's J
     CHECK(result[0] == result[1]);  // the same sums for any thread count
 }
 
+TEST_CASE("an arrow system sums and solves as the dense normal equations of frames sharing a shape", "[fitting]") {
+    // 6 shape columns, 4 frames of 9 columns: blocks touch the shape and one frame each.
+    const uint32_t K = 6, B = 9, F = 4, P = K + F * B;
+    std::mt19937 data(8);
+    fitting::NormalEquations ne;
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(P, P);
+    struct Block {
+        uint32_t set;
+        std::size_t row;
+        Eigen::MatrixXd J;
+    };
+    std::vector<Block> blocks;
+    for (int b = 0; b < 80; ++b) {
+        const uint32_t f = uint32_t(b) % F;
+        std::vector<uint32_t> cols;
+        for (uint32_t c = 0; c < K; ++c)
+            if (data() % 4) cols.push_back(c);
+        for (uint32_t c = 0; c < B; ++c)
+            if (c < 2 || data() % 2) cols.push_back(K + f * B + c);
+        Block blk{ne.column_set(cols), 0, Eigen::MatrixXd(3, cols.size())};
+        blk.row = ne.reserve(blk.set, 3);
+        for (Eigen::Index i = 0; i < blk.J.size(); ++i) blk.J.data()[i] = double(data() % 2001) / 1000.0 - 1.0;
+        for (std::size_t a = 0; a < cols.size(); ++a)
+            for (std::size_t c = 0; c < cols.size(); ++c) dense(cols[a], cols[c]) += blk.J.col(Eigen::Index(a)).dot(blk.J.col(Eigen::Index(c)));
+        blocks.push_back(std::move(blk));
+    }
+    for (uint32_t c = 0; c < P; ++c) dense(c, c) += 0.5;  // as the priors: definite
+    ne.allocate();
+    for (const Block& blk : blocks) {
+        const std::size_t n = ne.columns(blk.set).size();
+        double* rows = ne.rows(blk.set, blk.row);
+        for (int r = 0; r < 3; ++r)
+            for (std::size_t c = 0; c < n; ++c) rows[std::size_t(r) * n + c] = blk.J(r, Eigen::Index(c));
+    }
+    Eigen::VectorXd g(P);
+    for (uint32_t c = 0; c < P; ++c) g[c] = double(data() % 2001) / 1000.0 - 1.0;
+    Eigen::VectorXd solved[2];
+    for (int run = 0; run < 2; ++run) {
+        ThreadPool pool(run == 0 ? 1 : 3);
+        fitting::ArrowSystem H;
+        H.reset(K, B, F);
+        for (uint32_t c = 0; c < P; ++c) H.add(c, c, 0.5);
+        ne.add_to_upper(H, pool);
+        for (uint32_t r = 0; r < P; ++r)
+            for (uint32_t c = r; c < P; ++c) REQUIRE(H.at(r, c) == Approx(dense(r, c)).margin(1e-9));
+        // The damped step on a subset of the columns (one frame left out entirely, as frames with
+        // nothing active), against a dense solve of the same damped system.
+        std::vector<int> cols;
+        for (uint32_t c = 0; c < P; ++c)
+            if (c % 5 != 3 && (c < K || (c - K) / B != 2)) cols.push_back(int(c));
+        const double mu = 0.01;
+        Eigen::MatrixXd A = dense(cols, cols);
+        for (Eigen::Index i = 0; i < A.rows(); ++i) A(i, i) += mu * A(i, i) + 1e-12;
+        const Eigen::VectorXd want = A.ldlt().solve(-g(cols));
+        const Eigen::VectorXd d = H.damped_solve(g, cols, mu, pool);
+        REQUIRE(d.size() == P);
+        for (std::size_t i = 0; i < cols.size(); ++i) CHECK(d[cols[i]] == Approx(want[Eigen::Index(i)]).margin(1e-9));
+        double untouched = 0;
+        for (uint32_t c = 0; c < P; ++c)
+            if (std::find(cols.begin(), cols.end(), int(c)) == cols.end()) untouched += std::abs(d[c]);
+        CHECK(untouched == 0);
+        solved[run] = d;
+    }
+    CHECK(solved[0] == solved[1]);  // the same for any thread count
+}
+
 TEST_CASE("trimming keeps the nearest pairs in their order and cuts ties first come first", "[fitting]") {
     std::mt19937 rng(3);
     std::uniform_int_distribution<int> d(0, 40);  // few distinct distances: many ties at the cut
@@ -263,6 +330,36 @@ TEST_CASE("scan fits of a mildly posed body are accurate", "[fitting]") {
     INFO("mean vertex error " << err * 1e3 << " mm, point mean " << sol.report.point_mean * 1e3 << " mm");
     CHECK(err < 0.012);
     CHECK(sol.report.inlier_fraction > 0.6);
+}
+
+TEST_CASE("frames of one person fitted together share a shape and fit each frame as well as alone or better", "[fitting]") {
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    std::mt19937 rng(31);
+    const auto shape = simulation::random_shape(m, rng);
+    std::vector<fitting::Frame> frames(4);
+    std::vector<simulation::TrueBody> truths;
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+        auto truth = simulation::make_body(m, shape, simulation::random_pose(m, rng), Eigen::Vector3d::Zero());
+        simulation::transform_body(truth, Eigen::AngleAxisd(0.8 * double(f), Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d(0, 0.1, 1.5));
+        simulation::CloudSpec spec;
+        spec.points = 8000;
+        frames[f].clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
+        truths.push_back(std::move(truth));
+    }
+    const auto together = fitting::fit(lin, frames, fitting::FitOptions{});
+    REQUIRE(together.frames.size() == frames.size());
+    double sum_together = 0, sum_alone = 0;
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+        CHECK(together.frames[f].shape == together.shape);  // one shape
+        const double e = simulation::mean_vertex_error(simulation::fitted_vertices(m, together.frames[f]), truths[f].vertices);
+        const auto alone = fitting::fit(lin, {frames[f]}, fitting::FitOptions{});
+        const double a = simulation::mean_vertex_error(simulation::fitted_vertices(m, alone.frames[0]), truths[f].vertices);
+        INFO("frame " << f << ": together " << e * 1e3 << " mm, alone " << a * 1e3 << " mm");
+        CHECK(e < 0.012);
+        sum_together += e, sum_alone += a;
+    }
+    CHECK(sum_together < 1.05 * sum_alone);
 }
 
 TEST_CASE("a scan with some normals missing keeps the given ones and estimates the rest, signed", "[fitting]") {

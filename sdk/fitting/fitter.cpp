@@ -1,6 +1,7 @@
 // The fitter: see fitter.hpp for the method. Parameters of all frames form one vector: the shared
 // shape first, then each frame's rotations, translation and log scale (kinematics.hpp layout).
 #include "fitting/fitter.hpp"
+#include "fitting/arrow_system.hpp"
 #include "fitting/explained.hpp"
 #include "fitting/limb_search.hpp"
 #include "fitting/rigid_start.hpp"
@@ -72,6 +73,10 @@ constexpr int kEmptyShells = 4;
 // scan, which served these queries before, took 9 ms to build on one thread).
 constexpr double kStartCell = 0.05;
 constexpr int kStartShells = int(kStartReach / kStartCell) + 1;
+
+// The normal equations' rows summed at once (evaluate()): 32 MB. One frame's fit (about 6,000
+// groups of 3 rows, 80 columns or fewer) stays within one batch; many frames are summed a few at a time.
+constexpr std::size_t kBatchDoubles = std::size_t(4) << 20;
 
 // Scan points and model points explained() scores (each a fixed random sample).
 constexpr std::size_t kExplainedSamples = 1000;
@@ -209,7 +214,10 @@ public:
 
     uint32_t parameters() const { return K_ + F_ * B_; }
 
-    FitSolution run(const std::vector<FitState>* start, const FitProgress& progress, std::chrono::steady_clock::time_point t0) {
+    // refine: start from `start` with the fine stages only (the joint refinement of frames fitted
+    // one by one, see fit()).
+    FitSolution run(const std::vector<FitState>* start, const FitProgress& progress, std::chrono::steady_clock::time_point t0,
+                    bool refine = false) {
         FitSolution sol;
         shape_.assign(K_, 0.0);
         states_.assign(F_, kin_[0].zero_state());
@@ -247,7 +255,7 @@ public:
         bool cancelled = false;
         uint32_t iteration = 0;
         // Frames whose start search ended with a short coarse fit need no rigid stage.
-        const int first_stage = searched_frames_ == F_ ? 1 : 0;
+        const int first_stage = refine ? 2 : searched_frames_ == F_ ? 1 : 0;
         bool converged = fit_stages(stages, first_stage, progress, iteration, cancelled, &sol.report.initial_cost);
         if (F_ == 1 && searched_frames_ == 1 && !cancelled)
             converged = restart_if_implausible(stages, progress, iteration, cancelled, sol.report.restarts, converged);
@@ -382,7 +390,7 @@ private:
         for (uint32_t it = 0; it < st.iterations; ++it, ++iteration) {
             update_kinematics();
             find_pairs(st, frame_only);
-            MatrixXd H;
+            ArrowSystem H;
             VectorXd g;
             const double cost = evaluate(st, &H, &g, frame_only);
             if (first_cost && iteration == 0) *first_cost = cost;
@@ -397,7 +405,7 @@ private:
             bool improved = false;
             double new_cost = cost;
             for (int attempt = 0; attempt < 8 && !improved; ++attempt) {
-                const VectorXd delta = damped_step(H, g, cols, mu);
+                const VectorXd delta = H.damped_solve(g, cols, mu, *pool_);
                 if (!delta.allFinite()) {
                     mu *= 10;
                     continue;
@@ -749,19 +757,6 @@ private:
         return cols;
     }
 
-    // Solves (H + mu D) d = -g on the given columns; the other parameters do not move.
-    VectorXd damped_step(const MatrixXd& H, const VectorXd& g, const std::vector<int>& cols, double mu) const {
-        MatrixXd A = H(cols, cols);
-        for (Eigen::Index i = 0; i < A.rows(); ++i) A(i, i) += mu * std::max(A(i, i), 1e-9) + 1e-12;
-        // The damped matrix is positive definite: Cholesky (blocked, no pivoting) is the fast path;
-        // LDLT only if rounding says otherwise.
-        const Eigen::LLT<MatrixXd> llt(A);
-        const VectorXd d = llt.info() == Eigen::Success ? VectorXd(llt.solve(-g(cols))) : VectorXd(A.ldlt().solve(-g(cols)));
-        VectorXd delta = VectorXd::Zero(H.rows());
-        delta(cols) = d;
-        return delta;
-    }
-
     void apply(const VectorXd& delta) {
         // Box constraint: the shape stays where the C API accepts it back (shape_range.hpp).
         for (uint32_t k = 0; k < K_; ++k) shape_[k] = within_shape_range(shape_[k] + delta[k]);
@@ -773,7 +768,7 @@ private:
     }
 
     // The pose prior and the joint-limit walls of frame f; with H and g, their normal equations.
-    double pose_priors(uint32_t f, MatrixXd* H, VectorXd* g) const {
+    double pose_priors(uint32_t f, ArrowSystem* H, VectorXd* g) const {
         double cost = 0;
         const Kinematics& kin = kin_[f];
         // Pose prior: each joint's local rotation vector, over its sigma (not the root: free).
@@ -789,7 +784,7 @@ private:
             const Vector3d Jtr = Jr.transpose() * (s * r);
             for (int a = 0; a < 3; ++a) {
                 (*g)[c0 + a] += Jtr[a];
-                for (int b = a; b < 3; ++b) (*H)(c0 + a, c0 + b) += JtJ(a, b);
+                for (int b = a; b < 3; ++b) H->add(c0 + a, c0 + b, JtJ(a, b));
             }
         }
         // Joint limits: a quadratic wall per anatomical component beyond its range.
@@ -815,7 +810,7 @@ private:
             const Vector3d Jte = Jc.transpose() * e;
             for (int a = 0; a < 3; ++a) {
                 (*g)[c0 + a] += Jte[a];
-                for (int b = a; b < 3; ++b) (*H)(c0 + a, c0 + b) += JtJ(a, b);
+                for (int b = a; b < 3; ++b) H->add(c0 + a, c0 + b, JtJ(a, b));
             }
         }
         return cost;
@@ -823,7 +818,7 @@ private:
 
     // Cost of the current state with the current correspondences; with H and g, the normal
     // equations of its linearisation. frame_only < F_ restricts the data to one frame.
-    double evaluate(const Stage& st, MatrixXd* H, VectorXd* g, uint32_t frame_only = 0xFFFFFFFFu) {
+    double evaluate(const Stage& st, ArrowSystem* H, VectorXd* g, uint32_t frame_only = 0xFFFFFFFFu) {
         const uint32_t P = parameters();
         const uint32_t PL = K_ + B_;
         // Only active parameters get rows: the rigid and coarse stages cost a fraction of the full one.
@@ -848,78 +843,89 @@ private:
             group_blocks();
             blocks_pairs_ = pairs_version_, blocks_frame_ = frame_only;
         }
-        if (H) {
-            H->setZero(P, P);
-            g->setZero(P);
-            touched_.assign(P, 0);
-            normal_.reset();
-            for (Group& gr : groups_) {
-                gr.set = column_set(blocks_[members_[gr.first]]);
-                gr.row = normal_.reserve(gr.set, 3);
-                if (gr.row == 0)
-                    for (uint32_t c : normal_.columns(gr.set)) touched_[c] = 1;
-            }
-            normal_.allocate();
-        }
         // The blocks run on the pool's threads in fixed chunks whose sums are merged in order:
         // the same result for any thread count.
         constexpr std::size_t kChunks = 8;
         double chunk_cost[kChunks] = {};
-        if (H) chunk_g_.assign(kChunks, VectorXd::Zero(P));
+        if (H) {
+            H->reset(K_, B_, F_);
+            g->setZero(P);
+            touched_.assign(P, 0);
+            chunk_g_.assign(kChunks, VectorXd::Zero(P));
+        }
         if (jacobian_scratch_.size() != pool_->size() || jacobian_scratch_[0].size() != 3 * std::size_t(PL))
             jacobian_scratch_.assign(pool_->size(), std::vector<double>(3 * std::size_t(PL), 0.0));
-        const std::size_t n_groups = groups_.size();
-        pool_->parallel_for(kChunks, [&](std::size_t c, unsigned worker) {
-            double* J3 = jacobian_scratch_[worker].data();
-            double sum = 0;
-            for (std::size_t gi = c * n_groups / kChunks; gi < (c + 1) * n_groups / kChunks; ++gi) {
-                const Group& gr = groups_[gi];
-                const Block& first = blocks_[members_[gr.first]];
-                const Kinematics& kin = kin_[first.frame];
-                // With H the Jacobian (of the point) comes first: it computes the point on the way.
-                const Vector3d x = H ? kin.point_jacobian(*first.point, J3, on.data()) : kin.point(*first.point);
-                // Each term's Gauss-Newton weight on the point (s^2 L^T L, e = s (x - target)) and
-                // gradient factor (s m) add up over the group.
-                Matrix3d W = Matrix3d::Zero();
-                Vector3d m = Vector3d::Zero();
-                for (uint32_t k = gr.first; k < gr.first + gr.count; ++k) {
-                    const Block& b = blocks_[members_[k]];
-                    const Vector3d e = b.scale * (x - *b.target);
-                    Matrix3d L;
-                    Vector3d mb;
-                    if (b.normal) {
-                        const PointPlaneTerm term = point_plane(e, *b.normal, st.gm_scale, H != nullptr);
-                        sum += term.cost;
-                        L = term.L, mb = term.m;
-                    } else {
-                        const Robust rb = huber(e.norm(), kHuber);
-                        sum += rb.cost;
-                        L = std::sqrt(rb.weight) * Matrix3d::Identity(), mb = rb.weight * e;
+        // With H, the groups' rows are summed in batches of consecutive groups (kBatchDoubles of
+        // rows each; groups follow the frames): a fit of many frames needs the memory of a few.
+        for (std::size_t begin = 0, end = 0; begin < groups_.size(); begin = end) {
+            end = groups_.size();
+            if (H) {
+                normal_.reset();
+                std::size_t doubles = 0;
+                for (end = begin; end < groups_.size() && doubles < kBatchDoubles; ++end) {
+                    Group& gr = groups_[end];
+                    gr.set = column_set(blocks_[members_[gr.first]]);
+                    gr.row = normal_.reserve(gr.set, 3);
+                    if (gr.row == 0)
+                        for (uint32_t c : normal_.columns(gr.set)) touched_[c] = 1;
+                    doubles += 3 * normal_.columns(gr.set).size();
+                }
+                normal_.allocate();
+            }
+            const std::size_t n_groups = end - begin;
+            pool_->parallel_for(kChunks, [&](std::size_t c, unsigned worker) {
+                double* J3 = jacobian_scratch_[worker].data();
+                double sum = 0;
+                for (std::size_t gi = begin + c * n_groups / kChunks; gi < begin + (c + 1) * n_groups / kChunks; ++gi) {
+                    const Group& gr = groups_[gi];
+                    const Block& first = blocks_[members_[gr.first]];
+                    const Kinematics& kin = kin_[first.frame];
+                    // With H the Jacobian (of the point) comes first: it computes the point on the way.
+                    const Vector3d x = H ? kin.point_jacobian(*first.point, J3, on.data()) : kin.point(*first.point);
+                    // Each term's Gauss-Newton weight on the point (s^2 L^T L, e = s (x - target)) and
+                    // gradient factor (s m) add up over the group.
+                    Matrix3d W = Matrix3d::Zero();
+                    Vector3d m = Vector3d::Zero();
+                    for (uint32_t k = gr.first; k < gr.first + gr.count; ++k) {
+                        const Block& b = blocks_[members_[k]];
+                        const Vector3d e = b.scale * (x - *b.target);
+                        Matrix3d L;
+                        Vector3d mb;
+                        if (b.normal) {
+                            const PointPlaneTerm term = point_plane(e, *b.normal, st.gm_scale, H != nullptr);
+                            sum += term.cost;
+                            L = term.L, mb = term.m;
+                        } else {
+                            const Robust rb = huber(e.norm(), kHuber);
+                            sum += rb.cost;
+                            L = std::sqrt(rb.weight) * Matrix3d::Identity(), mb = rb.weight * e;
+                        }
+                        if (!H) continue;
+                        W.noalias() += (b.scale * b.scale) * (L.transpose() * L);
+                        m += b.scale * mb;
                     }
                     if (!H) continue;
-                    W.noalias() += (b.scale * b.scale) * (L.transpose() * L);
-                    m += b.scale * mb;
+                    // Three rows R J with R^T R = W, on the group's column set, and J^T m into g.
+                    const Matrix3d R = weight_root(W);
+                    const std::vector<uint32_t>& cols = normal_.columns(gr.set);
+                    const std::size_t n = cols.size();
+                    double* rows = normal_.rows(gr.set, gr.row);
+                    VectorXd& gc = chunk_g_[c];
+                    for (std::size_t a = 0; a < n; ++a) {
+                        const uint32_t l = cols[a] < K_ ? cols[a] : cols[a] - first.frame * B_;  // local column
+                        const Vector3d j(J3[l], J3[PL + l], J3[2 * std::size_t(PL) + l]);
+                        const Vector3d rj = R * j;
+                        rows[a] = rj[0], rows[n + a] = rj[1], rows[2 * n + a] = rj[2];
+                        gc[cols[a]] += j.dot(m);
+                        J3[l] = J3[PL + l] = J3[2 * std::size_t(PL) + l] = 0;
+                    }
+                    // Translation and scale are written whether active or not.
+                    for (uint32_t l = K_ + 3 * lin_.J; l < PL; ++l) J3[l] = J3[PL + l] = J3[2 * std::size_t(PL) + l] = 0;
                 }
-                if (!H) continue;
-                // Three rows R J with R^T R = W, on the group's column set, and J^T m into g.
-                const Matrix3d R = weight_root(W);
-                const std::vector<uint32_t>& cols = normal_.columns(gr.set);
-                const std::size_t n = cols.size();
-                double* rows = normal_.rows(gr.set, gr.row);
-                VectorXd& gc = chunk_g_[c];
-                for (std::size_t a = 0; a < n; ++a) {
-                    const uint32_t l = cols[a] < K_ ? cols[a] : cols[a] - first.frame * B_;  // local column
-                    const Vector3d j(J3[l], J3[PL + l], J3[2 * std::size_t(PL) + l]);
-                    const Vector3d rj = R * j;
-                    rows[a] = rj[0], rows[n + a] = rj[1], rows[2 * n + a] = rj[2];
-                    gc[cols[a]] += j.dot(m);
-                    J3[l] = J3[PL + l] = J3[2 * std::size_t(PL) + l] = 0;
-                }
-                // Translation and scale are written whether active or not.
-                for (uint32_t l = K_ + 3 * lin_.J; l < PL; ++l) J3[l] = J3[PL + l] = J3[2 * std::size_t(PL) + l] = 0;
-            }
-            chunk_cost[c] = sum;
-        });
+                chunk_cost[c] += sum;
+            });
+            if (H) normal_.add_to_upper(*H, *pool_);
+        }
         double cost = 0;
         for (std::size_t c = 0; c < kChunks; ++c) {
             cost += chunk_cost[c];
@@ -931,12 +937,8 @@ private:
         for (uint32_t k = 0; k < K_; ++k) {
             cost += 0.5 * o_.shape_prior * shape_[k] * shape_[k];
             if (!H) continue;
-            (*H)(k, k) += o_.shape_prior;
+            H->add(k, k, o_.shape_prior);
             (*g)[k] += o_.shape_prior * shape_[k];
-        }
-        if (H) {
-            normal_.add_to_upper(*H, *pool_);
-            *H = H->selfadjointView<Eigen::Upper>();  // everything above filled the upper triangle
         }
         return cost;
     }
@@ -1090,8 +1092,59 @@ FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const 
         SSC_REQUIRE_ARG_S(start->size() == frames.size(), "fit: " << start->size() << " start states for " << frames.size() << " frames");
     // The reported time includes the setup (the scans' grids and k-d trees, normal estimation).
     const auto t0 = std::chrono::steady_clock::now();
-    Solver solver(lin, frames, options, pool);
-    return solver.run(start, progress, t0);
+    if (frames.size() == 1 || (start && !options.auto_start)) {
+        Solver solver(lin, frames, options, pool);
+        return solver.run(start, progress, t0);
+    }
+    // Several frames from the automatic start: each frame is first fitted alone, with everything a
+    // single fit has (its start search, limb search and restarts), then all together from those
+    // poses and the frames' median shape with the fine stages only (the shared shape's joint
+    // refinement). The cost is about that of the single fits; fitted together from the start,
+    // frames got no limb search nor restarts and ended worse than alone on real scans.
+    uint32_t iterations = 0, restarts = 0;
+    bool cancelled = false;
+    std::vector<FitState> starts;
+    std::vector<std::vector<double>> shapes;
+    for (const Frame& frame : frames) {
+        const FitProgress each = [&](uint32_t it, double cost) { return !progress || progress(iterations + it, cost); };
+        Solver alone(lin, {frame}, options, pool);
+        FitSolution one = alone.run(nullptr, each, std::chrono::steady_clock::now());
+        iterations += one.report.iterations;
+        restarts += one.report.restarts;
+        starts.push_back(one.frames[0]);
+        shapes.push_back(one.shape);
+        if (one.report.cancelled) {
+            cancelled = true;
+            break;
+        }
+    }
+    if (cancelled) {  // the frames not reached keep the first frame's fit
+        while (starts.size() < frames.size()) starts.push_back(starts[0]);
+        FitSolution sol;
+        sol.shape = shapes[0];
+        sol.frames = starts;
+        sol.report.iterations = iterations;
+        sol.report.restarts = restarts;
+        sol.report.cancelled = true;
+        sol.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return sol;
+    }
+    std::vector<double> median(shapes[0].size());
+    for (std::size_t k = 0; k < median.size(); ++k) {
+        std::vector<double> v;
+        for (const auto& sh : shapes) v.push_back(sh[k]);
+        std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+        median[k] = v[v.size() / 2];
+    }
+    for (FitState& st : starts) st.shape = median;
+    FitOptions joint = options;
+    joint.auto_start = false;
+    Solver together(lin, frames, joint, pool);
+    const FitProgress rest = [&](uint32_t it, double cost) { return !progress || progress(iterations + it, cost); };
+    FitSolution sol = together.run(&starts, rest, t0, true);
+    sol.report.iterations += iterations;
+    sol.report.restarts += restarts;
+    return sol;
 }
 
 }  // namespace ssc::fitting

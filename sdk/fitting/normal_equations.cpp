@@ -111,25 +111,69 @@ std::size_t NormalEquations::reserve(uint32_t set, uint32_t rows) {
 }
 
 void NormalEquations::allocate() {
-    for (Set& s : sets_) s.rows.resize(s.reserved * s.cols.size());
+    // One buffer for the rows and one for the products of the sets reserved in this sum, reused
+    // from sum to sum: a fit of many frames sums its frames in batches (fitter.cpp) and the
+    // memory is that of one batch.
+    std::size_t rows = 0, products = 0;
+    for (Set& s : sets_) {
+        if (s.reserved == 0) continue;
+        s.row_offset = rows, s.product_offset = products;
+        rows += s.reserved * s.cols.size();
+        products += s.cols.size() * s.cols.size();
+    }
+    rows_.resize(rows);
+    products_.resize(products);
 }
 
-void NormalEquations::add_to_upper(Eigen::MatrixXd& H, ThreadPool& pool) {
+void NormalEquations::multiply(ThreadPool& pool) {
     using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     pool.parallel_for(sets_.size(), [&](std::size_t b, unsigned) {
         Set& s = sets_[b];
         if (s.reserved == 0) return;
         const auto n = Eigen::Index(s.cols.size());
         // Only the upper triangle is written and read: the rest stays as is.
-        s.product.resize(n, n);
+        const double* rows = rows_.data() + s.row_offset;
+        double* product = products_.data() + s.product_offset;
 #ifdef SSC_PRODUCT_AVX2
-        if (kernels::active_isa() != kernels::Isa::Baseline)
-            return upper_product_avx2(s.rows.data(), s.reserved, std::size_t(n), s.product.data());
+        if (kernels::active_isa() != kernels::Isa::Baseline) return upper_product_avx2(rows, s.reserved, std::size_t(n), product);
 #endif
-        s.product.triangularView<Eigen::Upper>().setZero();
-        const Eigen::Map<const RowMajor> R(s.rows.data(), Eigen::Index(s.reserved), n);
-        s.product.selfadjointView<Eigen::Upper>().rankUpdate(R.transpose());
+        Eigen::Map<Eigen::MatrixXd> P(product, n, n);
+        P.triangularView<Eigen::Upper>().setZero();
+        const Eigen::Map<const RowMajor> R(rows, Eigen::Index(s.reserved), n);
+        P.selfadjointView<Eigen::Upper>().rankUpdate(R.transpose());
     });
+}
+
+void NormalEquations::add_to_upper(ArrowSystem& H, ThreadPool& pool) {
+    multiply(pool);
+    const uint32_t K = H.shape_columns(), B = H.frame_columns();
+    // Task 0 fills the shape block, task 1 + f frame f's band and block.
+    pool.parallel_for(std::size_t(H.frames()) + 1, [&](std::size_t task, unsigned) {
+        for (const Set& s : sets_) {
+            if (s.reserved == 0) continue;
+            const auto n = Eigen::Index(s.cols.size());
+            const Eigen::Map<const Eigen::MatrixXd> product(products_.data() + s.product_offset, n, n);
+            const Eigen::Index shape = std::lower_bound(s.cols.begin(), s.cols.end(), K) - s.cols.begin();
+            if (task == 0) {
+                Eigen::MatrixXd& S = H.shape_block();
+                for (Eigen::Index c = 0; c < shape; ++c)
+                    for (Eigen::Index r = 0; r <= c; ++r) S(s.cols[std::size_t(r)], s.cols[std::size_t(c)]) += product(r, c);
+                continue;
+            }
+            if (shape == n || (s.cols[std::size_t(shape)] - K) / B != task - 1) continue;
+            Eigen::MatrixXd& band = H.band(uint32_t(task - 1));
+            Eigen::MatrixXd& own = H.frame_block(uint32_t(task - 1));
+            for (Eigen::Index c = shape; c < n; ++c) {
+                const uint32_t lc = (s.cols[std::size_t(c)] - K) % B;
+                for (Eigen::Index r = 0; r < shape; ++r) band(s.cols[std::size_t(r)], lc) += product(r, c);
+                for (Eigen::Index r = shape; r <= c; ++r) own((s.cols[std::size_t(r)] - K) % B, lc) += product(r, c);
+            }
+        }
+    });
+}
+
+void NormalEquations::add_to_upper(Eigen::MatrixXd& H, ThreadPool& pool) {
+    multiply(pool);
     // The products go into H on the pool's threads too, each thread a band of H's columns (every
     // set in order, so each entry sums the same terms in the same order for any thread count).
     // Bands are equal shares of the upper triangle: column c holds c + 1 entries.
@@ -140,11 +184,13 @@ void NormalEquations::add_to_upper(Eigen::MatrixXd& H, ThreadPool& pool) {
         const uint32_t lo = band_start(b), hi = band_start(b + 1);
         for (const Set& s : sets_) {
             if (s.reserved == 0) continue;
+            const auto n = Eigen::Index(s.cols.size());
+            const Eigen::Map<const Eigen::MatrixXd> product(products_.data() + s.product_offset, n, n);
             // cols is sorted, so the upper triangle of the block lands in H's upper triangle.
             const auto first = std::lower_bound(s.cols.begin(), s.cols.end(), lo) - s.cols.begin();
             for (auto c = first; c < Eigen::Index(s.cols.size()) && s.cols[std::size_t(c)] < hi; ++c) {
                 double* column = H.col(s.cols[std::size_t(c)]).data();
-                for (Eigen::Index r = 0; r <= c; ++r) column[s.cols[std::size_t(r)]] += s.product(r, c);
+                for (Eigen::Index r = 0; r <= c; ++r) column[s.cols[std::size_t(r)]] += product(r, c);
             }
         }
     });

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "common/thread_pool.hpp"
+#include "fitting/arrow_system.hpp"
 
 #include <Eigen/Core>
 
@@ -38,24 +39,30 @@ public:
     void allocate();
     // Row `row` of a column set: row-major, columns(set).size() wide. Each reserved row must be
     // written once; different rows may be written by different threads.
-    double* rows(uint32_t set, std::size_t row) { return sets_[set].rows.data() + row * sets_[set].cols.size(); }
+    double* rows(uint32_t set, std::size_t row) { return rows_.data() + sets_[set].row_offset + row * sets_[set].cols.size(); }
 
     // Adds the sum into the upper triangle of H (parameters x parameters). The products and their
     // sums into H run on the pool's threads; H receives them in a fixed order, so the sum does not
     // depend on the thread count.
     void add_to_upper(Eigen::MatrixXd& H, ThreadPool& pool);
+    // The same into an arrow system's blocks (every column set within the arrow: shape columns and
+    // one frame's). Each block receives the sets in order on one thread: the same sums for any
+    // thread count.
+    void add_to_upper(ArrowSystem& H, ThreadPool& pool);
 
 private:
+    void multiply(ThreadPool& pool);  // each set's product, its upper triangle
     struct Set {
         std::vector<uint32_t> cols;
         std::size_t reserved = 0;   // rows
-        std::vector<double> rows;   // row-major, cols.size() wide
-        Eigen::MatrixXd product;
+        std::size_t row_offset = 0, product_offset = 0;  // into rows_ and products_ (allocate())
     };
     struct Hash {
         std::size_t operator()(const std::vector<uint32_t>& v) const;
     };
     std::vector<Set> sets_;
+    std::vector<double> rows_;      // each reserved set's rows: row-major, cols.size() wide
+    std::vector<double> products_;  // each reserved set's product: column-major, upper triangle
     std::unordered_map<std::vector<uint32_t>, uint32_t, Hash> index_;
 };
 

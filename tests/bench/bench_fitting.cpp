@@ -5,8 +5,11 @@
 // host's load (time stolen by other guests, reported per row where /proc/stat tells it); the CPU
 // time is the steadier measure of the work, for comparing builds.
 //
-//   sscape_fit_bench [--trials N] [--scenario landmarks|scan|depth|depth2|robust] [--components K]
-//                    [--max-points N] [--no-joint-limits] [--threads N]
+//   sscape_fit_bench [--trials N] [--scenario landmarks|scan|depth|depth2|robust|frames] [--components K]
+//                    [--max-points N] [--no-joint-limits] [--threads N] [--frames N]
+// --frames: the frames scenario's frame count (default 100): one person (one shape) scanned in N
+// random poses and headings, fitted with one shared shape; also each frame alone, for comparison.
+// It runs only when asked for (--scenario frames).
 // --threads: worker threads lent to the fitter, caller included (default: one per core, as a
 // context's default; 1 = none).
 #include "fitting/fitter.hpp"
@@ -122,6 +125,7 @@ int main(int argc, char** argv) {
     uint32_t max_points = 0;  // 0: the fitter's default
     bool limits = true;
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    int frame_count = 100;
     for (int i = 1; i < argc; ++i) {
         auto value = [&]() { return i + 1 < argc ? argv[++i] : "0"; };
         if (!std::strcmp(argv[i], "--no-joint-limits")) limits = false;
@@ -130,6 +134,7 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--components")) components = uint32_t(std::atoi(value()));
         else if (!std::strcmp(argv[i], "--max-points")) max_points = uint32_t(std::atoi(value()));
         else if (!std::strcmp(argv[i], "--threads")) threads = unsigned(std::max(1, std::atoi(value())));
+        else if (!std::strcmp(argv[i], "--frames")) frame_count = std::max(1, std::atoi(value()));
     }
     ThreadPool pool(threads);
     auto options = [&]() {  // the fitter's defaults with the command line's changes
@@ -297,6 +302,42 @@ int main(int argc, char** argv) {
         }
         print("30-degree wrong start, 5% outliers", r);
         std::printf("  within 10 mm (non-hand vertices): %d of %d\n", ok, trials);
+    }
+    if (only == "frames") {
+        // One person in frame_count poses: a shared-shape fit of all frames, then each frame alone.
+        std::mt19937 rng(500);
+        const auto shape = simulation::random_shape(model, rng);
+        std::vector<fitting::Frame> frames(static_cast<std::size_t>(frame_count));
+        std::vector<simulation::TrueBody> truths;
+        for (auto& frame : frames) {
+            auto truth = simulation::make_body(model, shape, simulation::random_pose(model, rng), Eigen::Vector3d::Zero());
+            simulation::transform_body(truth, random_heading(rng), Eigen::Vector3d(0.1, 0.2, 1.5));
+            simulation::CloudSpec spec;
+            frame.clouds.push_back(simulation::simulate_cloud(model, truth, spec, rng));
+            truths.push_back(std::move(truth));
+        }
+        const double c0 = cpu_seconds();
+        const auto sol = fitting::fit(lin, frames, options(), nullptr, {}, &pool);
+        const double cpu = cpu_seconds() - c0;
+        Row joint;
+        for (int f = 0; f < frame_count; ++f)
+            joint.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[std::size_t(f)]), truths[std::size_t(f)].vertices));
+        joint.times.push_back(sol.report.seconds / frame_count);
+        joint.cpu.push_back(cpu / frame_count);
+        joint.converged = sol.report.converged;
+        std::printf("shared shape over %d frames: %.1f s in all, %u iterations, %u restarts\n", frame_count, sol.report.seconds,
+                    sol.report.iterations, sol.report.restarts);
+        print("frames together: error per frame, time / frame", joint);
+        Row alone;
+        for (int f = 0; f < frame_count; ++f) {
+            const double a0 = cpu_seconds();
+            const auto one = fitting::fit(lin, {frames[std::size_t(f)]}, options(), nullptr, {}, &pool);
+            alone.cpu.push_back(cpu_seconds() - a0);
+            alone.times.push_back(one.report.seconds);
+            alone.errors.push_back(simulation::mean_vertex_error(simulation::fitted_vertices(model, one.frames[0]), truths[std::size_t(f)].vertices));
+            alone.converged += one.report.converged;
+        }
+        print("each frame alone", alone);
     }
     return 0;
 }
