@@ -419,6 +419,33 @@ std::pair<fitting::FitSolution, double> fit_benchmark_scan(const Model& m, const
 
 }  // namespace
 
+TEST_CASE("a fit that cannot explain its scan is reported as failed, through the C API", "[fitting][capi]") {
+    // Two people a metre apart in one scan: the body fits one of them and leaves half the scan
+    // unexplained; it must not report success.
+    const Model& m = default_model().model();
+    std::mt19937 rng(41);
+    std::vector<float> points, normals;
+    for (int person = 0; person < 2; ++person) {
+        auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, 0.3), Eigen::Vector3d::Zero());
+        simulation::transform_body(truth, Eigen::Matrix3d::Identity(), Eigen::Vector3d(person ? 1.0 : 0.0, 0, 2.0));
+        simulation::CloudSpec spec;
+        spec.points = 6000;
+        const auto cloud = simulation::simulate_cloud(m, truth, spec, rng);
+        for (std::size_t i = 0; i < cloud.points.size(); ++i)
+            for (int a = 0; a < 3; ++a) points.push_back(float(cloud.points[i][a])), normals.push_back(float(cloud.normals[i][a]));
+    }
+    ssc_fitter* fitter = nullptr;
+    REQUIRE(ssc_fitter_create(default_model().handle, nullptr, &fitter) == SSC_OK);
+    REQUIRE(ssc_fitter_add_points(fitter, 0, points.data(), normals.data(), nullptr, uint32_t(points.size() / 3), 0) == SSC_OK);
+    ssc_fit_report report{};
+    report.struct_size = sizeof report;
+    REQUIRE(ssc_fitter_solve(fitter, nullptr, nullptr, &report) == SSC_OK);
+    ssc_fitter_destroy(fitter);
+    INFO("unexplained " << report.unexplained_fraction << ", restarts " << report.restarts);
+    CHECK(report.unexplained_fraction > SSC_FIT_UNEXPLAINED_LIMIT);
+    CHECK(report.converged == 0);
+}
+
 TEST_CASE("a scan fit that ends implausible is redone from the next start candidate", "[fitting]") {
     // The benchmark's scan trial 109 (its generator advanced past trials 0-108): the start search's
     // short fits prefer the body turned round, whose full fit then ends with joints far past their

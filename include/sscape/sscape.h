@@ -877,7 +877,8 @@ typedef int (*ssc_progress_fn)(void* user, uint32_t iteration, float cost);
 typedef struct ssc_fit_report {
     uint32_t struct_size;     /**< sizeof(ssc_fit_report), set by the caller. */
     uint32_t iterations;      /**< Levenberg-Marquardt iterations run. */
-    uint32_t converged;       /**< Non-zero when the cost stopped decreasing before the iteration limit. */
+    uint32_t converged;       /**< Non-zero when the cost stopped decreasing before the iteration limit
+                                   and the fit explains its scans (see unexplained_fraction). */
     uint32_t reserved;        /**< 0. */
     float initial_cost;       /**< Cost at the start (robust, in units of the sigmas). */
     float final_cost;         /**< Cost at the end. */
@@ -886,9 +887,16 @@ typedef struct ssc_fit_report {
     float inlier_fraction;    /**< Share of correspondence candidates accepted (0 if no points). */
     float seconds;            /**< Wall time of the solve. */
     uint32_t restarts;        /**< Fits redone from another automatic start candidate because the one
-                                   before ended in an implausible pose (one frame, no given start);
-                                   iterations counts them all. */
+                                   before ended in an implausible pose or left over 5 % of the scan
+                                   unexplained (one frame, no given start); iterations counts them all. */
+    float unexplained_fraction; /**< Share of scan points farther than 5 cm from the fitted surface (the
+                                   worst frame's; 0 without points). Above SSC_FIT_UNEXPLAINED_LIMIT
+                                   the fit has not found the person (a limb or the body in the wrong
+                                   place) and converged is 0. */
 } ssc_fit_report;
+
+/** The unexplained_fraction above which a fit is reported as not converged: it failed. */
+#define SSC_FIT_UNEXPLAINED_LIMIT 0.1f
 
 /**
  * Fits the model to every frame's observations: a rigid start (from landmarks when there are at

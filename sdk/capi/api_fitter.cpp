@@ -273,6 +273,7 @@ ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* 
             out.inlier_fraction = float(r.inlier_fraction);
             out.seconds = float(r.seconds);
             out.restarts = r.restarts;
+            out.unexplained_fraction = float(r.unexplained);
             const uint32_t n = report->struct_size < sizeof out ? report->struct_size : uint32_t(sizeof out);
             std::memcpy(report, &out, n);
             report->struct_size = n;

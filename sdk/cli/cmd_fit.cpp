@@ -1,6 +1,7 @@
 // `sscape fit`: fits the model to landmark files, point files and/or depth images through the C API
 // fitter and writes the fitted mesh, a report and optionally a picture of the fit beside its input.
 #include "cli.hpp"
+#include "progress.hpp"
 
 #include "capi/handles.hpp"
 #include "export/mesh_writers.hpp"
@@ -192,12 +193,36 @@ int cmd_fit(const std::vector<std::string>& args) {
     }
     ssc_fit_report report;
     report.struct_size = sizeof report;
-    check(ssc_fitter_solve(guard.fitter, nullptr, nullptr, &report), "fit");
+    {
+        Progress progress("fit");
+        const ssc_progress_fn show = [](void* user, uint32_t iteration, float cost) {
+            char text[96];
+            std::snprintf(text, sizeof text, "iteration %u, cost %.4g", iteration, double(cost));
+            return static_cast<Progress*>(user)->update(text) ? 0 : 1;
+        };
+        const ssc_status status = ssc_fitter_solve(guard.fitter, show, &progress, &report);
+        if (status == SSC_ERROR_CANCELLED) {
+            std::fprintf(stderr, "sscape fit: cancelled (Ctrl-C); nothing written\n");
+            return 130;
+        }
+        check(status, "fit");
+    }
     std::printf("fit: %u iterations, %s, %.1f ms; cost %.4g -> %.4g\n", report.iterations, report.converged ? "converged" : "iteration limit",
                 report.seconds * 1e3, report.initial_cost, report.final_cost);
     if (report.restarts) std::printf("restarts: %u (the fit from the best start candidate ended in an implausible pose)\n", report.restarts);
     if (!o.landmarks.empty()) std::printf("landmark rms distance: %.2f mm\n", report.landmark_rms * 1e3);
-    if (!o.points.empty() || !o.depth.empty()) std::printf("points: mean correspondence distance %.2f mm, inliers %.1f %%\n", report.point_mean * 1e3, 100 * report.inlier_fraction);
+    if (!o.points.empty() || !o.depth.empty()) {
+        std::printf("points: mean correspondence distance %.2f mm, inliers %.1f %%, %.1f %% farther than 5 cm from the fit\n",
+                    report.point_mean * 1e3, 100 * report.inlier_fraction, 100 * report.unexplained_fraction);
+        if (report.unexplained_fraction > SSC_FIT_UNEXPLAINED_LIMIT) {
+            std::fprintf(stderr,
+                         "sscape fit: failed: %.0f %% of the scan lies farther than 5 cm from the fitted body (at most %.0f %% is "
+                         "accepted): a limb or the whole body is in the wrong place, or the scan holds more than one person or "
+                         "much clutter; nothing written\n",
+                         100 * double(report.unexplained_fraction), 100 * double(SSC_FIT_UNEXPLAINED_LIMIT));
+            return 1;
+        }
+    }
 
     const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model), J = ssc_model_joint_count(model);
     const uint32_t K = ssc_model_shape_count(model);

@@ -80,6 +80,10 @@ struct FitReport {
     // Fits redone from another start candidate because the one before ended implausible
     // (single-frame fits from the automatic start; see fitter.cpp). iterations counts them all.
     uint32_t restarts = 0;
+    // Share of the scan points (a fixed sample of each frame's) farther than 5 cm from the fitted
+    // surface, the worst frame's: 0 for landmark-only fits. Above 0.1 the fit has not found the
+    // person (a limb or the whole body in the wrong place): converged is then false.
+    double unexplained = 0;
 };
 
 // Called once per iteration; return false to cancel (the best state so far is kept).

@@ -203,8 +203,9 @@ int main(int argc, char** argv) {
                 print_joint_errors(model, fv, truth.vertices);
             }
             if (verbose)
-                std::printf("  trial %d: error %.2f mm, %u iterations, %u restarts, point mean %.2f mm, inliers %.2f, %.0f ms\n", t,
-                            r.errors.back() * 1e3, sol.report.iterations, sol.report.restarts, sol.report.point_mean * 1e3, sol.report.inlier_fraction, sol.report.seconds * 1e3);
+                std::printf("  trial %d: error %.2f mm, %u iterations, %u restarts, point mean %.2f mm, inliers %.2f, unexplained %.3f, %.0f ms\n", t,
+                            r.errors.back() * 1e3, sol.report.iterations, sol.report.restarts, sol.report.point_mean * 1e3, sol.report.inlier_fraction,
+                            sol.report.unexplained, sol.report.seconds * 1e3);
         }
         print("scan 20k pts, 2 mm noise, 20% holes, 1% outliers", r);
     }
@@ -253,9 +254,9 @@ int main(int argc, char** argv) {
                 render::write_fit_picture(png + "_" + name + "_" + std::to_string(t) + ".png", model, sol.frames[0], pts, fv, truth.vertices);
             }
             if (verbose)
-                std::printf("  trial %d: error %.2f mm, %zu points, %u iterations, %u restarts, back-projection %.0f ms, fit %.0f ms\n", t,
-                            r.errors.back() * 1e3, frame.clouds[0].points.size(), sol.report.iterations, sol.report.restarts, convert * 1e3,
-                            sol.report.seconds * 1e3);
+                std::printf("  trial %d: error %.2f mm, %zu points, %u iterations, %u restarts, unexplained %.3f, back-projection %.0f ms, fit %.0f ms\n", t,
+                            r.errors.back() * 1e3, frame.clouds[0].points.size(), sol.report.iterations, sol.report.restarts,
+                            sol.report.unexplained, convert * 1e3, sol.report.seconds * 1e3);
         }
         print(views == 1 ? "front depth image 640x480, 2 mm noise" : "front + back depth images 640x480, 2 mm noise", r);
     }
