@@ -362,6 +362,27 @@ TEST_CASE("frames of one person fitted together share a shape and fit each frame
     CHECK(sum_together < 1.05 * sum_alone);
 }
 
+TEST_CASE("scans of people crouching or bent forward fit, or say that they failed", "[fitting]") {
+    // Started from the rest pose only, every such fit of the benchmark's hard poses ended upside
+    // down or standing (400-500 mm mean vertex error) and reported success. The start search now
+    // also places the template crouching, seated and bent forward: this crouching scan fits. Bent
+    // forward still fails at some headings (issue 20 stays open on it): such a fit must not
+    // report converged. (Other crouching bodies can still end with the limbs folded the wrong way
+    // while explaining the scan's surface, undetected: drawn first from this generator, a crouch
+    // ended 66 mm off with 2.5 % of its scan unexplained, reported converged.)
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    std::mt19937 rng(24);
+    for (const char* pose : {"bending_forward", "crouching"}) {
+        const auto truth = simulation::make_body(m, simulation::random_shape(m, rng), anatomy::named_pose(m, pose), Eigen::Vector3d::Zero());
+        const auto [sol, err] = fit_scan(m, lin, truth, 2.0, Eigen::Vector3d(0, 0.1, 1.5), rng);
+        INFO(pose << ": mean vertex error " << err * 1e3 << " mm, unexplained " << sol.report.unexplained << ", converged "
+                  << sol.report.converged);
+        if (std::string(pose) == "crouching") CHECK(err < 0.015);
+        CHECK((err < 0.015 || !sol.report.converged));
+    }
+}
+
 TEST_CASE("a scan with some normals missing keeps the given ones and estimates the rest, signed", "[fitting]") {
     // Real scans carry zero normals here and there; they used to make the reader drop every normal.
     const Model& m = default_model().model();

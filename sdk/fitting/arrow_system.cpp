@@ -67,9 +67,10 @@ VectorXd ArrowSystem::damped_solve(const VectorXd& g, const std::vector<int>& co
         const uint32_t f = uint32_t(fi);
         if (frame_cols[f].empty()) return;
         const Factor A(frame_[f](frame_cols[f], frame_cols[f]), mu);
+        e[f].y = A.solve(frame_g(f));
+        if (ks == 0) return;  // no shape columns (a rigid stage): nothing couples the frames
         const MatrixXd C = band_[f](shape_cols, frame_cols[f]);
         e[f].X = A.solve(C.transpose());
-        e[f].y = A.solve(frame_g(f));
         e[f].CX = C * e[f].X;
         e[f].Cy = C * e[f].y;
     });

@@ -11,6 +11,7 @@
 #include "common/error.hpp"
 #include "common/rigid.hpp"
 #include "anatomy/joint_limits.hpp"
+#include "anatomy/named_poses.hpp"
 #include "fitting/nearest.hpp"
 #include "fitting/normal_equations.hpp"
 #include "fitting/posed_surface.hpp"
@@ -86,6 +87,14 @@ constexpr std::size_t kBatchDoubles = std::size_t(4) << 20;
 constexpr double kUnexplainedDistance = 0.05;
 constexpr double kRetryUnexplained = 0.05;
 constexpr double kFailedUnexplained = 0.10;
+
+// The poses the start search tries besides the rest pose (anatomy/named_poses.cpp): scans of
+// people crouching, bent forward or seated have other principal axes than a standing body's, and
+// a fit started from the rest pose ended upside down or standing (hard poses of the benchmark).
+constexpr const char* kStartPoses[] = {"sitting", "crouching", "bending_forward"};
+// Start candidates that get a short coarse fit at most (the best two always; more while those end
+// implausible).
+constexpr std::size_t kMaxShortFits = 8;
 
 // Scan points and model points explained() scores (each a fixed random sample).
 constexpr std::size_t kExplainedSamples = 1000;
@@ -355,7 +364,15 @@ private:
             double prior, unexplained, measure;
         };
         Attempt best{shape_, states_, converged, prior, unexplained, explained(0)};
-        for (const FitState& alternative : alternative_starts_) {
+        // The start poses not tried yet get their short fits now; all candidates, best first.
+        std::vector<std::pair<double, FitState>> alternatives = alternative_starts_;
+        double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
+        for (const auto& [t, found] : deferred_templates_) {
+            best_prior = 0;
+            short_fits(0, found, &start_templates()[t].pose, alternatives, best_cost, best_prior);
+        }
+        std::stable_sort(alternatives.begin(), alternatives.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (const auto& [cost, alternative] : alternatives) {
             if (acceptable(best.prior, best.unexplained) || restarts == kMaxRestarts) break;
             states_[0] = alternative;
             shape_ = alternative.shape;
@@ -473,53 +490,31 @@ private:
     }
 
     // The start: rigid alignment (with scale when fitted) of the mean body.
-    FitState initial_state(uint32_t f) {
+    // The template placed by a similarity (world = scale R u + t for its points u), in `pose`
+    // (default the rest pose): a root rotation about the root joint (so the pose carries it) plus
+    // translation.
+    FitState placed(uint32_t f, const Similarity& T, const std::vector<Quaterniond>* pose = nullptr) {
         FitState s = kin_[f].zero_state();
         kin_[f].update(s);
-        const auto& fd = frames_[f];
         const Vector3d root = kin_[f].joint_position(0);
-        auto place = [&](const Matrix3d& R, double scale, const Vector3d& t) {
-            // y = scale * R * u + t for model points u, realised as a root rotation about the root
-            // joint (so the pose carries it) plus translation.
-            FitState out = s;
-            const Matrix3d R0 = lin_.rest_orient[0];
-            out.pose[0] = Quaterniond(R0.transpose() * R * R0).normalized();
-            out.scale = scale;
-            out.translation = t + scale * R * root - scale * root;
-            return out;
-        };
-        if (fd.landmark_points.size() >= 3) {
-            Eigen::Matrix3Xd src(3, fd.landmark_points.size()), dst(3, fd.landmark_points.size());
-            for (std::size_t i = 0; i < fd.landmark_points.size(); ++i) {
-                src.col(Eigen::Index(i)) = kin_[f].point(fd.landmark_points[i]);
-                dst.col(Eigen::Index(i)) = fd.landmark_targets[i];
-            }
-            const Similarity T = align_points(src, dst, o_.fit_scale);
-            return place(T.R, T.scale, T.t);
-        }
-        // No landmarks: the rigid start search (rigid_start.hpp) over the mean body at rest.
-        RigidStartOptions ro;
-        ro.fit_scale = o_.fit_scale;
-        ro.point_sigma = o_.point_sigma;
-        ro.points = std::size_t(0.15 * o_.max_points);
-        ro.samples = kExplainedSamples;
-        build_start_grid(frames_[f]);
-        const std::vector<StartCandidate> found = rigid_start(rest_sample(), cloud_view(fd), ro, *pool_);
-        // The two best get a short coarse fit (pose and the main shape components), which tells
-        // front from back far better than the rigid measure does. While the best so far ends in
-        // an implausible pose (joints far past their limits: a wrong heading forced onto the
-        // data), the right heading was not among them: the next two are tried, up to all eight.
-        // (One scan of 390 had its right heading ranked last by the rigid measure.)
+        if (pose) s.pose = *pose;
+        const Matrix3d R0 = lin_.rest_orient[0];
+        s.pose[0] = (Quaterniond(R0.transpose() * T.R * R0) * s.pose[0]).normalized();
+        s.scale = T.scale;
+        s.translation = T.t + T.scale * T.R * root - T.scale * root;
+        return s;
+    }
+
+    // Short coarse fits (pose and the main shape components) of a template's rigid candidates,
+    // best first: the two best, more while the best so far ends implausible (at most
+    // kMaxShortFits). Each result joins `checked` with its explained measure.
+    void short_fits(uint32_t f, const std::vector<StartCandidate>& found, const std::vector<Quaterniond>* pose,
+                    std::vector<std::pair<double, FitState>>& checked, double& best_cost, double& best_prior) {
         const Stage coarse{8, true, false, std::min<uint32_t>(K_, 10), 0.15, 8.0, 0.0, 0.25};
-        std::vector<FitState> candidates;
-        for (const StartCandidate& c : found) candidates.push_back(place(c.placement.R, c.placement.scale, c.placement.t));
-        ++searched_frames_;
-        double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
-        std::vector<std::pair<double, FitState>> checked;  // explained measure after the short fit, state
-        for (std::size_t i = 0; i < candidates.size(); ++i) {
-            if (i >= 2 && best_prior <= kImplausiblePose) break;
+        for (std::size_t i = 0; i < found.size(); ++i) {
+            if ((i >= 2 && best_prior <= kImplausiblePose) || i >= kMaxShortFits) break;
             std::fill(shape_.begin(), shape_.end(), 0.0);
-            states_[f] = candidates[i];
+            states_[f] = placed(f, found[i].placement, pose);
             uint32_t iterations = 0;
             bool cancelled = false;
             run_stage(coarse, f, nullptr, iterations, cancelled);
@@ -529,10 +524,59 @@ private:
             checked.emplace_back(cost, states_[f]);
             if (cost < best_cost) best_cost = cost, best_prior = pose_priors(f, nullptr, nullptr);
         }
+    }
+
+    FitState initial_state(uint32_t f) {
+        const auto& fd = frames_[f];
+        if (fd.landmark_points.size() >= 3) {
+            FitState s = kin_[f].zero_state();
+            kin_[f].update(s);
+            Eigen::Matrix3Xd src(3, fd.landmark_points.size()), dst(3, fd.landmark_points.size());
+            for (std::size_t i = 0; i < fd.landmark_points.size(); ++i) {
+                src.col(Eigen::Index(i)) = kin_[f].point(fd.landmark_points[i]);
+                dst.col(Eigen::Index(i)) = fd.landmark_targets[i];
+            }
+            return placed(f, align_points(src, dst, o_.fit_scale));
+        }
+        // No landmarks: the rigid start search (rigid_start.hpp) over the mean body at rest.
+        RigidStartOptions ro;
+        ro.fit_scale = o_.fit_scale;
+        ro.point_sigma = o_.point_sigma;
+        ro.points = std::size_t(0.15 * o_.max_points);
+        ro.samples = kExplainedSamples;
+        build_start_grid(frames_[f]);
+        // The rigid measure tells front from back far worse than a short coarse fit does: the best
+        // candidates get one (short_fits). (One scan of 390 had its right heading ranked last by
+        // the rigid measure.)
+        ++searched_frames_;
+        double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
+        std::vector<std::pair<double, FitState>> checked;  // explained measure after the short fit, state
+        const std::vector<StartCandidate> at_rest = rigid_start(rest_sample(), cloud_view(fd), ro, *pool_);
+        short_fits(f, at_rest, nullptr, checked, best_cost, best_prior);
+        // A crouching, seated or bent-over person has other principal axes than a standing body:
+        // the template in each start pose (kStartPoses) is placed too (half the rigid steps and
+        // correspondences: it only has to show it explains the scan better). Its candidates get
+        // short fits now when it explains the scan better than the rest pose after rigid
+        // placement, or when the rest pose's fits all ended implausible; else only if the fit
+        // fails and is restarted (restart_if_implausible()).
+        RigidStartOptions quick = ro;
+        quick.steps = ro.steps / 2;
+        quick.points = ro.points / 2;
+        deferred_templates_.clear();
+        for (std::size_t t = 0; t < start_templates().size(); ++t) {
+            std::vector<StartCandidate> posed = rigid_start(start_templates()[t].sample(), cloud_view(fd), quick, *pool_);
+            if (posed.front().score >= at_rest.front().score && best_prior <= kImplausiblePose) {
+                if (F_ == 1) deferred_templates_.emplace_back(t, std::move(posed));
+                continue;
+            }
+            const double prior = best_prior;
+            best_prior = 0;  // the template's best two at least
+            short_fits(f, posed, &start_templates()[t].pose, checked, best_cost, best_prior);
+            best_prior = std::min(best_prior, prior);
+        }
         // Best first (the first of equals): the start, then the others for restarts (run()).
         std::stable_sort(checked.begin(), checked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        if (F_ == 1)
-            for (std::size_t i = 1; i < checked.size(); ++i) alternative_starts_.push_back(checked[i].second);
+        if (F_ == 1) alternative_starts_.assign(checked.begin() + 1, checked.end());
         std::fill(shape_.begin(), shape_.end(), 0.0);
         return checked.front().second;
     }
@@ -551,6 +595,53 @@ private:
     }
 
     // The vertex sample on the mean body at rest, for the rigid start search; built on first use.
+    // The template (mean shape) in a start pose: the vertex sample posed, its principal frame.
+    struct StartTemplate {
+        std::vector<Quaterniond> pose;
+        std::vector<Vector3d> points, normals;
+        std::unique_ptr<PointIndex> index;
+        Vector3d centre = Vector3d::Zero();
+        double bottom = 0, top = 0;
+        Matrix3d frame = Matrix3d::Identity();
+        RestSample sample() const {
+            RestSample r;
+            r.points = &points, r.normals = &normals, r.index = index.get();
+            r.centre = centre, r.bottom = bottom, r.top = top, r.frame = frame;
+            return r;
+        }
+    };
+    const std::vector<StartTemplate>& start_templates() {
+        if (!start_templates_.empty() || !lin_.model.data().joint_limits.size()) return start_templates_;
+        // In place: a PointIndex refers to its points vector, so templates never move once built.
+        start_templates_.reserve(std::size(kStartPoses));
+        for (const char* name : kStartPoses) {
+            StartTemplate& t = start_templates_.emplace_back();
+            const std::vector<float> q = anatomy::named_pose(lin_.model, name);
+            for (uint32_t j = 0; j < lin_.J; ++j) t.pose.emplace_back(q[4 * j + 3], q[4 * j], q[4 * j + 1], q[4 * j + 2]);
+            FitState st = kin_[0].zero_state();
+            st.pose = t.pose;
+            posed_surface(body_, st, posed_, &posed_normals_);
+            for (uint32_t v : vertex_sample_) t.points.push_back(posed_[v]), t.normals.push_back(posed_normals_[v]);
+            t.index = std::make_unique<PointIndex>(t.points);
+            Matrix3d cov = Matrix3d::Zero();
+            for (uint32_t v = 0; v < lin_.V; v += 7) t.centre += posed_[v];
+            t.centre /= double((lin_.V + 6) / 7);
+            for (uint32_t v = 0; v < lin_.V; v += 7) cov += (posed_[v] - t.centre) * (posed_[v] - t.centre).transpose();
+            const Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
+            const Vector3d up = es.eigenvectors().col(2), second = es.eigenvectors().col(1);
+            t.frame.col(1) = up;
+            t.frame.col(2) = second;
+            t.frame.col(0) = up.cross(second);
+            t.bottom = 1e9, t.top = -1e9;
+            for (uint32_t v = 0; v < lin_.V; v += 7) {
+                const double h = (posed_[v] - t.centre).dot(up);
+                t.bottom = std::min(t.bottom, h), t.top = std::max(t.top, h);
+            }
+            t.bottom += t.centre.dot(up), t.top += t.centre.dot(up);
+        }
+        return start_templates_;
+    }
+
     RestSample rest_sample() {
         RestSample r;
         if (!rest_index_) {
@@ -1021,10 +1112,14 @@ private:
     std::vector<double> shape_;
     std::vector<FitState> states_;
     uint32_t searched_frames_ = 0;  // frames started by the cloud start search (with its coarse fit)
-    std::vector<FitState> alternative_starts_;  // a single frame's other start candidates (run())
+    // A single frame's other start candidates after their short fits, with the explained measure
+    // (run()), and the start poses whose short fits were put off (initial_state()).
+    std::vector<std::pair<double, FitState>> alternative_starts_;
+    std::vector<std::pair<std::size_t, std::vector<StartCandidate>>> deferred_templates_;
     std::vector<uint32_t> vertex_sample_;
     std::vector<Vector3d> posed_, posed_normals_, subset_posed_, subset_normals_;
     std::vector<Vector3d> rest_points_, rest_normals_;  // see rest_sample()
+    std::vector<StartTemplate> start_templates_;         // see start_templates()
     std::unique_ptr<PointIndex> rest_index_;
     // Over the posed model, rebuilt for each use: every vertex (spacing about 1 cm) or the sample
     // (about 2.5 cm).

@@ -168,9 +168,11 @@ std::vector<StartCandidate> rigid_start(const RestSample& rest, const CloudView&
             const Vector3d y = double(sign) * e1;
             const Vector3d z = (std::cos(a) * e2 + std::sin(a) * e3).normalized();
             Similarity T;
-            T.R.col(0) = y.cross(z);
-            T.R.col(1) = y;
-            T.R.col(2) = z;
+            Matrix3d axes;
+            axes.col(0) = y.cross(z);
+            axes.col(1) = y;
+            axes.col(2) = z;
+            T.R = axes * rest.frame.transpose();
             T.scale = scale;
             T.t = c - scale * T.R * mc;
             starts.push_back(T);

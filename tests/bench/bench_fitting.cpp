@@ -5,13 +5,18 @@
 // host's load (time stolen by other guests, reported per row where /proc/stat tells it); the CPU
 // time is the steadier measure of the work, for comparing builds.
 //
-//   sscape_fit_bench [--trials N] [--scenario landmarks|scan|depth|depth2|robust|frames] [--components K]
+//   sscape_fit_bench [--trials N] [--scenario landmarks|scan|depth|depth2|robust|poses|frames] [--components K]
 //                    [--max-points N] [--no-joint-limits] [--threads N] [--frames N]
 // --frames: the frames scenario's frame count (default 100): one person (one shape) scanned in N
 // random poses and headings, fitted with one shared shape; also each frame alone, for comparison.
 // It runs only when asked for (--scenario frames).
+// poses: scans of bodies in the hard named poses (crouching, kneeling, bending forward, bent over
+// with the arms raised, lunge, arms behind the back, sitting, arms raised), each varied by a random
+// pose of a fifth of the random poses' range, in any heading; N trials per pose; a fit is counted
+// failed when its mean vertex error exceeds 8 mm.
 // --threads: worker threads lent to the fitter, caller included (default: one per core, as a
 // context's default; 1 = none).
+#include "anatomy/named_poses.hpp"
 #include "fitting/fitter.hpp"
 #include "render/fit_picture.hpp"
 #include "simulation/depth_camera.hpp"
@@ -303,6 +308,54 @@ int main(int argc, char** argv) {
         }
         print("30-degree wrong start, 5% outliers", r);
         std::printf("  within 10 mm (non-hand vertices): %d of %d\n", ok, trials);
+    }
+    if (only.empty() || only == "poses") {
+        Row all;
+        std::mt19937 rng(600);
+        int failed = 0;
+        for (const char* name : {"crouching", "kneeling", "bending_forward", "bent_over_arms_raised", "lunge", "arms_behind_back",
+                                 "sitting", "arms_raised"}) {
+            Row r;
+            int pose_failed = 0;
+            const auto named = anatomy::named_pose(model, name);
+            for (int t = 0; t < trials; ++t) {
+                const auto vary = simulation::random_pose(model, rng, 0.2);
+                std::vector<float> pose(named.size());
+                for (std::size_t j = 0; j + 3 < named.size(); j += 4) {
+                    const Eigen::Quaternionf q = Eigen::Quaternionf(named[j + 3], named[j], named[j + 1], named[j + 2]) *
+                                                 Eigen::Quaternionf(vary[j + 3], vary[j], vary[j + 1], vary[j + 2]);
+                    pose[j] = q.x(), pose[j + 1] = q.y(), pose[j + 2] = q.z(), pose[j + 3] = q.w();
+                }
+                auto truth = simulation::make_body(model, simulation::random_shape(model, rng), pose, Eigen::Vector3d::Zero());
+                simulation::transform_body(truth, random_heading(rng), Eigen::Vector3d(0.1, 0.2, 1.5));
+                fitting::Frame frame;
+                simulation::CloudSpec spec;
+                frame.clouds.push_back(simulation::simulate_cloud(model, truth, spec, rng));
+                const double c0 = cpu_seconds();
+                const auto sol = fitting::fit(lin, {frame}, options(), nullptr, {}, &pool);
+                r.cpu.push_back(cpu_seconds() - c0);
+                const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
+                r.errors.push_back(simulation::mean_vertex_error(fv, truth.vertices));
+                r.times.push_back(sol.report.seconds);
+                r.converged += sol.report.converged;
+                pose_failed += r.errors.back() > 0.008;
+                if (verbose)
+                    std::printf("  %s trial %d: error %.2f mm, %u restarts, unexplained %.3f, converged %d\n", name, t, r.errors.back() * 1e3,
+                                sol.report.restarts, sol.report.unexplained, int(sol.report.converged));
+                if (!png.empty() && r.errors.back() > 0.008)
+                    render::write_fit_picture(png + "_" + name + "_" + std::to_string(t) + ".png", model, sol.frames[0],
+                                              frame.clouds[0].points, fv, truth.vertices);
+            }
+            failed += pose_failed;
+            all.errors.insert(all.errors.end(), r.errors.begin(), r.errors.end());
+            all.times.insert(all.times.end(), r.times.begin(), r.times.end());
+            all.cpu.insert(all.cpu.end(), r.cpu.begin(), r.cpu.end());
+            all.converged += r.converged;
+            print((std::string("pose ") + name).c_str(), r);
+            std::printf("  failed (over 8 mm): %d of %d\n", pose_failed, trials);
+        }
+        print("hard poses, all", all);
+        std::printf("  failed (over 8 mm): %d of %zu\n", failed, all.errors.size());
     }
     if (only == "frames") {
         // One person in frame_count poses: a shared-shape fit of all frames, then each frame alone.
