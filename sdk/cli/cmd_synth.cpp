@@ -103,7 +103,15 @@ std::vector<float> parse_pose(ssc_model* model, const std::string& text) {
         const auto eq = item.find('=');
         if (eq == std::string::npos) {
             if (ssc_model_get_named_pose(model, item.c_str(), q.data(), J) != SSC_OK)
-                throw UsageError("--pose: '" + item + "' is neither a named pose (a_pose, t_pose, sitting, arms_raised) nor JOINT=AX,AY,AZ");
+            {
+                std::string names;
+                for (uint32_t i = 0; i < ssc_named_pose_count(); ++i) {
+                    const char* n = "";
+                    ssc_named_pose_get_info(i, &n, nullptr);
+                    names += std::string(i ? ", " : "") + n;
+                }
+                throw UsageError("--pose: '" + item + "' is neither a named pose (" + names + ") nor JOINT=AX,AY,AZ");
+            }
             continue;
         }
         const std::string name = item.substr(0, eq);
