@@ -82,7 +82,11 @@ Options parse(const std::vector<std::string>& args) {
     if (o.random > 10000) throw UsageError("--random is limited to 10000 bodies");
     if (o.random && (!o.sliders.empty() || !o.measurements.empty())) throw UsageError("--random excludes --sliders and --measure");
     if ((!std::isnan(o.sex) || !std::isnan(o.age)) && o.measurements.empty()) throw UsageError("--sex and --age go with --measure");
-    if (!is_glb(o.out)) exporters::check_mesh_path(o.out);
+    if (!is_glb(o.out)) {
+        const std::string ext = o.out.size() >= 4 ? o.out.substr(o.out.size() - 4) : "";
+        if (ext != ".obj" && ext != ".ply")
+            throw UsageError("output '" + o.out + "': the formats are .obj (Wavefront), .ply (Stanford) and .glb (binary glTF, rigged)");
+    }
     if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
         throw UsageError("--png needs a file name ending in .png");
     if (!o.landmarks_png.empty() && (o.landmarks_png.size() < 4 || o.landmarks_png.substr(o.landmarks_png.size() - 4) != ".png"))
@@ -120,6 +124,10 @@ std::vector<float> parse_pose(ssc_model* model, const std::string& text) {
         const std::vector<float> v = parse_floats(item.substr(eq + 1), "--pose " + name);
         if (v.size() != 3) throw UsageError("--pose " + name + " needs 3 numbers (axis * angle in radians)");
         const double angle = std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+        // A rotation vector longer than a full turn is no joint rotation: most likely degrees.
+        if (angle > 2 * M_PI)
+            throw UsageError("--pose " + name + ": a rotation of " + std::to_string(angle) +
+                             " radians is more than a full turn; angles are in radians (degrees x pi / 180)");
         const double s = angle > 0 ? std::sin(angle / 2) / angle : 0.5;
         q[4 * j] = float(s * v[0]), q[4 * j + 1] = float(s * v[1]), q[4 * j + 2] = float(s * v[2]), q[4 * j + 3] = float(std::cos(angle / 2));
     }

@@ -82,7 +82,7 @@ std::string extension(const std::string& path) {
 
 void check_mesh_path(const std::string& path) {
     const std::string ext = extension(path);
-    if (ext != ".obj" && ext != ".ply") fail(SSC_ERROR_INVALID_ARGUMENT, "output '" + path + "' must end in .obj or .ply");
+    if (ext != ".obj" && ext != ".ply") fail(SSC_ERROR_INVALID_ARGUMENT, "output '" + path + "': the formats are .obj (Wavefront) and .ply (Stanford)");
 }
 
 void write_mesh(const std::string& path, const MeshView& mesh) {
