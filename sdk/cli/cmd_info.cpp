@@ -1,4 +1,8 @@
+// `sscape info`: what a model holds (counts, metadata, joints, sliders, component spreads), as text
+// or, with --json, as one JSON object for scripts.
 #include "cli.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <fstream>
@@ -6,60 +10,114 @@
 namespace ssc::cli {
 
 int cmd_info(const std::vector<std::string>& args) {
-    if (args.size() > 1) throw UsageError("info takes at most one MODEL");
-    const std::string path = args.empty() ? "" : args[0];
+    std::string path;
+    bool json = false;
+    for (const std::string& a : args) {
+        if (a == "--json") json = true;
+        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' (info takes MODEL and --json)");
+        else if (path.empty()) path = a;
+        else throw UsageError("info takes at most one MODEL");
+    }
     ssc_model* model = load_model(path);
+    Handles guard(model);
     long long size = -1;
     if (!path.empty()) {
         std::ifstream f(path, std::ios::binary | std::ios::ate);
         size = static_cast<long long>(f.tellg());
     }
-
     auto meta = [&](ssc_metadata_key k) {
         const char* s = "";
         ssc_model_get_metadata(model, k, &s);
-        return s;
+        return std::string(s);
     };
-    if (path.empty()) std::printf("file:        (default model, built into the library)\n");
-    else std::printf("file:        %s (%lld bytes, %.2f MB)\n", path.c_str(), size, size / 1e6);
-    std::printf("name:        %s\n", meta(SSC_METADATA_NAME));
-    std::printf("version:     %s\n", meta(SSC_METADATA_VERSION));
-    std::printf("license:     %s\n", meta(SSC_METADATA_LICENSE));
-    std::printf("units/axes:  %s, %s\n", meta(SSC_METADATA_UNITS), meta(SSC_METADATA_AXES));
-    std::printf("provenance:  %s\n", meta(SSC_METADATA_PROVENANCE));
-    std::printf("vertices:    %u\n", ssc_model_vertex_count(model));
-    std::printf("triangles:   %u (quads %u, uvs %u)\n", ssc_model_triangle_count(model), ssc_model_quad_count(model),
-                ssc_model_uv_count(model));
-    std::printf("joints:      %u\n", ssc_model_joint_count(model));
-    std::printf("landmarks:   %u\n", ssc_model_landmark_count(model));
-    std::printf("vertex sets:");
+    nlohmann::ordered_json j;
+    j["file"] = path.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(path);
+    if (size >= 0) j["file_bytes"] = size;
+    j["name"] = meta(SSC_METADATA_NAME);
+    j["version"] = meta(SSC_METADATA_VERSION);
+    j["license"] = meta(SSC_METADATA_LICENSE);
+    j["units"] = meta(SSC_METADATA_UNITS);
+    j["axes"] = meta(SSC_METADATA_AXES);
+    j["provenance"] = meta(SSC_METADATA_PROVENANCE);
+    j["vertices"] = ssc_model_vertex_count(model);
+    j["triangles"] = ssc_model_triangle_count(model);
+    j["quads"] = ssc_model_quad_count(model);
+    j["uvs"] = ssc_model_uv_count(model);
+    nlohmann::ordered_json joints = nlohmann::ordered_json::array();
+    uint32_t limited = 0;
+    for (uint32_t i = 0; i < ssc_model_joint_count(model); ++i) {
+        const char* name = "";
+        check(ssc_model_get_joint_name(model, i, &name), "joint name");
+        ssc_joint_limit l{};
+        check(ssc_model_get_joint_limit(model, i, &l), "joint limit");
+        limited += l.limited;
+        joints.push_back({{"name", name}, {"limited", bool(l.limited)}});
+    }
+    nlohmann::ordered_json landmarks = nlohmann::ordered_json::array();
+    for (uint32_t i = 0; i < ssc_model_landmark_count(model); ++i) {
+        const char* name = "";
+        check(ssc_model_get_landmark_name(model, i, &name), "landmark name");
+        landmarks.push_back(name);
+    }
+    nlohmann::ordered_json sets = nlohmann::ordered_json::object();
     for (uint32_t i = 0; i < ssc_model_vertex_set_count(model); ++i) {
         const char* name = "";
         uint32_t n = 0;
-        ssc_model_get_vertex_set(model, i, &name, &n);
-        std::printf(" %s(%u)", name, n);
+        check(ssc_model_get_vertex_set(model, i, &name, &n), "vertex set");
+        sets[name] = n;
     }
-    uint32_t limited = 0;
-    for (uint32_t j = 0; j < ssc_model_joint_count(model); ++j) {
-        ssc_joint_limit l{};
-        check(ssc_model_get_joint_limit(model, j, &l), "joint limit");
-        limited += l.limited;
-    }
-    std::printf("\njoint limits: %u joints\nsliders:     %u", limited, ssc_model_slider_count(model));
+    nlohmann::ordered_json sliders = nlohmann::ordered_json::array();
     for (uint32_t i = 0; i < ssc_model_slider_count(model); ++i) {
         ssc_slider_info info{};
         info.struct_size = sizeof info;
         check(ssc_model_get_slider_info(model, i, &info), "slider");
-        std::printf("\n  %-12s %-6s mean %8.3f, population %.3f .. %.3f", info.name, *info.unit ? info.unit : "-", info.mean,
-                    info.minimum, info.maximum);
+        sliders.push_back({{"name", info.name}, {"unit", info.unit}, {"mean", info.mean}, {"minimum", info.minimum}, {"maximum", info.maximum}});
     }
     const uint32_t K = ssc_model_shape_count(model);
-    std::printf("\ncomponents:  %u\nstddev (m):", K);
     std::vector<float> sd(K);
     if (K) check(ssc_model_get_shape_stddevs(model, sd.data(), K), "stddevs");
+    // (Filled last: a reference into an ordered_json does not survive the next insertion.)
+    j["joints"] = joints;
+    j["landmarks"] = landmarks;
+    j["vertex_sets"] = sets;
+    j["sliders"] = sliders;
+    j["components"] = K;
+    j["stddev_m"] = sd;
+    if (json) {
+        std::printf("%s\n", j.dump(2).c_str());
+        return 0;
+    }
+
+    if (path.empty()) std::printf("file:        (default model, built into the library)\n");
+    else std::printf("file:        %s (%lld bytes, %.2f MB)\n", path.c_str(), size, size / 1e6);
+    std::printf("name:        %s\n", meta(SSC_METADATA_NAME).c_str());
+    std::printf("version:     %s\n", meta(SSC_METADATA_VERSION).c_str());
+    std::printf("license:     %s\n", meta(SSC_METADATA_LICENSE).c_str());
+    std::printf("units/axes:  %s, %s\n", meta(SSC_METADATA_UNITS).c_str(), meta(SSC_METADATA_AXES).c_str());
+    std::printf("provenance:  %s\n", meta(SSC_METADATA_PROVENANCE).c_str());
+    std::printf("vertices:    %u\n", ssc_model_vertex_count(model));
+    std::printf("triangles:   %u (quads %u, uvs %u)\n", ssc_model_triangle_count(model), ssc_model_quad_count(model),
+                ssc_model_uv_count(model));
+    std::printf("joints:      %u\n", ssc_model_joint_count(model));
+    std::string line = " ";
+    for (const auto& joint : joints) {  // the names, wrapped
+        const std::string name = joint["name"];
+        if (line.size() + name.size() > 100) std::printf("%s\n", line.c_str()), line = " ";
+        line += " " + name;
+    }
+    std::printf("%s\n", line.c_str());
+    std::printf("landmarks:   %u\n", ssc_model_landmark_count(model));
+    std::printf("vertex sets:");
+    for (const auto& [name, n] : sets.items()) std::printf(" %s(%u)", name.c_str(), n.get<uint32_t>());
+    std::printf("\njoint limits: %u joints\nsliders:     %u", limited, ssc_model_slider_count(model));
+    for (const auto& s : sliders) {
+        const std::string unit = s["unit"];
+        std::printf("\n  %-12s %-6s mean %8.3f, population %.3f .. %.3f", s["name"].get<std::string>().c_str(), unit.empty() ? "-" : unit.c_str(),
+                    s["mean"].get<double>(), s["minimum"].get<double>(), s["maximum"].get<double>());
+    }
+    std::printf("\ncomponents:  %u\nstddev (m):", K);
     for (uint32_t k = 0; k < K; ++k) std::printf("%s%.4g", k % 10 == 0 ? "\n  " : " ", sd[k]);
     std::printf("\n");
-    ssc_model_release(model);
     return 0;
 }
 

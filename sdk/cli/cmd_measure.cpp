@@ -7,6 +7,8 @@
 #include "measure/measurements.hpp"
 #include "render/measure_picture.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -19,7 +21,7 @@ struct Options {
     std::string model, csv, png;
     std::vector<float> shape;
     uint32_t random = 0, seed = 1;
-    bool definitions = false;
+    bool definitions = false, json = false;
 };
 
 Options parse(const std::vector<std::string>& args) {
@@ -33,6 +35,7 @@ Options parse(const std::vector<std::string>& args) {
         else if (a == "--csv") o.csv = value();
         else if (a == "--png") o.png = value();
         else if (a == "--definitions") o.definitions = true;
+        else if (a == "--json") o.json = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
         else if (o.model.empty()) o.model = a;
         else throw UsageError("unexpected argument '" + a + "'");
@@ -87,7 +90,15 @@ int cmd_measure(const std::vector<std::string>& args) {
     csv << "body";
     for (uint32_t m = 0; m < M; ++m) csv << "," << names[m] << "_" << si_unit(units[m]);
     csv << "\n";
-    if (n > 1) {
+    // --json: one object, SI units, instead of the table.
+    nlohmann::ordered_json json;
+    if (o.json) {
+        nlohmann::ordered_json defs = nlohmann::ordered_json::object();
+        for (uint32_t m = 0; m < M; ++m) defs[names[m]] = {{"unit", si_unit(units[m])}, {"definition", definitions[m]}};
+        json["measurements"] = defs;
+        json["bodies"] = nlohmann::ordered_json::array();
+    }
+    if (n > 1 && !o.json) {
         std::printf("%5s", "body");
         for (uint32_t m = 0; m < M; ++m) std::printf(" %8.8s", names[m]);
         std::printf("\n");
@@ -104,7 +115,11 @@ int cmd_measure(const std::vector<std::string>& args) {
         csv << i;
         for (uint32_t m = 0; m < M; ++m) csv << "," << values[m];
         csv << "\n";
-        if (n == 1) {
+        if (o.json) {
+            nlohmann::ordered_json values_by_name = nlohmann::ordered_json::object();
+            for (uint32_t m = 0; m < M; ++m) values_by_name[names[m]] = values[m];
+            json["bodies"].push_back({{"shape", shape}, {"values", values_by_name}});
+        } else if (n == 1) {
             for (uint32_t m = 0; m < M; ++m) {
                 const Shown s = shown(units[m]);
                 std::printf("%-18s %9.2f %s\n", names[m], s.factor * values[m], s.unit);
@@ -127,7 +142,8 @@ int cmd_measure(const std::vector<std::string>& args) {
             render::write_measurement_picture(o.png, rest, tris, paths);
         }
     }
-    if (n > 1) std::printf("units: cm, m2 (surface_area), L (volume), kg (mass)\n");
+    if (o.json) std::printf("%s\n", json.dump(2).c_str());
+    else if (n > 1) std::printf("units: cm, m2 (surface_area), L (volume), kg (mass)\n");
     if (!o.csv.empty()) {
         const std::string text = csv.str();
         write_file_atomically(o.csv, text.data(), text.size());

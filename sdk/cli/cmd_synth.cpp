@@ -120,7 +120,15 @@ std::vector<float> parse_pose(ssc_model* model, const std::string& text) {
         }
         const std::string name = item.substr(0, eq);
         uint32_t j = 0;
-        if (ssc_model_find_joint(model, name.c_str(), &j) != SSC_OK) throw UsageError("--pose: the model has no joint '" + name + "'");
+        if (ssc_model_find_joint(model, name.c_str(), &j) != SSC_OK) {
+            std::string names;
+            for (uint32_t k = 0; k < ssc_model_joint_count(model); ++k) {
+                const char* n = "";
+                ssc_model_get_joint_name(model, k, &n);
+                names += std::string(k ? " " : "") + n;
+            }
+            throw UsageError("--pose: the model has no joint '" + name + "'; its joints: " + names);
+        }
         const std::vector<float> v = parse_floats(item.substr(eq + 1), "--pose " + name);
         if (v.size() != 3) throw UsageError("--pose " + name + " needs 3 numbers (axis * angle in radians)");
         const double angle = std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);

@@ -66,7 +66,7 @@ const char* kUsage =
     "usage: sscape <command> [options]\n"
     "MODEL is a .sscape file; without one, the default model built into the library is used.\n"
     "commands:\n"
-    "  info [MODEL]               counts, metadata, component standard deviations, file size\n"
+    "  info [MODEL] [--json]      counts, metadata, joint names, sliders, component standard deviations, file size\n"
     "  synth [MODEL] -o OUT.obj|.ply|.glb [--shape C1,C2,...] [--pose NAME|JOINT=AX,AY,AZ;...]\n"
     "        [--translation X,Y,Z] [--random N [--seed S]] [--normals] [--png VIEW.png] [--landmarks-png LM.png]\n"
     "        [--limits clamp|reject]\n"
@@ -92,7 +92,7 @@ const char* kUsage =
     "                             a random posed body measured: PREFIX_scan.ply, PREFIX.lnd, PREFIX_truth.obj,\n"
     "                             with --depth PREFIX_front.pgm / PREFIX_back.pgm (16-bit mm, camera in header)\n"
     "  measure [MODEL] [--shape C1,C2,...] [--random N [--seed S]] [--csv OUT.csv] [--png PATHS.png]\n"
-    "      [--definitions]\n"
+    "      [--definitions] [--json]\n"
     "                             body measurements (stature, girths, lengths, area, volume, mass) of a\n"
     "                             shape; --png draws where each is taken on the first body\n";
 
