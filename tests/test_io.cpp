@@ -1,7 +1,9 @@
 // Measurement file readers: well-formed files read back, malformed and hostile ones refused with
 // a message naming the file, never a crash.
 #include "common/error.hpp"
+#include "common/files.hpp"
 #include "io/readers.hpp"
+#include "support.hpp"
 #include "io/writers.hpp"
 
 #include <catch2/catch.hpp>
@@ -133,4 +135,37 @@ TEST_CASE("PGM depth images keep their camera through write and read", "[io]") {
     std::string other = "P5\n# made by another tool 1 2 3\n2 2\n65535\n";
     other.append(8, '\0');
     CHECK_FALSE(io::read_pgm_depth(temp_file("g.pgm", other)).has_intrinsics);
+}
+
+TEST_CASE("the C API writes a body as OBJ, PLY and rigged glTF that read back as the body", "[io][capi]") {
+    test::DefaultBody d;
+    const float shape[3] = {1.0f, -0.5f, 0.25f};
+    REQUIRE(ssc_body_set_shape(d.body, shape, 3) == SSC_OK);
+    std::vector<float> pose(4 * std::size_t(ssc_model_joint_count(d.model)));
+    REQUIRE(ssc_model_get_named_pose(d.model, "sitting", pose.data(), ssc_model_joint_count(d.model)) == SSC_OK);
+    const float translation[3] = {0.1f, 0.0f, -0.2f};
+    REQUIRE(ssc_body_set_pose(d.body, pose.data(), ssc_model_joint_count(d.model), translation) == SSC_OK);
+    const auto want = test::posed(d.model, d.body);
+    for (const char* path : {"io_body.obj", "io_body.PLY"}) {
+        INFO(path);
+        REQUIRE(ssc_body_write_file(d.body, path, SSC_FILE_FORMAT_BY_EXTENSION) == SSC_OK);
+        const auto read = io::read_points(path);
+        REQUIRE(read.points.size() == want.size() / 3);
+        double worst = 0;
+        for (std::size_t v = 0; v < read.points.size(); ++v)
+            worst = std::max(worst, (read.points[v] - Eigen::Vector3d(want[3 * v], want[3 * v + 1], want[3 * v + 2])).norm());
+        CHECK(worst < 1e-5);  // OBJ's text keeps 6 significant digits or more
+        CHECK(read.normals.size() == read.points.size());
+    }
+    REQUIRE(ssc_body_write_file(d.body, "io_body.bin", SSC_FILE_GLB) == SSC_OK);  // the format given, not the extension
+    const std::string glb = ssc::read_regular_file("io_body.bin", 64u << 20);
+    REQUIRE(glb.size() > 12);
+    CHECK(glb.compare(0, 4, "glTF") == 0);
+    // Bad input: an error and a message, no file.
+    CHECK(ssc_body_write_file(d.body, "io_body.fbx", SSC_FILE_FORMAT_BY_EXTENSION) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(ssc_last_error()).find(".glb") != std::string::npos);
+    CHECK(ssc_body_write_file(d.body, "io_body.obj", static_cast<ssc_file_format>(7)) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_body_write_file(d.body, nullptr, SSC_FILE_OBJ) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_body_write_file(nullptr, "io_body.obj", SSC_FILE_OBJ) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_body_write_file(d.body, "no-such-dir/io_body.obj", SSC_FILE_OBJ) == SSC_ERROR_IO);
 }

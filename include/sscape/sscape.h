@@ -439,6 +439,31 @@ SSC_API ssc_status ssc_body_get_skinning_matrices(ssc_body* body, float* out, ui
 SSC_API ssc_status ssc_model_get_skin(const ssc_model* model, uint16_t* joints, float* weights, uint32_t capacity);
 
 /* ---------------------------------------------------------------------------------------------- */
+/* Body files (SSC_EXPERIMENTAL: may change in a minor version)                                    */
+/* ---------------------------------------------------------------------------------------------- */
+
+/** File formats of ssc_body_write_file. */
+typedef enum ssc_file_format {
+    SSC_FILE_FORMAT_BY_EXTENSION = 0, /**< From the path: .obj, .ply or .glb (any case). */
+    SSC_FILE_OBJ = 1,  /**< Wavefront OBJ: posed positions, normals, UVs when the model has them. */
+    SSC_FILE_PLY = 2,  /**< Binary little-endian PLY: posed positions, normals, triangles. */
+    SSC_FILE_GLB = 3,  /**< Binary glTF 2.0: the shaped body in its bind pose with normals and UVs, the
+                            skeleton as nodes posed by the body's pose, and the skin; engines and
+                            Blender import a rigged, posed character. */
+    SSC_FILE_FORMAT_FORCE32 = 0x7FFFFFFF
+} ssc_file_format;
+
+/**
+ * Writes the body, with its current shape and pose, to a file.
+ * @param path    UTF-8 file path; written through a temporary file, so it appears whole or not at all.
+ * @param format  an ssc_file_format; SSC_FILE_FORMAT_BY_EXTENSION takes it from the path.
+ * @return SSC_ERROR_INVALID_ARGUMENT for NULL, an unknown format or extension (the message names
+ *         the formats); SSC_ERROR_IO when the file cannot be written.
+ * Ownership: none kept. Threads: the body's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_body_write_file(ssc_body* body, const char* path, ssc_file_format format);
+
+/* ---------------------------------------------------------------------------------------------- */
 /* Named poses                                                                                     */
 
 /** Number of named poses this library version knows ("a_pose", "t_pose", "sitting",

@@ -4,10 +4,14 @@
 #include "progress.hpp"
 
 #include "capi/handles.hpp"
+#include "common/files.hpp"
+#include "export/body_export.hpp"
 #include "export/mesh_writers.hpp"
 #include "fitting/depth_image.hpp"
 #include "io/readers.hpp"
 #include "render/fit_picture.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <unordered_map>
@@ -38,7 +42,7 @@ double check_body_size(const std::string& path, const std::vector<Eigen::Vector3
 }
 
 struct Options {
-    std::string model, out, png;
+    std::string model, out, png, params;
     std::vector<std::string> landmarks, points, depth;
     std::string units;  // --units: m, cm or mm for every point and landmark file; empty: each format's default
     double units_scale = 1;  // --units to metres
@@ -69,14 +73,15 @@ Options parse(const std::vector<std::string>& args) {
         else if (a == "--components") o.components = parse_count(value(), a);
         else if (a == "--iterations") o.iterations = parse_count(value(), a);
         else if (a == "--png") o.png = value();
+        else if (a == "--params") o.params = value();
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
         else if (o.model.empty()) o.model = a;
         else throw UsageError("unexpected argument '" + a + "'");
     }
     if (o.landmarks.empty() && o.points.empty() && o.depth.empty())
         throw UsageError("fit needs --landmarks FILE.lnd, --points FILE.ply|.obj and/or --depth FILE.pgm");
-    if (o.out.empty()) throw UsageError("fit needs -o OUT.obj or OUT.ply");
-    exporters::check_mesh_path(o.out);
+    if (o.out.empty()) throw UsageError("fit needs -o OUT.obj, OUT.ply or OUT.glb");
+    exporters::format_of(o.out);  // refuses other extensions, naming the formats
     if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
         throw UsageError("--png needs a file name ending in .png");
     return o;
@@ -236,21 +241,58 @@ int cmd_fit(const std::vector<std::string>& args) {
     std::printf("scale %.4f, translation %.3f %.3f %.3f m\nshape:", scale, translation[0], translation[1], translation[2]);
     for (uint32_t k = 0; k < K; ++k) std::printf("%s%.3f", k ? "," : " ", shape[k]);
     std::printf("\n");
-    exporters::MeshView mesh;
-    mesh.vertex_count = V;
-    mesh.positions = verts.data();
-    mesh.triangle_count = T;
-    mesh.triangles = tris.data();
-    exporters::write_mesh(o.out, mesh);
-    std::printf("wrote %s\n", o.out.c_str());
-    // Further frames (--frames): the same shape in each frame's pose, OUT_frameN.EXT.
-    std::vector<float> more(3ull * V);
-    for (uint32_t f = 1; f < ssc_fitter_frame_count(guard.fitter); ++f) {
-        const std::string path = with_suffix(o.out, "_frame" + std::to_string(f));
-        check(ssc_fitter_get_vertices(guard.fitter, f, more.data(), V, 0), "vertices");
-        mesh.positions = more.data();
-        exporters::write_mesh(path, mesh);
+    // Each frame's result as a body (shape, pose, translation), written by the library: OBJ and PLY
+    // with normals (OBJ with UVs), glTF rigged. A fitted scale is no part of a body: those fits are
+    // written as meshes from the fitter's vertices.
+    const uint32_t F = ssc_fitter_frame_count(guard.fitter);
+    nlohmann::ordered_json params_frames = nlohmann::ordered_json::array();
+    std::vector<float> more(3ull * V), frame_rot(4ull * J), frame_t(3);
+    for (uint32_t f = 0; f < F; ++f) {
+        const std::string path = f == 0 ? o.out : with_suffix(o.out, "_frame" + std::to_string(f));
+        float frame_scale = 1;
+        check(ssc_fitter_get_pose(guard.fitter, f, frame_rot.data(), J, frame_t.data(), &frame_scale), "pose");
+        if (frame_scale == 1.0f) {
+            Handles out_body(nullptr);
+            check(ssc_body_create(model, nullptr, &out_body.body), "body");
+            check(ssc_body_set_shape(out_body.body, shape.data(), K), "shape");
+            check(ssc_body_set_pose(out_body.body, frame_rot.data(), J, frame_t.data()), "pose");
+            check(ssc_body_write_file(out_body.body, path.c_str(), SSC_FILE_FORMAT_BY_EXTENSION), path);
+        } else {
+            if (exporters::format_of(path) == exporters::BodyFormat::Glb)
+                throw std::runtime_error(path + ": a fit with a fitted scale (--scale) is written as .obj or .ply, not as a rigged body");
+            check(ssc_fitter_get_vertices(guard.fitter, f, more.data(), V, 0), "vertices");
+            exporters::MeshView mesh;
+            mesh.vertex_count = V;
+            mesh.positions = more.data();
+            mesh.triangle_count = T;
+            mesh.triangles = tris.data();
+            exporters::write_mesh(path, mesh);
+        }
         std::printf("wrote %s\n", path.c_str());
+        nlohmann::ordered_json rotations_by_joint = nlohmann::ordered_json::object();
+        for (uint32_t j = 0; j < J; ++j) {
+            const char* name = "";
+            check(ssc_model_get_joint_name(model, j, &name), "joint name");
+            rotations_by_joint[name] = {frame_rot[4 * j], frame_rot[4 * j + 1], frame_rot[4 * j + 2], frame_rot[4 * j + 3]};
+        }
+        params_frames.push_back({{"rotations_xyzw", rotations_by_joint}, {"translation_m", frame_t}, {"scale", frame_scale}});
+    }
+    if (!o.params.empty()) {
+        // The fit's parameters, for `sscape synth --params` and for scripts.
+        const char* name = "";
+        ssc_model_get_metadata(model, SSC_METADATA_NAME, &name);
+        nlohmann::ordered_json j;
+        j["format"] = "sscape fit parameters 1";
+        j["model"] = name;
+        j["shape"] = shape;
+        j["frames"] = params_frames;
+        j["report"] = {{"converged", bool(report.converged)},   {"iterations", report.iterations},
+                       {"restarts", report.restarts},            {"landmark_rms_m", report.landmark_rms},
+                       {"point_mean_m", report.point_mean},      {"inlier_fraction", report.inlier_fraction},
+                       {"unexplained_fraction", report.unexplained_fraction}, {"seconds", report.seconds}};
+        const std::string text = j.dump(2) + "\n";
+        write_file_atomically(o.params, text.data(), text.size());
+        std::printf("wrote %s (shape, per-joint rotations, translation, scale and the report)\n", o.params.c_str());
     }
     if (!o.png.empty()) {
         fitting::FitState s;

@@ -1,9 +1,11 @@
 #include "cli.hpp"
 
-#include "export/gltf_writer.hpp"
-#include "export/mesh_writers.hpp"
+#include "common/files.hpp"
+#include "export/body_export.hpp"
 #include "render/landmark_picture.hpp"
 #include "render/raster.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +19,7 @@ namespace {
 struct Options {
     std::string model, out;
     std::vector<float> shape, translation;
-    std::string pose, png, landmarks_png, limits;
+    std::string pose, png, landmarks_png, limits, params;
     std::vector<std::pair<std::string, float>> sliders, measurements;  // NAME=VALUE lists
     float sex = std::nanf(""), age = std::nanf("");
     uint32_t random = 0, seed = 1;
@@ -41,9 +43,6 @@ std::vector<std::pair<std::string, float>> parse_named(const std::string& text, 
     return out;
 }
 
-bool is_glb(const std::string& path) {
-    return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".glb") == 0 || path.compare(path.size() - 4, 4, ".GLB") == 0);
-}
 
 Options parse(const std::vector<std::string>& args) {
     Options o;
@@ -54,9 +53,10 @@ Options parse(const std::vector<std::string>& args) {
         else if (a == "--shape") o.shape = parse_floats(value(), a);
         else if (a == "--pose") o.pose = value();
         else if (a == "--translation") o.translation = parse_floats(value(), a);
+        else if (a == "--params") o.params = value();
         else if (a == "--random") o.random = parse_count(value(), a);
         else if (a == "--seed") o.seed = parse_count(value(), a);
-        else if (a == "--normals") o.normals = true;
+        else if (a == "--normals") o.normals = true;  // normals are always written now; kept for scripts
         else if (a == "--png") o.png = value();
         else if (a == "--landmarks-png") o.landmarks_png = value();
         else if (a == "--sliders") o.sliders = parse_named(value(), a);
@@ -76,17 +76,17 @@ Options parse(const std::vector<std::string>& args) {
         else if (o.model.empty()) o.model = a;
         else throw UsageError("unexpected argument '" + a + "'");
     }
-    if (o.out.empty()) throw UsageError("synth needs -o OUT.obj or OUT.ply");
+    if (o.out.empty()) throw UsageError("synth needs -o OUT.obj, OUT.ply or OUT.glb");
+    if (!o.params.empty() && (!o.shape.empty() || !o.pose.empty() || !o.translation.empty() || o.random || !o.sliders.empty() ||
+                              !o.measurements.empty()))
+        throw UsageError("--params gives the shape, pose and translation: it excludes --shape, --pose, --translation, --random, "
+                         "--sliders and --measure");
     if (!o.translation.empty() && o.translation.size() != 3) throw UsageError("--translation needs 3 numbers");
     if (o.random && !o.shape.empty()) throw UsageError("--random and --shape exclude each other");
     if (o.random > 10000) throw UsageError("--random is limited to 10000 bodies");
     if (o.random && (!o.sliders.empty() || !o.measurements.empty())) throw UsageError("--random excludes --sliders and --measure");
     if ((!std::isnan(o.sex) || !std::isnan(o.age)) && o.measurements.empty()) throw UsageError("--sex and --age go with --measure");
-    if (!is_glb(o.out)) {
-        const std::string ext = o.out.size() >= 4 ? o.out.substr(o.out.size() - 4) : "";
-        if (ext != ".obj" && ext != ".ply")
-            throw UsageError("output '" + o.out + "': the formats are .obj (Wavefront), .ply (Stanford) and .glb (binary glTF, rigged)");
-    }
+    exporters::format_of(o.out);  // refuses other extensions, naming the formats
     if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
         throw UsageError("--png needs a file name ending in .png");
     if (!o.landmarks_png.empty() && (o.landmarks_png.size() < 4 || o.landmarks_png.substr(o.landmarks_png.size() - 4) != ".png"))
@@ -228,6 +228,40 @@ void shape_by_meaning(ssc_model* model, ssc_body* body, const Options& o) {
     if (!converged) std::printf("note: not every request was reached within 0.5 mm (the combination may be unusual)\n");
 }
 
+// `sscape fit --params` output: the shape, and frame 0's joint rotations (by joint name; joints
+// not named keep the rest pose) and translation.
+struct FitParams {
+    std::vector<float> shape, pose, translation;
+};
+
+FitParams read_params(ssc_model* model, const std::string& path) {
+    const std::string text = read_regular_file(path, 16u << 20, SSC_ERROR_INVALID_ARGUMENT);
+    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) throw UsageError(path + ": not a JSON object (write one with sscape fit --params)");
+    FitParams p;
+    try {
+        p.shape = j.at("shape").get<std::vector<float>>();
+        const auto& frame = j.at("frames").at(0);
+        p.translation = frame.at("translation_m").get<std::vector<float>>();
+        if (p.translation.size() != 3) throw UsageError(path + ": translation_m needs 3 numbers");
+        if (frame.contains("scale") && frame.at("scale").get<double>() != 1.0)
+            throw UsageError(path + ": the fit has a scale other than 1 (--scale), which a body does not have");
+        const uint32_t J = ssc_model_joint_count(model);
+        p.pose.assign(4ull * J, 0.f);
+        for (uint32_t k = 0; k < J; ++k) p.pose[4 * k + 3] = 1.f;
+        for (const auto& [name, q] : frame.at("rotations_xyzw").items()) {
+            uint32_t k = 0;
+            if (ssc_model_find_joint(model, name.c_str(), &k) != SSC_OK) throw UsageError(path + ": the model has no joint '" + name + "'");
+            const auto v = q.get<std::vector<float>>();
+            if (v.size() != 4) throw UsageError(path + ": the rotation of " + name + " needs 4 numbers (x y z w)");
+            for (int c = 0; c < 4; ++c) p.pose[4 * k + uint32_t(c)] = v[std::size_t(c)];
+        }
+    } catch (const nlohmann::json::exception& e) {
+        throw UsageError(path + ": " + e.what() + " (expected sscape fit --params output)");
+    }
+    return p;
+}
+
 }  // namespace
 
 int cmd_synth(const std::vector<std::string>& args) {
@@ -236,35 +270,14 @@ int cmd_synth(const std::vector<std::string>& args) {
     Handles guard(model);
 
     const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model);
-    const uint32_t K = ssc_model_shape_count(model), J = ssc_model_joint_count(model), U = ssc_model_uv_count(model);
+    const uint32_t K = ssc_model_shape_count(model), J = ssc_model_joint_count(model);
     if (o.shape.size() > K) throw UsageError("--shape has " + std::to_string(o.shape.size()) + " values; the model has " + std::to_string(K) + " components");
-    std::vector<uint32_t> tris(3ull * T), tri_uvs(U ? 3ull * T : 0);
-    std::vector<float> uvs(2ull * U);
+    std::vector<uint32_t> tris(3ull * T);
     check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
-    if (U) {
-        check(ssc_model_get_uvs(model, uvs.data(), U), "uvs");
-        check(ssc_model_get_triangle_uvs(model, tri_uvs.data(), T), "triangle uvs");
-    }
     check(ssc_body_create(model, nullptr, &guard.body), "body");
-    // For glTF: the skeleton, the skin, and a second body in the rest pose for bind-pose normals.
-    const bool glb = is_glb(o.out);
-    std::vector<int32_t> parents(J);
-    std::vector<std::string> names(J);
-    std::vector<uint16_t> skin_joints(glb ? 4ull * V : 0);
-    std::vector<float> skin_weights(glb ? 4ull * V : 0);
-    Handles rest_pose(nullptr);  // a second body in the rest pose (glTF)
-    if (glb) {
-        check(ssc_model_get_joint_parents(model, parents.data(), J), "parents");
-        for (uint32_t j = 0; j < J; ++j) {
-            const char* name = "";
-            check(ssc_model_get_joint_name(model, j, &name), "joint name");
-            names[j] = name;
-        }
-        check(ssc_model_get_skin(model, skin_joints.data(), skin_weights.data(), V), "skin");
-        check(ssc_body_create(model, nullptr, &rest_pose.body), "body");
-    }
-    const std::vector<float> pose = parse_pose(model, o.pose);
-    const float* translation = o.translation.empty() ? nullptr : o.translation.data();
+    const FitParams fitted = o.params.empty() ? FitParams{} : read_params(model, o.params);
+    const std::vector<float> pose = o.params.empty() ? parse_pose(model, o.pose) : fitted.pose;
+    const float* translation = !o.params.empty() ? fitted.translation.data() : o.translation.empty() ? nullptr : o.translation.data();
     if (o.limits.empty()) {
         check(ssc_body_set_pose(guard.body, pose.data(), J, translation), "pose");
     } else {
@@ -278,11 +291,11 @@ int cmd_synth(const std::vector<std::string>& args) {
     std::mt19937 rng(o.seed);
     std::normal_distribution<float> normal;
     const uint32_t n = o.random ? o.random : 1;
-    std::vector<float> verts(3ull * V), normals(o.normals ? 3ull * V : 0);
+    std::vector<float> verts(3ull * V);
     std::vector<std::vector<float>> rendered;
     std::printf("%-28s %9s %9s %9s   first shape coefficients\n", "file", "height_m", "width_m", "depth_m");
     for (uint32_t i = 0; i < n; ++i) {
-        std::vector<float> shape = o.shape;
+        std::vector<float> shape = o.params.empty() ? o.shape : fitted.shape;
         if (o.random) {
             // Standard normal coefficients, truncated at 2.5 SD so no body is implausibly extreme.
             shape.resize(K);
@@ -295,44 +308,9 @@ int cmd_synth(const std::vector<std::string>& args) {
             check(ssc_body_get_shape(guard.body, shape.data(), K), "shape");
         }
         check(ssc_body_get_vertices(guard.body, verts.data(), V, 0), "vertices");
-        if (o.normals) check(ssc_body_get_normals(guard.body, normals.data(), V, 0), "normals");
-        exporters::MeshView mesh;
-        mesh.vertex_count = V;
-        mesh.positions = verts.data();
-        mesh.normals = o.normals ? normals.data() : nullptr;
-        mesh.triangle_count = T;
-        mesh.triangles = tris.data();
-        mesh.uv_count = U;
-        mesh.uvs = U ? uvs.data() : nullptr;
-        mesh.triangle_uvs = U ? tri_uvs.data() : nullptr;
+        // The library writes the file: OBJ with normals and UVs, binary PLY, or rigged glTF.
         const std::string path = numbered(o.out, i, n);
-        if (glb) {
-            std::vector<float> rest(3ull * V), rest_normals(3ull * V), world(16ull * J), inverse_bind(16ull * J);
-            check(ssc_body_set_shape(rest_pose.body, shape.data(), uint32_t(shape.size())), "shape");
-            check(ssc_body_get_rest_vertices(guard.body, rest.data(), V, 0), "rest vertices");
-            check(ssc_body_get_normals(rest_pose.body, rest_normals.data(), V, 0), "rest normals");
-            check(ssc_body_get_joint_transforms(guard.body, world.data(), J), "joint transforms");
-            check(ssc_body_get_inverse_bind_matrices(guard.body, inverse_bind.data(), J), "inverse binds");
-            exporters::RiggedBody rb;
-            rb.vertex_count = V;
-            rb.rest_positions = rest.data();
-            rb.rest_normals = rest_normals.data();
-            rb.triangle_count = T;
-            rb.triangles = tris.data();
-            rb.uv_count = U;
-            rb.uvs = U ? uvs.data() : nullptr;
-            rb.triangle_uvs = U ? tri_uvs.data() : nullptr;
-            rb.joint_count = J;
-            rb.parents = parents.data();
-            rb.joint_names = names;
-            rb.joint_world = world.data();
-            rb.inverse_bind = inverse_bind.data();
-            rb.skin_joints = skin_joints.data();
-            rb.skin_weights = skin_weights.data();
-            exporters::write_glb(path, rb);
-        } else {
-            exporters::write_mesh(path, mesh);
-        }
+        check(ssc_body_write_file(guard.body, path.c_str(), SSC_FILE_FORMAT_BY_EXTENSION), path);
         if (!o.png.empty() && rendered.size() < 20) rendered.push_back(verts);
         if (!o.landmarks_png.empty() && i == 0) {
             const uint32_t L = ssc_model_landmark_count(model);
