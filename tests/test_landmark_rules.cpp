@@ -248,19 +248,11 @@ TEST_CASE("the shipped landmarks are what the rules place on the model's mean", 
     const auto data = ssc::format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH);
     const auto& mean = data.shape.mean;
     const auto placed = ssc::training::place_caesar_landmarks(ssc::training::landmark_template(data, mean.data()));
-    auto position = [&](const ssc::format::Landmark& l) {
-        if (l.vertex != ssc::format::kNone) return Vector3f(mean[3 * l.vertex], mean[3 * l.vertex + 1], mean[3 * l.vertex + 2]);
-        Vector3f p = Vector3f::Zero();
-        for (int c = 0; c < 3; ++c) {
-            const uint32_t v = data.mesh.triangles[3 * l.triangle + uint32_t(c)];
-            p += l.barycentric[c] * Vector3f(mean[3 * v], mean[3 * v + 1], mean[3 * v + 2]);
-        }
-        return p;
-    };
+    auto position = [&](const ssc::format::Landmark& l) { return ssc::training::landmark_position(l, mean.data(), data.mesh.triangles.data()); };
     REQUIRE(placed.size() == data.landmarks.size());
     for (std::size_t i = 0; i < placed.size(); ++i) {
         INFO(placed[i].name);
         CHECK(placed[i].name == data.landmarks[i].name);
-        CHECK((position(placed[i]) - position(data.landmarks[i])).norm() < 5e-4f);
+        CHECK((position(placed[i]) - position(data.landmarks[i])).norm() < 5e-4);
     }
 }

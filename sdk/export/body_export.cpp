@@ -18,6 +18,17 @@ std::vector<float> interleaved(const float* planar, uint32_t n) {
     return out;
 }
 
+// The model's triangles and UVs into a MeshView or a RiggedBody (the same fields in both).
+template <class View>
+void set_surface(View& view, const format::ModelData& d) {
+    view.triangle_count = uint32_t(d.mesh.triangles.size() / 3);
+    view.triangles = d.mesh.triangles.data();
+    if (d.mesh.uvs.empty()) return;
+    view.uv_count = uint32_t(d.mesh.uvs.size() / 2);
+    view.uvs = d.mesh.uvs.data();
+    view.triangle_uvs = d.mesh.triangle_uvs.data();
+}
+
 }  // namespace
 
 BodyFormat format_of(const std::string& path) {
@@ -33,20 +44,13 @@ void write_body(Body& body, const std::string& path, BodyFormat format) {
     const Model& model = body.model();
     const auto& d = model.data();
     const uint32_t V = model.vertex_count(), J = model.joint_count();
-    const bool uvs = !d.mesh.uvs.empty();
     if (format != BodyFormat::Glb) {
         const std::vector<float> positions = interleaved(body.posed(), V);
         MeshView mesh;
         mesh.vertex_count = V;
         mesh.positions = positions.data();
         mesh.normals = body.normals();
-        mesh.triangle_count = uint32_t(d.mesh.triangles.size() / 3);
-        mesh.triangles = d.mesh.triangles.data();
-        if (uvs) {
-            mesh.uv_count = uint32_t(d.mesh.uvs.size() / 2);
-            mesh.uvs = d.mesh.uvs.data();
-            mesh.triangle_uvs = d.mesh.triangle_uvs.data();
-        }
+        set_surface(mesh, d);
         return format == BodyFormat::Obj ? write_obj(path, mesh) : write_ply(path, mesh);
     }
     // glTF: the bind pose is the body's shape at rest; its normals come from a rest-posed twin.
@@ -57,13 +61,7 @@ void write_body(Body& body, const std::string& path, BodyFormat format) {
     rb.vertex_count = V;
     rb.rest_positions = rest_positions.data();
     rb.rest_normals = rest.normals();
-    rb.triangle_count = uint32_t(d.mesh.triangles.size() / 3);
-    rb.triangles = d.mesh.triangles.data();
-    if (uvs) {
-        rb.uv_count = uint32_t(d.mesh.uvs.size() / 2);
-        rb.uvs = d.mesh.uvs.data();
-        rb.triangle_uvs = d.mesh.triangle_uvs.data();
-    }
+    set_surface(rb, d);
     rb.joint_count = J;
     rb.parents = d.skeleton.parents.data();
     rb.joint_names = d.skeleton.joint_names;

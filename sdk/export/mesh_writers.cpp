@@ -78,12 +78,13 @@ std::string extension(const std::string& path) {
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
 }
-}  // namespace
 
 void check_mesh_path(const std::string& path) {
     const std::string ext = extension(path);
     if (ext != ".obj" && ext != ".ply") fail(SSC_ERROR_INVALID_ARGUMENT, "output '" + path + "': the formats are .obj (Wavefront) and .ply (Stanford)");
 }
+
+}  // namespace
 
 void write_mesh(const std::string& path, const MeshView& mesh) {
     check_mesh_path(path);

@@ -25,7 +25,4 @@ void write_ply(const std::string& path, const MeshView& mesh);
 // By extension (.obj or .ply, case-insensitive); SSC_ERROR_INVALID_ARGUMENT for anything else.
 void write_mesh(const std::string& path, const MeshView& mesh);
 
-// Throws SSC_ERROR_INVALID_ARGUMENT unless write_mesh knows the path's extension.
-void check_mesh_path(const std::string& path);
-
 }  // namespace ssc::exporters

@@ -256,7 +256,9 @@ PointFile ply_points(const std::string& data, const std::string& path) {
     }
     // Normals the file does not give usably come from the faces where it has them, else from the fitter.
     out.normals = given_normals(std::move(normals));
-    if (!tris.empty()) {
+    const bool missing = out.normals.empty() ||
+                         std::any_of(out.normals.begin(), out.normals.end(), [](const Eigen::Vector3d& n) { return n.squaredNorm() == 0; });
+    if (!tris.empty() && missing) {
         const auto from_faces = face_normals(out.points, tris);
         if (out.normals.empty()) out.normals = from_faces;
         else if (!from_faces.empty())

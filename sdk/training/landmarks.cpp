@@ -109,6 +109,13 @@ LandmarkTemplate landmark_template(const format::ModelData& m, const float* rest
     return t;
 }
 
+Eigen::Vector3d landmark_position(const format::Landmark& l, const float* xyz, const uint32_t* triangles) {
+    auto vertex = [&](uint32_t v) { return Vector3d(xyz[3 * std::size_t(v)], xyz[3 * std::size_t(v) + 1], xyz[3 * std::size_t(v) + 2]); };
+    if (l.vertex != format::kNone) return vertex(l.vertex);
+    const uint32_t* c = &triangles[3 * std::size_t(l.triangle)];
+    return l.barycentric[0] * vertex(c[0]) + l.barycentric[1] * vertex(c[1]) + l.barycentric[2] * vertex(c[2]);
+}
+
 const std::vector<std::string>& caesar_names() {
     static const std::vector<std::string> names = {
         "Sellion", "Rt. Infraorbitale", "Lt. Infraorbitale", "Supramenton", "Rt. Tragion", "Rt. Gonion", "Lt. Tragion",
@@ -137,12 +144,7 @@ std::vector<format::Landmark> place_caesar_landmarks(const LandmarkTemplate& t) 
     };
     auto add_v = [&](const std::string& n, uint32_t v) { P.add_vertex(n, v); keep(); };
     auto add_h = [&](const std::string& n, const Hit& h) { P.add_hit(n, h); keep(); };
-    auto pos = [&](const std::string& n) {
-        const auto& l = by_name.at(n);
-        if (l.vertex != format::kNone) return P.vertex(l.vertex);
-        const uint32_t* c = &t.triangles[3 * l.triangle];
-        return Vector3d(l.barycentric[0] * P.vertex(c[0]) + l.barycentric[1] * P.vertex(c[1]) + l.barycentric[2] * P.vertex(c[2]));
-    };
+    auto pos = [&](const std::string& n) { return landmark_position(by_name.at(n), t.xyz.data(), t.triangles.data()); };
     const Vector3d head = P.joint("head"), neck = P.joint("neck_01"), spine3 = P.joint("spine_03"), spine1 = P.joint("spine_01");
     const Vector3d pelvis = P.joint("pelvis");
     auto is_head = [&](uint32_t v) { return P.bone_has(v, {"head", "neck"}); };

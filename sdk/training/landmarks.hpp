@@ -13,6 +13,8 @@
 
 #include "sscape_format/model_data.hpp"
 
+#include <Eigen/Core>
+
 #include <map>
 #include <string>
 #include <vector>
@@ -29,6 +31,10 @@ struct LandmarkTemplate {
 // The template of a model's body: its rest vertices, the model's triangles, each vertex's dominant
 // skin joint and the joints the model's regressor puts on those vertices.
 LandmarkTemplate landmark_template(const format::ModelData& m, const float* rest_xyz);
+
+// Where a landmark (a vertex, or a barycentric point of a triangle) lies on a surface xyz (3 per
+// vertex) with the model's triangles.
+Eigen::Vector3d landmark_position(const format::Landmark& l, const float* xyz, const uint32_t* triangles);
 
 // The CAESAR names in CAESAR order (1-based order = index + 1).
 const std::vector<std::string>& caesar_names();

@@ -230,12 +230,10 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     if (!spec.report_prefix.empty()) {
         const std::string png = spec.report_prefix + "landmarks.png";
         std::vector<float> at;
-        for (const auto& l : m.landmarks)
-            for (int c = 0; c < 3; ++c)
-                at.push_back(l.vertex != format::kNone ? lt.xyz[3 * l.vertex + std::size_t(c)]
-                                                       : l.barycentric[0] * lt.xyz[3 * lt.triangles[3 * l.triangle] + std::size_t(c)] +
-                                                             l.barycentric[1] * lt.xyz[3 * lt.triangles[3 * l.triangle + 1] + std::size_t(c)] +
-                                                             l.barycentric[2] * lt.xyz[3 * lt.triangles[3 * l.triangle + 2] + std::size_t(c)]);
+        for (const auto& l : m.landmarks) {
+            const Eigen::Vector3d p = landmark_position(l, lt.xyz.data(), lt.triangles.data());
+            at.insert(at.end(), {float(p.x()), float(p.y()), float(p.z())});
+        }
         render::write_landmark_picture(png, lt.xyz, lt.triangles, at);
         report.plots.push_back(png);
     }
