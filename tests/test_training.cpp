@@ -2,6 +2,7 @@
 // training pipeline cannot rot, and checks its quality numbers.
 #include "support.hpp"
 
+#include "common/error.hpp"
 #include "training/landmarks.hpp"
 #include "training/makehuman/assets.hpp"
 #include "training/train.hpp"
@@ -40,6 +41,37 @@ TEST_CASE("MakeHuman macro rules follow the asset README", "[training]") {
     CHECK(ssc::training::mh::age_years(0.5) == Approx(25.0));
     CHECK(ssc::training::mh::age_slider(90.0) == Approx(1.0));
     CHECK(ssc::training::mh::age_slider(ssc::training::mh::age_years(0.3)) == Approx(0.3));
+}
+
+TEST_CASE("training reports its stages and bodies and stops when the progress callback says so", "[training][makehuman]") {
+    const std::string root = assets_root();
+    if (root.empty()) {
+        WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");
+        return;
+    }
+    ssc::training::TrainSpec spec;
+    spec.assets_root = root;
+    spec.population.count = 160;
+    spec.components = 10;
+    spec.heldout = 30;
+    std::vector<std::string> stages;
+    uint32_t last_done = 0, total = 0;
+    const ssc::training::Progress stop_at_body_5 = [&](const std::string& stage, uint32_t done, uint32_t of) {
+        if (stages.empty() || stages.back() != stage) stages.push_back(stage);
+        if (of) last_done = done, total = of;
+        return !(stage == "generating bodies" && done == 5);
+    };
+    ssc::training::TrainReport report;
+    try {
+        ssc::training::train_model(spec, report, stop_at_body_5);
+        FAIL("training went on after the callback returned false");
+    } catch (const ssc::Error& e) {
+        CHECK(e.status() == SSC_ERROR_CANCELLED);
+    }
+    REQUIRE(stages.size() == 3);  // loading, sampling, generating
+    CHECK(stages.back() == "generating bodies");
+    CHECK(last_done == 5);
+    CHECK(total == 160);
 }
 
 TEST_CASE("a small model retrained from the MakeHuman assets meets its quality numbers", "[training][makehuman]") {

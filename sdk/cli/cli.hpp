@@ -1,30 +1,56 @@
 // The `sscape` command line: one file per command, built on the public C API except where a
 // command needs the C++ tools (make-test-model and train write models; simulate and the fit
-// picture use the simulator and renderer).
+// picture use the simulator and renderer). Options are parsed by CLI11: each command file declares
+// its options with their help text, and checks what CLI11 cannot (combinations, model-dependent
+// names) in its run function.
 #pragma once
 
 #include <sscape/sscape.h>
 
+#include <CLI/CLI.hpp>
+
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace ssc::cli {
 
-// A usage or input problem: printed with the command's usage, exit code 2.
+// A usage or input problem found after parsing: printed with a pointer to the command's --help,
+// exit code 2.
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Runs a parsed command; returns the process exit code.
+using Run = std::function<int()>;
+
+// Each command adds itself to the app (its options, their help) and returns how to run it once the
+// command line is parsed.
+Run add_info(CLI::App& app);
+Run add_synth(CLI::App& app);
+Run add_make_test_model(CLI::App& app);
+Run add_train(CLI::App& app);
+Run add_fit(CLI::App& app);
+Run add_simulate(CLI::App& app);
+Run add_measure(CLI::App& app);
+
+// The optional MODEL positional every model-reading command takes.
+void add_model_argument(CLI::App& command, std::string& path);
+
+// Validators: a finite number in [lo, hi] (CLI::Range lets NaN through), and a file name ending in
+// one of the given extensions.
+CLI::Validator finite_in(double lo, double hi);
+CLI::Validator extension(const std::string& ext);
+
+// The help layout: CLI11's, with long descriptions wrapped to 100 columns.
+std::shared_ptr<CLI::Formatter> help_formatter();
+
 // Throws std::runtime_error with the library's message when status is not SSC_OK.
 void check(ssc_status status, const std::string& what);
 
-// Parses "1.5,-2,0" into floats; UsageError on anything else.
+// Parses "1.5,-2,0" into finite floats; UsageError naming option on anything else.
 std::vector<float> parse_floats(const std::string& text, const std::string& option);
-uint32_t parse_count(const std::string& text, const std::string& option);
-
-// The value after option args[i] (advancing i); UsageError when there is none.
-const std::string& option_value(const std::vector<std::string>& args, std::size_t& i);
 
 // The handles a command creates, released however it leaves (a body or fitter holds its own model
 // reference, so the order does not matter; every release accepts NULL).
@@ -47,13 +73,5 @@ ssc_model* load_model(const std::string& path);
 
 // path with suffix inserted before its extension: ("out/fit.obj", "_frame1") -> "out/fit_frame1.obj".
 std::string with_suffix(const std::string& path, const std::string& suffix);
-
-int cmd_info(const std::vector<std::string>& args);
-int cmd_synth(const std::vector<std::string>& args);
-int cmd_make_test_model(const std::vector<std::string>& args);
-int cmd_train(const std::vector<std::string>& args);
-int cmd_fit(const std::vector<std::string>& args);
-int cmd_simulate(const std::vector<std::string>& args);
-int cmd_measure(const std::vector<std::string>& args);
 
 }  // namespace ssc::cli

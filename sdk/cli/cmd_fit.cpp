@@ -46,51 +46,26 @@ struct Options {
     std::vector<std::string> landmarks, points, depth;
     std::string units;  // --units: m, cm or mm for every point and landmark file; empty: each format's default
     double units_scale = 1;  // --units to metres
+    std::string intrinsics_text;
     std::vector<float> intrinsics;  // fx fy cx cy for depth images whose files do not give them
     bool scale = false, hands = false, frames = false;
     uint32_t components = 0, iterations = 0;
 };
 
-Options parse(const std::vector<std::string>& args) {
-    Options o;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> const std::string& { return option_value(args, i); };
-        if (a == "-o" || a == "--output") o.out = value();
-        else if (a == "--landmarks") o.landmarks.push_back(value());
-        else if (a == "--points") o.points.push_back(value());
-        else if (a == "--depth") o.depth.push_back(value());
-        else if (a == "--intrinsics") {
-            o.intrinsics = parse_floats(value(), a);
-            if (o.intrinsics.size() != 4) throw UsageError("--intrinsics needs FX,FY,CX,CY (pixels)");
-        } else if (a == "--frames") o.frames = true;
-        else if (a == "--units") {
-            o.units = value();
-            o.units_scale = units_to_metres(o.units);
-            if (o.units_scale == 0) throw UsageError("--units must be m, cm or mm, not '" + o.units + "'");
-        } else if (a == "--scale") o.scale = true;
-        else if (a == "--hands") o.hands = true;
-        else if (a == "--components") o.components = parse_count(value(), a);
-        else if (a == "--iterations") o.iterations = parse_count(value(), a);
-        else if (a == "--png") o.png = value();
-        else if (a == "--params") o.params = value();
-        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else if (o.model.empty()) o.model = a;
-        else throw UsageError("unexpected argument '" + a + "'");
+// What CLI11 cannot check: the combinations.
+void finish(Options& o) {
+    if (!o.intrinsics_text.empty()) {
+        o.intrinsics = parse_floats(o.intrinsics_text, "--intrinsics");
+        if (o.intrinsics.size() != 4) throw UsageError("--intrinsics needs FX,FY,CX,CY (pixels)");
     }
+    if (!o.units.empty()) o.units_scale = units_to_metres(o.units);
     if (o.landmarks.empty() && o.points.empty() && o.depth.empty())
         throw UsageError("fit needs --landmarks FILE.lnd, --points FILE.ply|.obj and/or --depth FILE.pgm");
-    if (o.out.empty()) throw UsageError("fit needs -o OUT.obj, OUT.ply or OUT.glb");
     exporters::format_of(o.out);  // refuses other extensions, naming the formats
-    if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
-        throw UsageError("--png needs a file name ending in .png");
-    return o;
 }
 
-}  // namespace
-
-int cmd_fit(const std::vector<std::string>& args) {
-    const Options o = parse(args);
+int run_fit(Options o) {
+    finish(o);
     ssc_model* model = load_model(o.model);
     Handles guard(model);
     ssc_fitter_def def;
@@ -306,6 +281,46 @@ int cmd_fit(const std::vector<std::string>& args) {
         std::printf("wrote %s (input, then the fit; front and side)\n", o.png.c_str());
     }
     return 0;
+}
+
+}  // namespace
+
+Run add_fit(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    CLI::App* c = app.add_subcommand(
+        "fit", "fit the model's shape and pose to landmarks, scans and/or depth images and write the fitted body; exits 1, writing "
+               "nothing, when the fit leaves more than 10 % of a scan unexplained");
+    add_model_argument(*c, o->model);
+    c->add_option("--landmarks", o->landmarks, "landmarks in the CAESAR .lnd format (millimetres unless --units), matched by name; "
+                                               "repeat for more files")
+        ->type_name("FILE.lnd")->allow_extra_args(false)->check(CLI::ExistingFile.description(""));
+    c->add_option("--points", o->points, "a scan: PLY or OBJ points (normals used where given, estimated where missing or zero; "
+                                         "metres unless --units); repeat for more files")
+        ->type_name("FILE.ply|.obj")->allow_extra_args(false)->check(CLI::ExistingFile.description(""));
+    c->add_option("--depth", o->depth, "a depth image: 16-bit PGM in millimetres, its camera in the header (or --intrinsics); "
+                                       "repeat for more cameras")
+        ->type_name("FILE.pgm")->allow_extra_args(false)->check(CLI::ExistingFile.description(""));
+    c->add_option("-o,--output", o->out, "the fitted body: OBJ (normals, UVs), binary PLY or rigged glTF; with --frames, frame N "
+                                         "goes to OUT_frameN.EXT")
+        ->required()->type_name("OUT.obj|.ply|.glb");
+    c->add_option("--units", o->units, "units of every point and landmark file (default: metres for scans, millimetres for .lnd); "
+                                       "inputs that would not span 5 cm to 3 m are refused")
+        ->check(CLI::IsMember({"m", "cm", "mm"}).description(""))->type_name("m|cm|mm");
+    c->add_option("--intrinsics", o->intrinsics_text, "the depth camera's focal lengths and centre in pixels, for files that do "
+                                                      "not give them")
+        ->type_name("FX,FY,CX,CY");
+    c->add_flag("--frames", o->frames, "each file is a frame of its own (the person moved between them); one shared shape, a pose "
+                                       "per frame");
+    c->add_flag("--scale", o->scale, "also fit a uniform scale (written as .obj or .ply only: a body has no scale)");
+    c->add_flag("--hands", o->hands, "use the hand landmarks too (left out by default: scanned hands are rarely posed like the "
+                                     "model's)");
+    c->add_option("--components", o->components, "shape components fitted (default: all)")->type_name("K");
+    c->add_option("--iterations", o->iterations, "iteration limit of the solver")->check(CLI::Range(1u, 100000u))->type_name("N");
+    c->add_option("--png", o->png, "draw the input and the fit, front and side")->type_name("OUT.png")->check(extension(".png"));
+    c->add_option("--params", o->params, "write the shape, per-joint rotations, translation, scale and the report as JSON "
+                                         "(sscape synth --params reads it back)")
+        ->type_name("OUT.json");
+    return [o] { return run_fit(*o); };
 }
 
 }  // namespace ssc::cli

@@ -9,15 +9,9 @@
 
 namespace ssc::cli {
 
-int cmd_info(const std::vector<std::string>& args) {
-    std::string path;
-    bool json = false;
-    for (const std::string& a : args) {
-        if (a == "--json") json = true;
-        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' (info takes MODEL and --json)");
-        else if (path.empty()) path = a;
-        else throw UsageError("info takes at most one MODEL");
-    }
+namespace {
+
+int run_info(const std::string& path, bool json) {
     ssc_model* model = load_model(path);
     Handles guard(model);
     long long size = -1;
@@ -119,6 +113,20 @@ int cmd_info(const std::vector<std::string>& args) {
     for (uint32_t k = 0; k < K; ++k) std::printf("%s%.4g", k % 10 == 0 ? "\n  " : " ", sd[k]);
     std::printf("\n");
     return 0;
+}
+
+}  // namespace
+
+Run add_info(CLI::App& app) {
+    struct Options {
+        std::string model;
+        bool json = false;
+    };
+    auto o = std::make_shared<Options>();
+    CLI::App* c = app.add_subcommand("info", "what a model holds: counts, metadata, joint names, landmarks, sliders, component spreads");
+    add_model_argument(*c, o->model);
+    c->add_flag("--json", o->json, "print one JSON object (for scripts) instead of the text");
+    return [o] { return run_info(o->model, o->json); };
 }
 
 }  // namespace ssc::cli

@@ -7,26 +7,9 @@
 
 namespace ssc::cli {
 
-int cmd_make_test_model(const std::vector<std::string>& args) {
-    testing::SyntheticSpec spec;
-    std::string out;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> const std::string& { return option_value(args, i); };
-        if (a == "-o" || a == "--output") out = value();
-        else if (a == "--vertices") spec.vertex_count = parse_count(value(), a);
-        else if (a == "--components") spec.components = parse_count(value(), a);
-        else if (a == "--seed") spec.seed = parse_count(value(), a);
-        else if (a == "--skeleton") {
-            const std::string s = value();
-            if (s == "humanoid") spec.skeleton = testing::SyntheticSkeleton::Humanoid53;
-            else if (s == "mini") spec.skeleton = testing::SyntheticSkeleton::Mini6;
-            else throw UsageError("--skeleton must be humanoid or mini");
-        } else throw UsageError("unknown option '" + a + "'");
-    }
-    if (out.empty()) throw UsageError("make-test-model needs -o OUT.sscape");
-    if (spec.components < 1 || spec.components > 1000) throw UsageError("--components must be 1..1000");
-    if (spec.vertex_count > 2000000) throw UsageError("--vertices is limited to 2,000,000");
+namespace {
+
+int run_make_test_model(const testing::SyntheticSpec& spec, const std::string& out) {
     const testing::SyntheticModel m = testing::build_synthetic_model(spec);
     const std::vector<unsigned char> bytes = format::write_model(m.data);
     format::write_file(out, bytes);
@@ -35,6 +18,27 @@ int cmd_make_test_model(const std::vector<std::string>& args) {
     std::printf("basis quantization: worst vertex error %.4f mm with every component at +-3 SD (step %.3g um)\n",
                 m.quantization.max_error * 1e3, m.quantization.base_step * 1e6);
     return 0;
+}
+
+}  // namespace
+
+Run add_make_test_model(CLI::App& app) {
+    struct Options {
+        testing::SyntheticSpec spec;
+        std::string out;
+    };
+    auto o = std::make_shared<Options>();
+    CLI::App* c = app.add_subcommand("make-test-model", "write a procedural test model (a smooth body-like mesh; for tests and benchmarks)");
+    c->add_option("-o,--output", o->out, "the model file to write")->required()->type_name("OUT.sscape");
+    c->add_option("--vertices", o->spec.vertex_count, "vertices of the mesh")->check(CLI::Range(16u, 2000000u))->capture_default_str();
+    c->add_option("--components", o->spec.components, "shape components")->check(CLI::Range(1u, 1000u))->capture_default_str();
+    c->add_option("--skeleton", o->spec.skeleton, "humanoid: the default model's 53 joints; mini: 6 joints")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, testing::SyntheticSkeleton>{
+            {"humanoid", testing::SyntheticSkeleton::Humanoid53}, {"mini", testing::SyntheticSkeleton::Mini6}}).description(""))
+        ->type_name("humanoid|mini")
+        ->default_str("humanoid");
+    c->add_option("--seed", o->spec.seed, "random seed")->capture_default_str();
+    return [o] { return run_make_test_model(o->spec, o->out); };
 }
 
 }  // namespace ssc::cli

@@ -1,6 +1,7 @@
 // sscape measure: the body measurements of one shape or of random shapes, as a table, CSV (SI
 // units) and a picture of where they are taken.
 #include "cli.hpp"
+#include "progress.hpp"
 
 #include "capi/handles.hpp"
 #include "common/files.hpp"
@@ -19,33 +20,11 @@ namespace {
 
 struct Options {
     std::string model, csv, png;
+    std::string shape_text;
     std::vector<float> shape;
     uint32_t random = 0, seed = 1;
     bool definitions = false, json = false;
 };
-
-Options parse(const std::vector<std::string>& args) {
-    Options o;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> const std::string& { return option_value(args, i); };
-        if (a == "--shape") o.shape = parse_floats(value(), a);
-        else if (a == "--random") o.random = parse_count(value(), a);
-        else if (a == "--seed") o.seed = parse_count(value(), a);
-        else if (a == "--csv") o.csv = value();
-        else if (a == "--png") o.png = value();
-        else if (a == "--definitions") o.definitions = true;
-        else if (a == "--json") o.json = true;
-        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else if (o.model.empty()) o.model = a;
-        else throw UsageError("unexpected argument '" + a + "'");
-    }
-    if (o.random && !o.shape.empty()) throw UsageError("--random and --shape exclude each other");
-    if (o.random > 10000) throw UsageError("--random is limited to 10000 bodies");
-    if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
-        throw UsageError("--png needs a file name ending in .png");
-    return o;
-}
 
 // Display units: centimetres, square metres, litres, kilograms.
 struct Shown {
@@ -70,10 +49,8 @@ const char* si_unit(ssc_unit u) {
     }
 }
 
-}  // namespace
-
-int cmd_measure(const std::vector<std::string>& args) {
-    const Options o = parse(args);
+int run_measure(Options o) {
+    if (!o.shape_text.empty()) o.shape = parse_floats(o.shape_text, "--shape");
     ssc_model* model = load_model(o.model);
     Handles guard(model);
     const uint32_t K = ssc_model_shape_count(model), M = ssc_measurement_count();
@@ -104,7 +81,12 @@ int cmd_measure(const std::vector<std::string>& args) {
         std::printf("\n");
     }
     std::vector<float> values(M);
+    Progress progress("measure");
     for (uint32_t i = 0; i < n; ++i) {
+        if (!progress.update("body " + std::to_string(i + 1) + " of " + std::to_string(n))) {
+            std::fprintf(stderr, "sscape measure: cancelled (Ctrl-C); no file written\n");
+            return 130;
+        }
         std::vector<float> shape = o.shape;
         if (o.random) {
             shape.resize(K);  // standard normal, truncated at 2.5 SD as sscape synth --random
@@ -115,6 +97,7 @@ int cmd_measure(const std::vector<std::string>& args) {
         csv << i;
         for (uint32_t m = 0; m < M; ++m) csv << "," << values[m];
         csv << "\n";
+        progress.clear();  // the row goes where the progress line was
         if (o.json) {
             nlohmann::ordered_json values_by_name = nlohmann::ordered_json::object();
             for (uint32_t m = 0; m < M; ++m) values_by_name[names[m]] = values[m];
@@ -149,6 +132,25 @@ int cmd_measure(const std::vector<std::string>& args) {
         write_file_atomically(o.csv, text.data(), text.size());
     }
     return 0;
+}
+
+}  // namespace
+
+Run add_measure(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    CLI::App* c = app.add_subcommand("measure", "body measurements (stature, girths, lengths, surface area, volume, mass) of one shape "
+                                                "or of random shapes, as a table, CSV or JSON, and a picture of where they are taken");
+    add_model_argument(*c, o->model);
+    CLI::Option* shape = c->add_option("--shape", o->shape_text, "shape coefficients in standard deviations; those left out are 0 (the mean body)")
+                             ->type_name("C1,C2,...");
+    c->add_option("--random", o->random, "measure N random shapes (coefficients standard normal, truncated at 2.5 SD)")
+        ->check(CLI::Range(1u, 10000u))->type_name("N")->excludes(shape);
+    c->add_option("--seed", o->seed, "random seed for --random")->capture_default_str();
+    c->add_option("--csv", o->csv, "write one row per body in SI units (m, m2, m3, kg)")->type_name("OUT.csv");
+    c->add_option("--png", o->png, "draw where each measurement is taken on the first body")->type_name("OUT.png")->check(extension(".png"));
+    c->add_flag("--definitions", o->definitions, "print each measurement's definition (ISO 8559-1 / ISO 7250-1 where they define it)");
+    c->add_flag("--json", o->json, "print one JSON object in SI units, with the definitions, instead of the table");
+    return [o] { return run_measure(*o); };
 }
 
 }  // namespace ssc::cli

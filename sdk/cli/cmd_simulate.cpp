@@ -14,42 +14,26 @@
 
 namespace ssc::cli {
 
-int cmd_simulate(const std::vector<std::string>& args) {
-    std::string model_path, prefix;
+namespace {
+
+struct Options {
+    std::string model_path, prefix, depth;
     uint32_t seed = 1;
     double pose_amount = 1, landmark_noise = 0.01, heading = 0;
     simulation::CloudSpec spec;
     simulation::DepthCameraSpec camera_spec;
+};
+
+int run_simulate(const Options& o) {
+    const std::string& model_path = o.model_path;
+    const std::string& prefix = o.prefix;
+    const uint32_t seed = o.seed;
+    const double pose_amount = o.pose_amount, landmark_noise = o.landmark_noise, heading = o.heading;
+    const simulation::CloudSpec& spec = o.spec;
+    const simulation::DepthCameraSpec& camera_spec = o.camera_spec;
     std::vector<std::string> views;  // "front", "back"
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto number = [&]() {
-            const auto v = parse_floats(option_value(args, i), a);
-            if (v.size() != 1 || v[0] < 0) throw UsageError(a + " needs one non-negative number");
-            return double(v[0]);
-        };
-        if (a == "-o" || a == "--output") prefix = option_value(args, i);
-        else if (a == "--seed") seed = parse_count(option_value(args, i), a);
-        else if (a == "--points") spec.points = parse_count(option_value(args, i), a);
-        else if (a == "--noise") spec.noise = number();
-        else if (a == "--missing") spec.missing = number();
-        else if (a == "--outliers") spec.outliers = number();
-        else if (a == "--landmark-noise") landmark_noise = number();
-        else if (a == "--pose-amount") pose_amount = number();
-        else if (a == "--heading") heading = number();
-        else if (a == "--depth") {
-            const std::string& v = option_value(args, i);
-            if (v == "front" || v == "back") views = {v};
-            else if (v == "front,back" || v == "both") views = {"front", "back"};
-            else throw UsageError("--depth takes front, back or front,back");
-        } else if (a == "--depth-noise") camera_spec.noise = number();
-        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else if (model_path.empty()) model_path = a;
-        else throw UsageError("unexpected argument '" + a + "'");
-    }
-    if (prefix.empty()) throw UsageError("simulate needs -o PREFIX");
-    if (spec.missing >= 1 || spec.outliers >= 1) throw UsageError("--missing and --outliers are fractions below 1");
-    if (spec.points < 16 || spec.points > 10000000) throw UsageError("--points must be 16..10000000");
+    if (o.depth == "front" || o.depth == "back") views = {o.depth};
+    else if (!o.depth.empty()) views = {"front", "back"};
     ssc_model* model = load_model(model_path);
     const Handles guard(model);
     const Model& m = model->model;
@@ -108,6 +92,33 @@ int cmd_simulate(const std::vector<std::string>& args) {
                 prefix.c_str(), cloud.points.size(), spec.noise * 1e3, spec.missing * 100, spec.outliers * 100, prefix.c_str(), lnd.size(),
                 landmark_noise * 1e3, prefix.c_str(), depth_note.c_str());
     return 0;
+}
+
+}  // namespace
+
+Run add_simulate(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    CLI::App* c = app.add_subcommand("simulate", "a random posed body of the model measured as a scanner would: PREFIX_scan.ply (noise, "
+                                                 "holes, outliers), PREFIX.lnd (CAESAR landmarks in mm), optional depth images "
+                                                 "PREFIX_front.pgm / PREFIX_back.pgm, and the truth PREFIX_truth.obj");
+    add_model_argument(*c, o->model_path);
+    c->add_option("-o,--output", o->prefix, "where the files go: PREFIX_scan.ply, PREFIX.lnd, ...")->required()->type_name("PREFIX");
+    c->add_option("--seed", o->seed, "random seed (shape, pose, noise)")->capture_default_str();
+    c->add_option("--points", o->spec.points, "points in the scan")->check(CLI::Range(16u, 10000000u))->capture_default_str();
+    c->add_option("--noise", o->spec.noise, "scan noise, metres (standard deviation)")->check(finite_in(0, 0.1))->capture_default_str();
+    c->add_option("--missing", o->spec.missing, "fraction of the surface left out, as 20 round holes")
+        ->check(finite_in(0, 0.95))->capture_default_str();
+    c->add_option("--outliers", o->spec.outliers, "fraction of points replaced by clutter around the body")
+        ->check(finite_in(0, 0.95))->capture_default_str();
+    c->add_option("--landmark-noise", o->landmark_noise, "landmark placement noise, metres")->check(finite_in(0, 0.1))->capture_default_str();
+    c->add_option("--pose-amount", o->pose_amount, "how far the random pose goes: 0 rest, 1 the usual range, up to 3")
+        ->check(finite_in(0, 3))->capture_default_str();
+    c->add_option("--heading", o->heading, "turn the body about the vertical, degrees")->check(finite_in(-360, 360))->capture_default_str();
+    c->add_option("--depth", o->depth, "also render depth images from a camera in front, behind, or both")
+        ->check(CLI::IsMember({"front", "back", "front,back", "both"}).description(""))->type_name("front|back|front,back");
+    c->add_option("--depth-noise", o->camera_spec.noise, "depth noise, metres (standard deviation)")
+        ->check(finite_in(0, 0.1))->capture_default_str();
+    return [o] { return run_simulate(*o); };
 }
 
 }  // namespace ssc::cli

@@ -1,4 +1,5 @@
 #include "cli.hpp"
+#include "progress.hpp"
 
 #include "common/files.hpp"
 #include "export/body_export.hpp"
@@ -18,6 +19,7 @@ namespace {
 
 struct Options {
     std::string model, out;
+    std::string shape_text, translation_text, sliders_text, measure_text, sex_text;  // as given; parsed by finish()
     std::vector<float> shape, translation;
     std::string pose, png, landmarks_png, limits, params;
     std::vector<std::pair<std::string, float>> sliders, measurements;  // NAME=VALUE lists
@@ -44,54 +46,16 @@ std::vector<std::pair<std::string, float>> parse_named(const std::string& text, 
 }
 
 
-Options parse(const std::vector<std::string>& args) {
-    Options o;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> const std::string& { return option_value(args, i); };
-        if (a == "-o" || a == "--output") o.out = value();
-        else if (a == "--shape") o.shape = parse_floats(value(), a);
-        else if (a == "--pose") o.pose = value();
-        else if (a == "--translation") o.translation = parse_floats(value(), a);
-        else if (a == "--params") o.params = value();
-        else if (a == "--random") o.random = parse_count(value(), a);
-        else if (a == "--seed") o.seed = parse_count(value(), a);
-        else if (a == "--normals") o.normals = true;  // normals are always written now; kept for scripts
-        else if (a == "--png") o.png = value();
-        else if (a == "--landmarks-png") o.landmarks_png = value();
-        else if (a == "--sliders") o.sliders = parse_named(value(), a);
-        else if (a == "--measure") o.measurements = parse_named(value(), a);
-        else if (a == "--sex") {
-            const std::string& v = value();
-            if (v != "male" && v != "female") throw UsageError("--sex takes male or female");
-            o.sex = v == "male" ? 1.f : 0.f;
-        } else if (a == "--age") {
-            const std::vector<float> v = parse_floats(value(), a);
-            if (v.size() != 1) throw UsageError("--age takes one number (years)");
-            o.age = v[0];
-        } else if (a == "--limits") {
-            o.limits = value();
-            if (o.limits != "clamp" && o.limits != "reject") throw UsageError("--limits takes clamp or reject");
-        } else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else if (o.model.empty()) o.model = a;
-        else throw UsageError("unexpected argument '" + a + "'");
-    }
-    if (o.out.empty()) throw UsageError("synth needs -o OUT.obj, OUT.ply or OUT.glb");
-    if (!o.params.empty() && (!o.shape.empty() || !o.pose.empty() || !o.translation.empty() || o.random || !o.sliders.empty() ||
-                              !o.measurements.empty()))
-        throw UsageError("--params gives the shape, pose and translation: it excludes --shape, --pose, --translation, --random, "
-                         "--sliders and --measure");
+// What CLI11 cannot check: the number lists and the combinations.
+void finish(Options& o) {
+    if (!o.shape_text.empty()) o.shape = parse_floats(o.shape_text, "--shape");
+    if (!o.translation_text.empty()) o.translation = parse_floats(o.translation_text, "--translation");
+    if (!o.sliders_text.empty()) o.sliders = parse_named(o.sliders_text, "--sliders");
+    if (!o.measure_text.empty()) o.measurements = parse_named(o.measure_text, "--measure");
+    if (!o.sex_text.empty()) o.sex = o.sex_text == "male" ? 1.f : 0.f;
     if (!o.translation.empty() && o.translation.size() != 3) throw UsageError("--translation needs 3 numbers");
-    if (o.random && !o.shape.empty()) throw UsageError("--random and --shape exclude each other");
-    if (o.random > 10000) throw UsageError("--random is limited to 10000 bodies");
-    if (o.random && (!o.sliders.empty() || !o.measurements.empty())) throw UsageError("--random excludes --sliders and --measure");
     if ((!std::isnan(o.sex) || !std::isnan(o.age)) && o.measurements.empty()) throw UsageError("--sex and --age go with --measure");
     exporters::format_of(o.out);  // refuses other extensions, naming the formats
-    if (!o.png.empty() && (o.png.size() < 4 || o.png.substr(o.png.size() - 4) != ".png"))
-        throw UsageError("--png needs a file name ending in .png");
-    if (!o.landmarks_png.empty() && (o.landmarks_png.size() < 4 || o.landmarks_png.substr(o.landmarks_png.size() - 4) != ".png"))
-        throw UsageError("--landmarks-png needs a file name ending in .png");
-    return o;
 }
 
 // "--pose sitting", "--pose upperarm_l=0,0,-0.5;lowerarm_l=0.3,0,0" or both ("t_pose;head=0.3,0,0"):
@@ -262,10 +226,8 @@ FitParams read_params(ssc_model* model, const std::string& path) {
     return p;
 }
 
-}  // namespace
-
-int cmd_synth(const std::vector<std::string>& args) {
-    const Options o = parse(args);
+int run_synth(Options o) {
+    finish(o);
     ssc_model* model = load_model(o.model);
     Handles guard(model);
 
@@ -294,7 +256,12 @@ int cmd_synth(const std::vector<std::string>& args) {
     std::vector<float> verts(3ull * V);
     std::vector<std::vector<float>> rendered;
     std::printf("%-28s %9s %9s %9s   first shape coefficients\n", "file", "height_m", "width_m", "depth_m");
+    Progress progress("synth");
     for (uint32_t i = 0; i < n; ++i) {
+        if (!progress.update("body " + std::to_string(i + 1) + " of " + std::to_string(n))) {
+            std::fprintf(stderr, "sscape synth: cancelled (Ctrl-C) after %u of %u bodies\n", i, n);
+            return 130;
+        }
         std::vector<float> shape = o.params.empty() ? o.shape : fitted.shape;
         if (o.random) {
             // Standard normal coefficients, truncated at 2.5 SD so no body is implausibly extreme.
@@ -327,6 +294,7 @@ int cmd_synth(const std::vector<std::string>& args) {
                 lo[a] = std::min(lo[a], verts[3 * v + a]);
                 hi[a] = std::max(hi[a], verts[3 * v + a]);
             }
+        progress.clear();  // the row goes where the progress line was
         std::printf("%-28s %9.3f %9.3f %9.3f  ", path.c_str(), hi[1] - lo[1], hi[0] - lo[0], hi[2] - lo[2]);
         for (std::size_t k = 0; k < std::min<std::size_t>(3, shape.size()); ++k) std::printf(" %+.2f", shape[k]);
         std::printf("\n");
@@ -338,6 +306,50 @@ int cmd_synth(const std::vector<std::string>& args) {
                     o.png.c_str());
     }
     return 0;
+}
+
+}  // namespace
+
+Run add_synth(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    CLI::App* c = app.add_subcommand("synth", "write bodies of the model: a given shape and pose, random shapes, bodies by semantic "
+                                              "sliders or made to measure, or a fit read back from its parameters");
+    add_model_argument(*c, o->model);
+    c->add_option("-o,--output", o->out, "the body to write: OBJ (normals, UVs), binary PLY or rigged glTF; with --random N, "
+                                         "OUT_000.obj, OUT_001.obj, ...")
+        ->required()->type_name("OUT.obj|.ply|.glb");
+    CLI::Option* shape = c->add_option("--shape", o->shape_text, "shape coefficients in standard deviations; those left out are 0 "
+                                                                 "(the mean body)")->type_name("C1,C2,...");
+    CLI::Option* pose = c->add_option("--pose", o->pose,
+                  "a named pose (a_pose = rest, t_pose, sitting, arms_raised, crouching, kneeling, bending_forward, "
+                  "bent_over_arms_raised, lunge, arms_behind_back), then joint rotations as axis * angle in radians, "
+                  "separated by ';': \"sitting;head=0.3,0,0\" (sscape info lists the joints)")
+        ->type_name("POSE");
+    CLI::Option* translation = c->add_option("--translation", o->translation_text, "where the root goes, in metres")->type_name("X,Y,Z");
+    CLI::Option* random = c->add_option("--random", o->random, "write N random shapes (coefficients standard normal, truncated at 2.5 SD)")
+                              ->check(CLI::Range(1u, 10000u))->type_name("N");
+    c->add_option("--seed", o->seed, "random seed for --random")->capture_default_str();
+    CLI::Option* sliders = c->add_option("--sliders", o->sliders_text, "set semantic sliders (SI units; sscape info lists them with their "
+                                                                       "population ranges): stature=1.85,mass=80")
+                               ->type_name("NAME=VALUE,...");
+    CLI::Option* measure = c->add_option("--measure", o->measure_text,
+                                         "make the body to measure (SI units; sscape measure --definitions lists the measurements): "
+                                         "stature=1.7,waist_girth=0.8")
+                               ->type_name("NAME=VALUE,...");
+    c->add_option("--sex", o->sex_text, "with --measure: the sex the body is made for")
+        ->check(CLI::IsMember({"female", "male"}).description(""))->type_name("female|male");
+    c->add_option("--age", o->age, "with --measure: the age the body is made for, in years")->check(finite_in(0, 120))->type_name("YEARS");
+    c->add_option("--limits", o->limits, "joint rotations beyond the model's anatomical limits: clamp them, or reject the pose "
+                                         "(default: neither)")
+        ->check(CLI::IsMember({"clamp", "reject"}).description(""))->type_name("clamp|reject");
+    c->add_option("--params", o->params, "the shape, pose and translation of a fit, as sscape fit --params wrote them")
+        ->type_name("FIT.json")->excludes(shape)->excludes(pose)->excludes(translation)->excludes(random)->excludes(sliders)->excludes(measure);
+    c->add_option("--png", o->png, "draw front and side views of the bodies (up to 20)")->type_name("OUT.png")->check(extension(".png"));
+    c->add_option("--landmarks-png", o->landmarks_png, "draw the first body's landmarks: front, back, side, head and trunk close up")
+        ->type_name("OUT.png")->check(extension(".png"));
+    c->add_flag("--normals", o->normals, "kept for old scripts: normals are always written");
+    random->excludes(shape)->excludes(sliders)->excludes(measure);
+    return [o] { return run_synth(*o); };
 }
 
 }  // namespace ssc::cli

@@ -1,5 +1,7 @@
 #include "cli.hpp"
+#include "progress.hpp"
 
+#include "common/error.hpp"
 #include "sscape_format/model_io.hpp"
 #include "training/train.hpp"
 
@@ -10,39 +12,33 @@
 
 namespace ssc::cli {
 
-int cmd_train(const std::vector<std::string>& args) {
-    training::TrainSpec spec;
-    std::string out;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> const std::string& { return option_value(args, i); };
-        if (a == "-o" || a == "--output") out = value();
-        else if (a == "--assets") spec.assets_root = value();
-        else if (a == "--bodies") spec.population.count = parse_count(value(), a);
-        else if (a == "--components") spec.components = parse_count(value(), a);
-        else if (a == "--seed") spec.population.seed = parse_count(value(), a);
-        else if (a == "--heldout") spec.heldout = parse_count(value(), a);
-        else if (a == "--population-csv") spec.population_csv = value();
-        else if (a == "--procrustes") spec.procrustes = true;
-        else if (a == "--report") spec.report_prefix = value();
-        else if (a == "--regressor-support") spec.regressor_support = parse_count(value(), a);
-        else if (a == "--made-to-measure") spec.made_to_measure_bodies = parse_count(value(), a);
-        else throw UsageError("unknown option '" + a + "'");
-    }
-    if (out.empty()) throw UsageError("train needs -o OUT.sscape");
-    if (spec.assets_root.empty()) throw UsageError("train needs --assets PATH (the shared/makehuman folder)");
-    if (spec.components < 1 || spec.components > 500) throw UsageError("--components must be 1..500");
-    if (spec.population.count > 20000) throw UsageError("--bodies is limited to 20000");
+namespace {
+
+int run_train(const training::TrainSpec& spec, const std::string& out) {
     if (spec.population.count <= spec.heldout + spec.components)
         throw UsageError("--bodies must exceed --heldout plus --components");
-
     const auto t0 = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     training::TrainReport report;
-    const format::ModelData model = training::train_model(spec, report, [&](const std::string& s) {
-        std::printf("[%7.1f s] %s\n", elapsed(), s.c_str());
-        std::fflush(stdout);
-    });
+    Progress progress("train");  // on a terminal: how far the long stages are; Ctrl-C cancels
+    std::string stage;
+    const training::Progress log = [&](const std::string& now, uint32_t done, uint32_t total) {
+        if (now != stage) {
+            stage = now;
+            progress.clear();
+            std::printf("[%7.1f s] %s\n", elapsed(), now.c_str());
+            std::fflush(stdout);
+        }
+        return progress.update(total ? now + ": " + std::to_string(done) + " of " + std::to_string(total) : now);
+    };
+    format::ModelData model;
+    try {
+        model = training::train_model(spec, report, log);
+    } catch (const Error& e) {
+        if (e.status() != SSC_ERROR_CANCELLED) throw;
+        std::fprintf(stderr, "sscape train: cancelled (Ctrl-C); nothing written\n");
+        return 130;
+    }
     const std::vector<unsigned char> bytes = format::write_model(model);
     format::write_file(out, bytes);
 
@@ -114,6 +110,38 @@ int cmd_train(const std::vector<std::string>& args) {
                 "    tissue for women, so the women's figure is below a bust-point girth. No national survey table of chest\n"
                 "    girth was reachable when this report was written.\n");
     return 0;
+}
+
+}  // namespace
+
+Run add_train(CLI::App& app) {
+    struct Options {
+        training::TrainSpec spec;
+        std::string out;
+    };
+    auto o = std::make_shared<Options>();
+    training::TrainSpec& s = o->spec;
+    CLI::App* c = app.add_subcommand("train", "train a model from the CC0 MakeHuman assets: a sampled population of bodies, their PCA "
+                                              "shape space, skeleton regressor, landmarks, sliders and a quality report");
+    c->add_option("--assets", s.assets_root, "the MakeHuman asset folder (shared/makehuman)")->required()->type_name("DIR")
+        ->check(CLI::ExistingDirectory.description(""));
+    c->add_option("-o,--output", o->out, "the model file to write")->required()->type_name("OUT.sscape");
+    c->add_option("--bodies", s.population.count, "bodies sampled from the MakeHuman modifiers")
+        ->check(CLI::Range(2u, 20000u))->capture_default_str();
+    c->add_option("--components", s.components, "shape components kept")->check(CLI::Range(1u, 500u))->capture_default_str();
+    c->add_option("--seed", s.population.seed, "random seed of the population")->capture_default_str();
+    c->add_option("--heldout", s.heldout, "bodies kept out of the joint regressor, to measure its error")->capture_default_str();
+    c->add_option("--regressor-support", s.regressor_support, "body vertices per joint in the joint regressor (about)")
+        ->check(CLI::Range(4u, 100000u))->capture_default_str();
+    c->add_option("--made-to-measure", s.made_to_measure_bodies, "held-out bodies the made-to-measure accuracy is measured on")
+        ->capture_default_str();
+    c->add_option("--population-csv", s.population_csv, "write the sampled modifier values here")->type_name("FILE.csv");
+    c->add_option("--report", s.report_prefix,
+                  "write the quality report (compactness, generalization, specificity: CSV and plots; landmark pictures) to "
+                  "files starting with PREFIX (an existing folder ending in / or a name prefix)")
+        ->type_name("PREFIX");
+    c->add_flag("--procrustes", s.procrustes, "rigidly align the bodies (generalized Procrustes) before PCA; MakeHuman's share one frame");
+    return [o] { return run_train(o->spec, o->out); };
 }
 
 }  // namespace ssc::cli

@@ -22,7 +22,12 @@ Progress::Progress(std::string label)
 
 Progress::~Progress() {
     std::signal(SIGINT, previous_ == SIG_ERR ? SIG_DFL : previous_);
+    clear();
+}
+
+void Progress::clear() {
     if (shown_) std::fprintf(stderr, "\r\033[K");
+    shown_ = false;
 }
 
 bool Progress::interrupted() { return g_interrupted != 0; }
@@ -30,7 +35,7 @@ bool Progress::interrupted() { return g_interrupted != 0; }
 bool Progress::update(const std::string& text) {
     const auto now = std::chrono::steady_clock::now();
     const double elapsed = std::chrono::duration<double>(now - start_).count();
-    if (terminal_ && elapsed >= 1.0 && std::chrono::duration<double>(now - last_).count() >= 0.2) {
+    if (terminal_ && elapsed >= 1.0 && (!shown_ || std::chrono::duration<double>(now - last_).count() >= 0.2)) {
         std::fprintf(stderr, "\r\033[K%s: %s (%.0f s; Ctrl-C cancels)", label_.c_str(), text.c_str(), elapsed);
         std::fflush(stderr);
         last_ = now;

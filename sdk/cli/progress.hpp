@@ -22,6 +22,8 @@ public:
     // Shows "label: text (N s)"; returns false once Ctrl-C was pressed.
     bool update(const std::string& text);
     static bool interrupted();
+    // Clears the line, so that a line of output can be printed; the next update() draws it again.
+    void clear();
 
 private:
     std::string label_;

@@ -33,7 +33,10 @@ std::string part_of(const std::string& bone) {
 }  // namespace
 
 format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const Progress& progress) {
-    auto say = [&](const std::string& s) { if (progress) progress(s); };
+    auto tick = [&](const std::string& stage, uint32_t done, uint32_t total) {
+        if (progress && !progress(stage, done, total)) fail(SSC_ERROR_CANCELLED, "training cancelled");
+    };
+    auto say = [&](const std::string& stage) { tick(stage, 0, 0); };
     SSC_REQUIRE_ARG(spec.components >= 1, "components must be at least 1");
     SSC_REQUIRE_ARG(spec.population.count > spec.heldout + spec.components, "population too small for the components and held-out bodies");
     say("loading assets from " + spec.assets_root);
@@ -51,6 +54,7 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     report.male.clear();
     say("generating bodies");
     for (uint32_t i = 0; i < N; ++i) {
+        tick("generating bodies", i, N);
         mh::generate_body(a, people[i].macro, people[i].modifiers, xyz);
         // Stand every body on the ground (y = 0) centred over the origin in x and z, so the
         // model keeps the feet on the floor instead of learning where the asset put them.

@@ -46,7 +46,9 @@ struct TrainReport {
     MadeToMeasureAccuracy made_to_measure;      // on held-out bodies
 };
 
-using Progress = std::function<void(const std::string&)>;
+// Called at the start of each stage (done = total = 0) and, within the long per-body stages, after
+// each body; returning false cancels: train_model throws Error(SSC_ERROR_CANCELLED).
+using Progress = std::function<bool(const std::string& stage, uint32_t done, uint32_t total)>;
 
 format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const Progress& progress = {});
 
