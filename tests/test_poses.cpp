@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -95,4 +96,46 @@ TEST_CASE("the named pose API rejects bad input without writing", "[poses][capi]
     // The A-pose is the rest pose: identity everywhere.
     REQUIRE(ssc_model_get_named_pose(p.model, "a_pose", q.data(), J) == SSC_OK);
     for (uint32_t j = 0; j < J; ++j) CHECK(q[4 * j + 3] == 1.f);
+}
+
+TEST_CASE("closing the hands curls each fingertip towards its palm and leaves the rest of the pose", "[poses][hands]") {
+    Posed p;
+    const uint32_t J = ssc_model_joint_count(p.model);
+    std::vector<float> q(4ull * J), sitting(4ull * J);
+    REQUIRE(ssc_model_get_named_pose(p.model, "sitting", sitting.data(), J) == SSC_OK);
+    auto world = [&](const std::vector<float>& pose, const char* name) {
+        std::vector<float> w(16ull * J);
+        REQUIRE(ssc_body_set_pose(p.body, pose.data(), J, nullptr) == SSC_OK);
+        REQUIRE(ssc_body_get_joint_transforms(p.body, w.data(), J) == SSC_OK);
+        uint32_t j = 0;
+        REQUIRE(ssc_model_find_joint(p.model, name, &j) == SSC_OK);
+        return Vector3d(w[16 * j + 12], w[16 * j + 13], w[16 * j + 14]);
+    };
+    for (const char* side : {"_l", "_r"}) {
+        INFO(side);
+        const std::string hand = std::string("hand") + side, middle_01 = std::string("middle_01") + side,
+                          middle_03 = std::string("middle_03") + side, thigh = std::string("thigh") + side;
+        q = sitting;
+        const Vector3d wrist = world(q, hand.c_str()), knuckle = world(q, middle_01.c_str()), open_tip = world(q, middle_03.c_str());
+        REQUIRE(ssc_model_close_hands(p.model, 1.0f, 1.0f, q.data(), J) == SSC_OK);
+        const Vector3d closed_tip = world(q, middle_03.c_str());
+        // The middle finger's end joint comes back towards the wrist: about level with the knuckles.
+        CHECK((closed_tip - wrist).norm() < (open_tip - wrist).norm() - 0.02);
+        CHECK((closed_tip - wrist).norm() < (knuckle - wrist).norm() + 0.02);
+        // Only fingers moved: the sitting pose's thigh and the wrist stay.
+        CHECK((world(q, thigh.c_str()) - world(sitting, thigh.c_str())).norm() < 1e-6);
+        CHECK((world(q, hand.c_str()) - wrist).norm() < 1e-6);
+        // Closure 0 is the open hand.
+        REQUIRE(ssc_model_close_hands(p.model, 0.0f, 0.0f, q.data(), J) == SSC_OK);
+        CHECK((world(q, middle_03.c_str()) - open_tip).norm() < 1e-6);
+    }
+    // Bad input: a clear status, the rotations untouched.
+    q = sitting;
+    CHECK(ssc_model_close_hands(p.model, 1.5f, 0.0f, q.data(), J) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(ssc_last_error()).find("[0, 1]") != std::string::npos);
+    CHECK(ssc_model_close_hands(p.model, 0.0f, std::nanf(""), q.data(), J) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_model_close_hands(p.model, 0.5f, 0.5f, q.data(), J - 1) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_model_close_hands(p.model, 0.5f, 0.5f, nullptr, J) != SSC_OK);
+    CHECK(ssc_model_close_hands(nullptr, 0.5f, 0.5f, q.data(), J) != SSC_OK);
+    CHECK(q == sitting);
 }

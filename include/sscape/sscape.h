@@ -491,6 +491,20 @@ SSC_API ssc_status ssc_named_pose_get_info(uint32_t index, const char** out_name
 SSC_API ssc_status ssc_model_get_named_pose(const ssc_model* model, const char* name, float* rotations,
                                             uint32_t joint_capacity);
 
+/**
+ * Closes the hands of a pose: sets the finger joints' rotations (thumb, index, middle, ring,
+ * pinky; 4 floats x y z w per joint, as ssc_body_set_pose takes) to each hand closed by its
+ * closure, 0 the model's open hand, 1 a loose fist; every other joint is left as it is, so it
+ * composes with a named pose. Each finger segment flexes towards the palm about the axis across it.
+ * @param left_closure, right_closure  in [0, 1]; SSC_ERROR_INVALID_ARGUMENT otherwise.
+ * @param rotations       in/out: 4 * joint_count floats.
+ * @param joint_count     ssc_model_joint_count.
+ * A rig without the game-engine hand joints (hand_l, index_01_l, pinky_01_l, ...) is left
+ * unchanged. Threads: any.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_model_close_hands(const ssc_model* model, float left_closure, float right_closure,
+                                                  float* rotations, uint32_t joint_count);
+
 /* ---------------------------------------------------------------------------------------------- */
 /* Joint limits                                                                                    */
 

@@ -1,4 +1,5 @@
 // Named poses and joint limits (anatomy/) through the C API.
+#include "anatomy/hand_closure.hpp"
 #include "anatomy/joint_limits.hpp"
 #include "anatomy/named_poses.hpp"
 #include "guard.hpp"
@@ -34,6 +35,22 @@ ssc_status ssc_model_get_named_pose(const ssc_model* model, const char* name, fl
         check_output(rotations, joint_capacity, model->model.joint_count(), 0, 16);
         const auto q = anatomy::named_pose(model->model, name);
         std::copy(q.begin(), q.end(), rotations);
+    });
+}
+
+ssc_status ssc_model_close_hands(const ssc_model* model, float left_closure, float right_closure, float* rotations, uint32_t joint_count) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        need(rotations, "rotations");
+        const uint32_t J = model->model.joint_count();
+        SSC_REQUIRE_ARG(joint_count == J, "joint_count is " + std::to_string(joint_count) + "; the model has " + std::to_string(J) + " joints");
+        for (const float c : {left_closure, right_closure})
+            SSC_REQUIRE_ARG(c >= 0 && c <= 1, "a hand closure is in [0, 1] (0 open, 1 a fist), not " + std::to_string(c));
+        for (const char side : {'l', 'r'})
+            for (const auto& r : anatomy::hand_closure(model->model, side, side == 'l' ? left_closure : right_closure)) {
+                float* q = rotations + 4 * std::size_t(r.joint);
+                q[0] = float(r.rotation.x()), q[1] = float(r.rotation.y()), q[2] = float(r.rotation.z()), q[3] = float(r.rotation.w());
+            }
     });
 }
 

@@ -26,6 +26,7 @@ struct Options {
     float sex = std::nanf(""), age = std::nanf("");
     uint32_t random = 0, seed = 1;
     bool normals = false;
+    std::vector<float> hands;  // --hands: left and right closure, or one for both
 };
 
 // "name=value,name=value" (SI units).
@@ -238,7 +239,9 @@ int run_synth(Options o) {
     check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
     check(ssc_body_create(model, nullptr, &guard.body), "body");
     const FitParams fitted = o.params.empty() ? FitParams{} : read_params(model, o.params);
-    const std::vector<float> pose = o.params.empty() ? parse_pose(model, o.pose) : fitted.pose;
+    std::vector<float> pose = o.params.empty() ? parse_pose(model, o.pose) : fitted.pose;
+    if (!o.hands.empty())
+        check(ssc_model_close_hands(model, o.hands.front(), o.hands.back(), pose.data(), J), "--hands");
     const float* translation = !o.params.empty() ? fitted.translation.data() : o.translation.empty() ? nullptr : o.translation.data();
     if (o.limits.empty()) {
         check(ssc_body_set_pose(guard.body, pose.data(), J, translation), "pose");
@@ -325,6 +328,8 @@ Run add_synth(CLI::App& app) {
                   "bent_over_arms_raised, lunge, arms_behind_back), then joint rotations as axis * angle in radians, "
                   "separated by ';': \"sitting;head=0.3,0,0\" (sscape info lists the joints)")
         ->type_name("POSE");
+    c->add_option("--hands", o->hands, "close the hands: 0 open (the model's), 1 a loose fist; one value for both hands or LEFT,RIGHT")
+        ->type_name("C|LEFT,RIGHT")->delimiter(',')->expected(1, 2)->check(finite_in(0, 1));
     CLI::Option* translation = c->add_option("--translation", o->translation_text, "where the root goes, in metres")->type_name("X,Y,Z");
     CLI::Option* random = c->add_option("--random", o->random, "write N random shapes (coefficients standard normal, truncated at 2.5 SD)")
                               ->check(CLI::Range(1u, 10000u))->type_name("N");

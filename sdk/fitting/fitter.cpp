@@ -3,6 +3,7 @@
 #include "fitting/fitter.hpp"
 #include "fitting/arrow_system.hpp"
 #include "fitting/explained.hpp"
+#include "fitting/hand_search.hpp"
 #include "fitting/limb_search.hpp"
 #include "fitting/rigid_start.hpp"
 #include "fitting/robust.hpp"
@@ -10,6 +11,7 @@
 
 #include "common/error.hpp"
 #include "common/rigid.hpp"
+#include "anatomy/hand_closure.hpp"
 #include "anatomy/joint_limits.hpp"
 #include "anatomy/named_poses.hpp"
 #include "fitting/nearest.hpp"
@@ -222,6 +224,15 @@ public:
             kin_.emplace_back(lin);
         }
         for (const auto& name : d.skeleton.joint_names) joint_sigma_.push_back(joint_rotation_sigma(name));
+        // The fingers' rotation vectors at closure 1: at closure c the prior's centre is c times
+        // that (each finger segment turns about a fixed axis).
+        closed_fingers_.assign(lin.J, Vector3d::Zero());
+        hand_of_joint_.assign(lin.J, -1);
+        for (int hand = 0; hand < 2; ++hand)
+            for (const auto& r : anatomy::hand_closure(lin.model, hand == 0 ? 'l' : 'r', 1.0)) {
+                closed_fingers_[r.joint] = log_rotation(r.rotation);
+                hand_of_joint_[r.joint] = int8_t(hand);
+            }
         if (o.joint_limits) limits_ = anatomy::joint_limits(lin.model);
         bool any_points = false;
         for (const auto& fd : frames_) any_points |= !fd.points.empty();
@@ -324,6 +335,13 @@ private:
             // The polish has a fixed budget: convergence is the fine stage's.
             const bool stage_converged = run_stage(stages[si], 0xFFFFFFFFu, &progress, iteration, cancelled, first_cost);
             if (si < 3) converged = stage_converged;
+            // After the fine stage, with the wrists in place: how closed each hand is, and when a
+            // hand changed, the fine stage again from there.
+            if (si == 2 && o_.hand_search && !cancelled && search_hands()) {
+                Stage again = stages[2];
+                again.iterations = std::max<uint32_t>(2, again.iterations / 2);
+                converged = run_stage(again, 0xFFFFFFFFu, &progress, iteration, cancelled);
+            }
             // Between the coarse and the fine stage: limbs the coarse stage could not reach, each
             // search settled by a short coarse stage when a limb moved. Limbs are searched one after
             // another, so a limb that gained kResweep of the measure (a raised leg found) changed
@@ -592,6 +610,20 @@ private:
             }
         update_kinematics();
         return gains;
+    }
+
+    // How closed each hand is (hand_search.hpp), for every frame with a cloud.
+    // Returns whether a hand changed.
+    bool search_hands() {
+        bool changed = false;
+        for (uint32_t f = 0; f < F_; ++f)
+            if (!frames_[f].points.empty()) {
+                const double before[2] = {states_[f].hand_closure[0], states_[f].hand_closure[1]};
+                fitting::search_hands(kin_[f], body_, states_[f], cloud_view(frames_[f]), vertex_sample_);
+                changed |= before[0] != states_[f].hand_closure[0] || before[1] != states_[f].hand_closure[1];
+            }
+        update_kinematics();
+        return changed;
     }
 
     // The vertex sample on the mean body at rest, for the rigid start search; built on first use.
@@ -898,12 +930,14 @@ private:
             const double s = std::sqrt(o_.pose_prior) / joint_sigma_[j];
             if (s == 0) continue;
             const Vector3d r = log_rotation(states_[f].pose[j]);
-            cost += 0.5 * s * s * r.squaredNorm();
+            // Centred on the rest pose, the fingers on their hand's closure.
+            const Vector3d centre = hand_of_joint_[j] < 0 ? Vector3d(Vector3d::Zero()) : Vector3d(states_[f].hand_closure[hand_of_joint_[j]] * closed_fingers_[j]);
+            cost += 0.5 * s * s * (r - centre).squaredNorm();
             if (!H) continue;
             const Matrix3d Jr = s * inverse_left_jacobian(r) * kin.local_from_world(j);
             const uint32_t c0 = column(f, kin.rotation_offset(j));
             const Matrix3d JtJ = Jr.transpose() * Jr;
-            const Vector3d Jtr = Jr.transpose() * (s * r);
+            const Vector3d Jtr = Jr.transpose() * (s * (r - centre));
             for (int a = 0; a < 3; ++a) {
                 (*g)[c0 + a] += Jtr[a];
                 for (int b = a; b < 3; ++b) H->add(c0 + a, c0 + b, JtJ(a, b));
@@ -1131,6 +1165,8 @@ private:
     ThreadPool* pool_;
     std::vector<std::size_t> pair_candidates_;
     std::vector<double> joint_sigma_;
+    std::vector<Vector3d> closed_fingers_;  // per joint: a finger's rotation vector at closure 1, else zero
+    std::vector<int8_t> hand_of_joint_;     // per joint: 0 left hand's finger, 1 right, -1 neither
     std::vector<anatomy::JointLimit> limits_;  // empty when the options turn limits off
     NormalEquations normal_;  // data blocks of the H being built
     static constexpr uint32_t kNoSet = 0xFFFFFFFFu;

@@ -24,6 +24,8 @@
 //           joint together, the best refined) that the coarse stage's short-reaching
 //           correspondences cannot find from the rest pose (limb_search.hpp, scored by explained.hpp),
 //           the limbs before one whose move changed much searched again;
+//   hands   after the fine stage, each hand's closure (open .. fist) that explains the scan best
+//           (hand_search.hpp); the fingers' prior is then centred on that closure;
 //   restart a single frame's fit from the automatic start that ends in an implausible pose is
 //           redone from the start search's next candidates (at most two).
 #pragma once
@@ -67,6 +69,7 @@ struct FitOptions {
     uint32_t max_points = 3000;         // scan points used per iteration (a fixed random subset)
     uint32_t seed = 1;                  // for that subset
     bool auto_start = true;             // false: start from the given state instead
+    bool hand_search = true;            // search each hand's closure (open .. fist) in scans (hand_search.hpp)
 };
 
 struct FitReport {

@@ -28,6 +28,9 @@ struct FitState {
     std::vector<Eigen::Quaterniond> pose;     // J local pose rotations (each joint's rest frame)
     Vector3d translation = Vector3d::Zero();  // metres
     double scale = 1;
+    // How closed each hand is (left, right; 0 open, 1 a fist: anatomy/hand_closure.hpp), chosen by
+    // the hand search: the finger rotations' prior is centred on it.
+    double hand_closure[2] = {0, 0};
 };
 
 // A point on the template: up to 3 vertices with barycentric weights (a vertex is one weight of 1).

@@ -5,7 +5,7 @@
 // host's load (time stolen by other guests, reported per row where /proc/stat tells it); the CPU
 // time is the steadier measure of the work, for comparing builds.
 //
-//   sscape_fit_bench [--trials N] [--scenario landmarks|scan|depth|depth2|robust|poses|frames] [--components K]
+//   sscape_fit_bench [--trials N] [--scenario landmarks|scan|hands|depth|depth2|robust|poses|frames] [--components K]
 //                    [--max-points N] [--no-joint-limits] [--threads N] [--frames N]
 // --frames: the frames scenario's frame count (default 100): one person (one shape) scanned in N
 // random poses and headings, fitted with one shared shape; also each frame alone, for comparison.
@@ -16,6 +16,7 @@
 // failed when its mean vertex error exceeds 8 mm.
 // --threads: worker threads lent to the fitter, caller included (default: one per core, as a
 // context's default; 1 = none).
+#include "anatomy/hand_closure.hpp"
 #include "anatomy/named_poses.hpp"
 #include "fitting/fitter.hpp"
 #include "render/fit_picture.hpp"
@@ -128,12 +129,13 @@ int main(int argc, char** argv) {
     bool verbose = std::getenv("SSCAPE_BENCH_VERBOSE") != nullptr;
     uint32_t components = 0xFFFFFFFFu;
     uint32_t max_points = 0;  // 0: the fitter's default
-    bool limits = true;
+    bool limits = true, hand_search = true;
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     int frame_count = 100;
     for (int i = 1; i < argc; ++i) {
         auto value = [&]() { return i + 1 < argc ? argv[++i] : "0"; };
         if (!std::strcmp(argv[i], "--no-joint-limits")) limits = false;
+        else if (!std::strcmp(argv[i], "--no-hand-search")) hand_search = false;
         else if (!std::strcmp(argv[i], "--trials")) trials = std::atoi(value());
         else if (!std::strcmp(argv[i], "--scenario")) only = value();
         else if (!std::strcmp(argv[i], "--components")) components = uint32_t(std::atoi(value()));
@@ -146,6 +148,7 @@ int main(int argc, char** argv) {
         fitting::FitOptions o;
         if (max_points) o.max_points = max_points;
         o.joint_limits = limits;
+        o.hand_search = hand_search;
         return o;
     };
     const Model model(format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH), nullptr);
@@ -213,6 +216,52 @@ int main(int argc, char** argv) {
                             sol.report.unexplained, sol.report.seconds * 1e3);
         }
         print("scan 20k pts, 2 mm noise, 20% holes, 1% outliers", r);
+    }
+    if (only.empty() || only == "hands") {
+        // Scans of people whose hands are anywhere from open to fists (closure uniform in [0, 1]
+        // per hand), fitted without and with the hand search: the same bodies and scans.
+        const auto hand = hand_mask(model);
+        for (const bool search : {false, true}) {
+            Row r;
+            std::mt19937 rng(250);
+            double hands_error = 0;
+            for (int t = 0; t < trials; ++t) {
+                std::vector<float> pose = simulation::random_pose(model, rng);
+                std::uniform_real_distribution<double> closure(0.0, 1.0);
+                for (const char side : {'l', 'r'})
+                    for (const auto& jr : anatomy::hand_closure(model, side, closure(rng))) {
+                        float* q = &pose[4 * std::size_t(jr.joint)];
+                        q[0] = float(jr.rotation.x()), q[1] = float(jr.rotation.y()), q[2] = float(jr.rotation.z()), q[3] = float(jr.rotation.w());
+                    }
+                auto truth = simulation::make_body(model, simulation::random_shape(model, rng), pose, Eigen::Vector3d::Zero());
+                simulation::transform_body(truth, random_heading(rng), Eigen::Vector3d(0.1, 0.2, 1.5));
+                fitting::Frame frame;
+                simulation::CloudSpec spec;
+                frame.clouds.push_back(simulation::simulate_cloud(model, truth, spec, rng));
+                fitting::FitOptions o = options();
+                o.hand_search = search;
+                const double c0 = cpu_seconds();
+                const auto sol = fitting::fit(lin, {frame}, o, nullptr, {}, &pool);
+                r.cpu.push_back(cpu_seconds() - c0);
+                const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
+                r.errors.push_back(simulation::mean_vertex_error(fv, truth.vertices));
+                r.times.push_back(sol.report.seconds);
+                r.converged += sol.report.converged;
+                double eh = 0;
+                std::size_t nh = 0;
+                for (uint32_t v = 0; v < model.vertex_count(); ++v)
+                    if (hand[v]) eh += (fv[v] - truth.vertices[v]).norm(), ++nh;
+                hands_error += eh / double(std::max<std::size_t>(nh, 1));
+                if (!png.empty())
+                    render::write_fit_picture(png + "_hands_" + std::to_string(search) + "_" + std::to_string(t) + ".png", model, sol.frames[0],
+                                              frame.clouds[0].points, fv, truth.vertices);
+                if (verbose)
+                    std::printf("  trial %d: error %.2f mm, hands %.2f mm, closures %.2f %.2f\n", t, r.errors.back() * 1e3, 1e3 * eh / double(nh),
+                                sol.frames[0].hand_closure[0], sol.frames[0].hand_closure[1]);
+            }
+            print(search ? "scan, hands open..fist, hand search" : "scan, hands open..fist, no hand search", r);
+            std::printf("  hands (%s): mean vertex error %.2f mm\n", search ? "searched" : "not searched", 1e3 * hands_error / trials);
+        }
     }
     for (const int views : {1, 2}) {
         // Depth images of a body facing the camera (within 25 degrees): one from the front, or one

@@ -1,0 +1,26 @@
+// The fitter's search over how closed each hand is, after the limb search.
+//
+// Why: scanned people hold their hands relaxed or in fists, the model's are spread open, and the
+// fingers' tight prior (fitter.cpp) keeps a fit's fingers near wherever they start: the hands were
+// the largest residual of good fits. After the fine stage (the wrists in place), each hand tries
+// closures 0, 0.25, .. 1 (anatomy/hand_closure.hpp), then halfway to the best one's neighbours,
+// scored with the explained measure of the hand alone (LimbScore of the hand joint), keeping the
+// current fingers on a tie; when a hand changed, the fine stage runs again, the fingers' prior
+// centred on the closure.
+#pragma once
+
+#include "fitting/explained.hpp"
+#include "fitting/kinematics.hpp"
+#include "synthesis/body.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace ssc::fitting {
+
+// Searches both hands of one frame and sets the chosen closures' finger rotations and
+// state.hand_closure. kin and body: scratch for the frame's model (their state is overwritten).
+// Rigs without the hand joints are left as they are.
+void search_hands(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample);
+
+}  // namespace ssc::fitting
