@@ -5,7 +5,7 @@
 // the largest residual of good fits. After the fine stage (the wrists in place), each hand tries
 // closures 0, 0.25, .. 1 (anatomy/hand_closure.hpp), then halfway to the best one's neighbours,
 // scored with the explained measure of the hand alone (LimbScore of the hand joint), keeping the
-// current fingers on a tie; when a hand changed, the fine stage runs again, the fingers' prior
+// current fingers unless a closure gains a little (kMinGain in hand_search.cpp); when a hand changed, the fine stage runs again, the fingers' prior
 // centred on the closure.
 #pragma once
 
