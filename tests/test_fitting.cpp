@@ -685,6 +685,45 @@ TEST_CASE("the C API fits landmarks by name and reports through ssc_fitter", "[f
     ssc_model_release(model);
 }
 
+TEST_CASE("a fitter's point residuals measure each scan point's distance to the fitted surface", "[fitting][capi]") {
+    const Model& m = default_model().model();
+    std::mt19937 rng(17);
+    auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, 0.3), Eigen::Vector3d::Zero());
+    simulation::CloudSpec spec;
+    spec.points = 6000;
+    spec.outliers = 0;
+    spec.noise = 0.002;
+    auto cloud = simulation::simulate_cloud(m, truth, spec, rng);
+    // Two points off the body by a known distance: 10 cm out along the surface normal of a point.
+    const Eigen::Vector3d off = cloud.points[0] + 0.1 * cloud.normals[0];
+    std::vector<float> pts, nrm;
+    for (std::size_t i = 0; i < cloud.points.size(); ++i)
+        for (int a = 0; a < 3; ++a) pts.push_back(float(cloud.points[i][a])), nrm.push_back(float(cloud.normals[i][a]));
+    for (int a = 0; a < 3; ++a) pts.push_back(float(off[a])), nrm.push_back(float(cloud.normals[0][a]));
+    const uint32_t n = uint32_t(pts.size() / 3);
+
+    ssc_model* model = nullptr;
+    REQUIRE(ssc_model_load_default(nullptr, &model) == SSC_OK);
+    ssc_fitter* fitter = nullptr;
+    REQUIRE(ssc_fitter_create(model, nullptr, &fitter) == SSC_OK);
+    REQUIRE(ssc_fitter_add_points(fitter, 0, pts.data(), nrm.data(), nullptr, n, 0) == SSC_OK);
+    std::vector<float> residuals(n, -1.f);
+    CHECK(ssc_fitter_get_point_residuals(fitter, 0, residuals.data(), n) == SSC_ERROR_INVALID_ARGUMENT);  // not solved
+    REQUIRE(ssc_fitter_solve(fitter, nullptr, nullptr, nullptr) == SSC_OK);
+    CHECK(ssc_fitter_get_point_residuals(fitter, 0, residuals.data(), n - 1) != SSC_OK);  // too small
+    CHECK(ssc_fitter_get_point_residuals(fitter, 1, residuals.data(), n) == SSC_ERROR_INVALID_ARGUMENT);  // no such frame
+    REQUIRE(ssc_fitter_get_point_residuals(fitter, 0, residuals.data(), n) == SSC_OK);
+    // In the order added: the scan's points lie within noise and model error of the fit, the one
+    // put 10 cm out lies 10 cm off (less what the fit moved towards it: nothing, it is one point).
+    std::vector<float> scan(residuals.begin(), residuals.end() - 1);
+    for (float r : residuals) REQUIRE((std::isfinite(r) && r >= 0));
+    std::nth_element(scan.begin(), scan.begin() + scan.size() / 2, scan.end());
+    CHECK(scan[scan.size() / 2] < 0.004);
+    CHECK(residuals.back() == Approx(0.1).margin(0.01));
+    ssc_fitter_destroy(fitter);
+    ssc_model_release(model);
+}
+
 TEST_CASE("depth images back-project onto the seen surface with normals towards the camera", "[fitting][depth]") {
     const Model& m = default_model().model();
     std::mt19937 rng(5);

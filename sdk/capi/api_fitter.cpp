@@ -1,9 +1,6 @@
 // Fitters: observations in, shape and per-frame pose out (sdk/fitting does the work).
 #include "guard.hpp"
 #include "handles.hpp"
-#include "fitting/depth_image.hpp"
-#include "fitting/nearest.hpp"
-#include "fitting/posed_surface.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -13,35 +10,15 @@ using namespace ssc::capi;
 
 namespace {
 
-fitting::Frame& frame_for_adding(ssc_fitter* f, uint32_t frame) {
-    SSC_REQUIRE_ARG_S(frame <= f->frames.size(), "frame " << frame << " is beyond the next new frame (" << f->frames.size() << ")");
-    if (frame == f->frames.size()) f->frames.emplace_back();
-    return f->frames[frame];
-}
-
-void require_solved(const ssc_fitter* f, uint32_t frame) {
-    SSC_REQUIRE_ARG(f->solved, "no successful ssc_fitter_solve yet");
-    SSC_REQUIRE_ARG_S(frame < f->solution.frames.size(), "frame " << frame << " out of range (" << f->solution.frames.size() << " frames)");
-}
-
 void add_landmarks(ssc_fitter* f, uint32_t frame, const std::vector<uint32_t>& indices, const float* positions, const float* weights) {
     need(positions, "positions");
-    const uint32_t L = uint32_t(f->model->model.data().landmarks.size());
-    std::vector<fitting::LandmarkTarget> add;
+    std::vector<fitting::LandmarkTarget> add(indices.size());
     for (std::size_t i = 0; i < indices.size(); ++i) {
-        SSC_REQUIRE_ARG_S(indices[i] < L, "indices[" << i << "] is " << indices[i] << "; the model has " << L << " landmarks");
-        fitting::LandmarkTarget t;
-        t.landmark = indices[i];
-        t.position = Eigen::Vector3d(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
-        SSC_REQUIRE_ARG_S(fitting::measured_point(t.position),
-                          "positions of landmark " << i << " are not finite or beyond " << fitting::kMaxCoordinate);
-        t.weight = weights ? weights[i] : 1.0;
-        SSC_REQUIRE_ARG_S(std::isfinite(t.weight) && t.weight > 0, "weights[" << i << "] must be positive");
-        add.push_back(t);
+        add[i].landmark = indices[i];
+        add[i].position = Eigen::Vector3d(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+        add[i].weight = weights ? weights[i] : 1.0;
     }
-    auto& fr = frame_for_adding(f, frame);
-    fr.landmarks.insert(fr.landmarks.end(), add.begin(), add.end());
-    f->solved = false;
+    f->fitter.add_landmarks(frame, add);
 }
 
 }  // namespace
@@ -73,23 +50,15 @@ ssc_status ssc_fitter_create(ssc_model* model, const ssc_fitter_def* def, ssc_fi
         const ssc_fitter_def d = read_def(def, ssc_fitter_def_init, "def");
         fitting::FitOptions o;
         o.components = d.shape_count ? d.shape_count : model->model.component_count();
-        SSC_REQUIRE_ARG_S(o.components <= model->model.component_count(),
-                          "def->shape_count is " << d.shape_count << "; the model has " << model->model.component_count());
         o.fit_scale = d.fit_scale != 0;
-        SSC_REQUIRE_ARG(d.max_iterations >= 3, "def->max_iterations must be at least 3");
         o.max_iterations = d.max_iterations;
-        SSC_REQUIRE_ARG(std::isfinite(d.landmark_sigma) && d.landmark_sigma > 0, "def->landmark_sigma must be positive");
-        SSC_REQUIRE_ARG(std::isfinite(d.point_sigma) && d.point_sigma > 0, "def->point_sigma must be positive");
-        SSC_REQUIRE_ARG(std::isfinite(d.shape_prior) && d.shape_prior >= 0, "def->shape_prior must be >= 0");
-        SSC_REQUIRE_ARG(std::isfinite(d.pose_prior) && d.pose_prior >= 0, "def->pose_prior must be >= 0");
-        SSC_REQUIRE_ARG(d.max_points >= 16, "def->max_points must be at least 16");
         o.landmark_sigma = d.landmark_sigma;
         o.point_sigma = d.point_sigma;
         o.shape_prior = d.shape_prior;
         o.pose_prior = d.pose_prior;
         o.max_points = d.max_points;
         o.seed = d.seed;
-        o.joint_limits = d.joint_limits != 0;
+        o.joint_limits = d.joint_limits != 0;  // the fitter checks the values
         ssc_fitter* f = make<ssc_fitter>(allocator_of(model), model, o);
         ssc_model_retain(model);
         *out = f;
@@ -106,14 +75,11 @@ void ssc_fitter_destroy(ssc_fitter* fitter) {
 ssc_status ssc_fitter_clear(ssc_fitter* fitter) {
     return guarded(__func__, [&] {
         need(fitter, "fitter");
-        fitter->frames.clear();
-        fitter->solved = false;
-        fitter->solution = {};
-        fitter->residuals.clear();
+        fitter->fitter.clear();
     });
 }
 
-uint32_t ssc_fitter_frame_count(const ssc_fitter* fitter) { return fitter ? uint32_t(fitter->frames.size()) : 0; }
+uint32_t ssc_fitter_frame_count(const ssc_fitter* fitter) { return fitter ? fitter->fitter.frame_count() : 0; }
 
 ssc_status ssc_fitter_add_landmarks(ssc_fitter* fitter, uint32_t frame, const uint32_t* indices, const float* positions,
                                     const float* weights, uint32_t count) {
@@ -132,7 +98,7 @@ ssc_status ssc_fitter_add_landmarks_by_name(ssc_fitter* fitter, uint32_t frame, 
         std::vector<uint32_t> indices(count);
         for (uint32_t i = 0; i < count; ++i) {
             SSC_REQUIRE_ARG_S(names[i] != nullptr, "names[" << i << "] is NULL");
-            const int64_t l = fitter->model->model.find_landmark(names[i]);
+            const int64_t l = fitter->fitter.model().find_landmark(names[i]);
             if (l < 0) fail(SSC_ERROR_NOT_FOUND, std::string("names[") + std::to_string(i) + "]: no landmark named \"" + names[i] + "\"");
             indices[i] = uint32_t(l);
         }
@@ -145,7 +111,6 @@ ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float
     return guarded(__func__, [&] {
         need(fitter, "fitter");
         need(points, "points");
-        SSC_REQUIRE_ARG_S(count >= 16, "count is " << count << "; a cloud needs at least 16 points");
         if (stride == 0) stride = 12;
         SSC_REQUIRE_ARG_S(stride >= 12 && stride % 4 == 0, "stride " << stride << " must be 0 or a multiple of 4 that is >= 12");
         auto at = [&](const float* base, std::size_t i) {
@@ -156,20 +121,10 @@ ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float
         c.points.reserve(count);
         for (uint32_t i = 0; i < count; ++i) {
             c.points.push_back(at(points, i));
-            SSC_REQUIRE_ARG_S(fitting::measured_point(c.points.back()), "point " << i << " is not finite or beyond " << fitting::kMaxCoordinate);
-            if (normals) {
-                c.normals.push_back(at(normals, i));
-                const Eigen::Vector3d& n = c.normals.back();
-                SSC_REQUIRE_ARG_S(n.allFinite() && (n.squaredNorm() == 0 || std::abs(n.norm() - 1) < 1e-3),
-                                  "normal " << i << " is neither a unit vector nor zero (unknown)");
-            }
-            if (confidence) {
-                SSC_REQUIRE_ARG_S(confidence[i] >= 0 && confidence[i] <= 1, "confidence[" << i << "] is not in [0, 1]");
-                c.confidence.push_back(confidence[i]);
-            }
+            if (normals) c.normals.push_back(at(normals, i));
+            if (confidence) c.confidence.push_back(confidence[i]);
         }
-        frame_for_adding(fitter, frame).clouds.push_back(std::move(c));
-        fitter->solved = false;
+        fitter->fitter.add_cloud(frame, std::move(c));  // checks every point, normal and confidence
     });
 }
 
@@ -190,12 +145,6 @@ ssc_status ssc_fitter_add_depth_image(ssc_fitter* fitter, uint32_t frame, const 
         need(d.samples, "image->samples");
         const int32_t format = enum_value(d.format);
         SSC_REQUIRE_ARG_S(format == SSC_DEPTH_U16_MM || format == SSC_DEPTH_F32_M, "image->format " << format << " is unknown");
-        SSC_REQUIRE_ARG_S(d.width >= 5 && d.height >= 5 && d.width <= 16384 && d.height <= 16384,
-                          "image size " << d.width << " x " << d.height << " (5..16384 each)");
-        const std::size_t sample = d.format == SSC_DEPTH_U16_MM ? 2 : 4;
-        const std::size_t stride = d.row_stride ? d.row_stride : sample * d.width;
-        SSC_REQUIRE_ARG_S(stride >= sample * d.width && stride % sample == 0,
-                          "image->row_stride " << d.row_stride << " must be 0 or a multiple of " << sample << " >= " << sample * d.width);
         fitting::DepthView view;
         view.width = d.width;
         view.height = d.height;
@@ -211,28 +160,10 @@ ssc_status ssc_fitter_add_depth_image(ssc_fitter* fitter, uint32_t frame, const 
             SSC_REQUIRE_ARG(m[3] == 0 && m[7] == 0 && m[11] == 0 && m[15] == 1,
                             "image->camera_to_world: the last row must be 0 0 0 1 (a rigid transform)");
         }
-        // Samples as metres in one packed float image.
-        std::vector<float> depth(std::size_t(d.width) * d.height);
-        const auto* base = static_cast<const unsigned char*>(d.samples);
-        for (uint32_t v = 0; v < d.height; ++v) {
-            const unsigned char* row = base + std::size_t(v) * stride;
-            for (uint32_t u = 0; u < d.width; ++u) {
-                float z;
-                if (d.format == SSC_DEPTH_U16_MM) {
-                    uint16_t mm;
-                    std::memcpy(&mm, row + 2 * std::size_t(u), 2);
-                    z = float(mm) * 1e-3f;
-                } else {
-                    std::memcpy(&z, row + 4 * std::size_t(u), 4);
-                }
-                depth[std::size_t(v) * d.width + u] = z;
-            }
-        }
+        const std::vector<float> depth = fitting::depth_in_metres(
+            d.samples, d.width, d.height, d.row_stride, format == SSC_DEPTH_U16_MM ? fitting::DepthFormat::U16Millimetres : fitting::DepthFormat::F32Metres);
         view.depth = depth.data();
-        fitting::PointCloud cloud = fitting::depth_to_cloud(view);
-        const uint32_t n = uint32_t(cloud.points.size());
-        frame_for_adding(fitter, frame).clouds.push_back(std::move(cloud));
-        fitter->solved = false;
+        const uint32_t n = fitter->fitter.add_depth_image(frame, view);
         if (points_added) *points_added = n;
     });
 }
@@ -243,25 +174,8 @@ ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* 
         if (report) SSC_REQUIRE_ARG(report->struct_size >= sizeof(uint32_t), "report->struct_size must be set to sizeof(ssc_fit_report)");
         fitting::FitProgress cb;
         if (progress) cb = [&](uint32_t it, double cost) { return progress(user, it, float(cost)) == 0; };
-        fitter->solved = false;
-        fitter->solution = fitting::fit(fitter->linear, fitter->frames, fitter->options, nullptr, cb, &fitter->model->context->pool);
-        // Residuals: distance of each point to the fitted surface along the nearest vertex's normal.
-        fitter->residuals.assign(fitter->frames.size(), {});
-        Body body(fitter->model->model, nullptr);
-        std::vector<Eigen::Vector3d> posed, normals;
-        for (std::size_t f = 0; f < fitter->frames.size(); ++f) {
-            if (fitter->frames[f].clouds.empty()) continue;
-            fitting::posed_surface(body, fitter->solution.frames[f], posed, &normals);
-            const fitting::PointIndex index(posed);
-            for (const auto& c : fitter->frames[f].clouds)
-                for (const auto& p : c.points) {
-                    const uint32_t v = index.nearest(p, nullptr);
-                    fitter->residuals[f].push_back(float(std::abs(normals[v].dot(p - posed[v]))));
-                }
-        }
-        fitter->solved = true;
+        const fitting::FitReport& r = fitter->fitter.solve(cb, &fitter->model->context->pool);
         if (report) {
-            const auto& r = fitter->solution.report;
             ssc_fit_report out{};
             out.struct_size = sizeof out;
             out.iterations = r.iterations;
@@ -278,17 +192,17 @@ ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* 
             std::memcpy(report, &out, n);
             report->struct_size = n;
         }
-        if (fitter->solution.report.cancelled) fail(SSC_ERROR_CANCELLED, "cancelled by the progress callback");
+        if (r.cancelled) fail(SSC_ERROR_CANCELLED, "cancelled by the progress callback");
     });
 }
 
 ssc_status ssc_fitter_get_shape(const ssc_fitter* fitter, float* out, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(fitter, "fitter");
-        require_solved(fitter, 0);
-        const uint32_t K = fitter->model->model.component_count();
+        const std::vector<double>& shape = fitter->fitter.solution().shape;
+        const uint32_t K = fitter->fitter.model().component_count();
         check_output(out, capacity, K, 0, 4);
-        for (uint32_t k = 0; k < K; ++k) out[k] = k < fitter->solution.shape.size() ? float(fitter->solution.shape[k]) : 0.f;
+        for (uint32_t k = 0; k < K; ++k) out[k] = k < shape.size() ? float(shape[k]) : 0.f;
     });
 }
 
@@ -296,9 +210,8 @@ ssc_status ssc_fitter_get_pose(const ssc_fitter* fitter, uint32_t frame, float* 
                                float* translation, float* scale) {
     return guarded(__func__, [&] {
         need(fitter, "fitter");
-        require_solved(fitter, frame);
-        const auto& s = fitter->solution.frames[frame];
-        const uint32_t J = fitter->model->model.joint_count();
+        const fitting::FitState& s = fitter->fitter.frame_state(frame);
+        const uint32_t J = fitter->fitter.model().joint_count();
         if (rotations) check_output(rotations, joint_capacity, J, 0, 16);
         if (rotations)
             for (uint32_t j = 0; j < J; ++j) {
@@ -315,12 +228,10 @@ ssc_status ssc_fitter_get_pose(const ssc_fitter* fitter, uint32_t frame, float* 
 ssc_status ssc_fitter_get_vertices(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity, size_t stride) {
     return guarded(__func__, [&] {
         need(fitter, "fitter");
-        require_solved(fitter, frame);
-        const uint32_t V = fitter->model->model.vertex_count();
+        fitter->fitter.frame_state(frame);  // solved, in range: before the output is checked
+        const uint32_t V = fitter->fitter.model().vertex_count();
         stride = check_output(out, capacity, V, stride, 12);
-        Body body(fitter->model->model, nullptr);
-        std::vector<Eigen::Vector3d> posed;
-        fitting::posed_surface(body, fitter->solution.frames[frame], posed);
+        const std::vector<Eigen::Vector3d> posed = fitter->fitter.vertices(frame);
         auto* base = reinterpret_cast<unsigned char*>(out);
         for (uint32_t v = 0; v < V; ++v) {
             const Eigen::Vector3d& p = posed[v];
@@ -333,19 +244,13 @@ ssc_status ssc_fitter_get_vertices(const ssc_fitter* fitter, uint32_t frame, flo
 ssc_status ssc_fitter_get_point_residuals(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(fitter, "fitter");
-        require_solved(fitter, frame);
-        const auto& r = fitter->residuals[frame];
+        const std::vector<float>& r = fitter->fitter.point_residuals(frame);
         if (r.empty()) return;
         check_output(out, capacity, r.size(), 0, 4);
         std::memcpy(out, r.data(), 4 * r.size());
     });
 }
 
-uint32_t ssc_fitter_point_count(const ssc_fitter* fitter, uint32_t frame) {
-    if (!fitter || frame >= fitter->frames.size()) return 0;
-    std::size_t n = 0;
-    for (const auto& c : fitter->frames[frame].clouds) n += c.points.size();
-    return uint32_t(n);
-}
+uint32_t ssc_fitter_point_count(const ssc_fitter* fitter, uint32_t frame) { return fitter ? fitter->fitter.point_count(frame) : 0; }
 
 }  // extern "C"

@@ -80,14 +80,9 @@ struct ssc_body {
 
 struct ssc_fitter {
     ssc_model* model;  // holds one reference
-    ssc::fitting::FitOptions options;
-    ssc::fitting::LinearModel linear;
-    std::vector<ssc::fitting::Frame> frames;
-    bool solved = false;
-    ssc::fitting::FitSolution solution;
-    std::vector<std::vector<float>> residuals;  // per frame, per point, after a solve
+    ssc::fitting::Fitter fitter;
 
-    ssc_fitter(ssc_model* m, const ssc::fitting::FitOptions& o) : model(m), options(o), linear(m->model, o.components) {}
+    ssc_fitter(ssc_model* m, const ssc::fitting::FitOptions& o) : model(m), fitter(m->model, o) {}
 };
 
 namespace ssc::capi {

@@ -5,9 +5,37 @@
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 namespace ssc::fitting {
+
+std::vector<float> depth_in_metres(const void* samples, uint32_t width, uint32_t height, std::size_t row_stride, DepthFormat format) {
+    SSC_REQUIRE_ARG(samples != nullptr, "depth image: no samples");
+    SSC_REQUIRE_ARG_S(width >= 5 && height >= 5 && width <= 16384 && height <= 16384,
+                      "depth image: size " << width << " x " << height << " (5..16384 each)");
+    const std::size_t sample = format == DepthFormat::U16Millimetres ? 2 : 4;
+    const std::size_t stride = row_stride ? row_stride : sample * width;
+    SSC_REQUIRE_ARG_S(stride >= sample * width && stride % sample == 0,
+                      "depth image: row stride " << row_stride << " must be 0 or a multiple of " << sample << " >= " << sample * width);
+    std::vector<float> depth(std::size_t(width) * height);
+    const auto* base = static_cast<const unsigned char*>(samples);
+    for (uint32_t v = 0; v < height; ++v) {
+        const unsigned char* row = base + std::size_t(v) * stride;
+        for (uint32_t u = 0; u < width; ++u) {
+            float z;
+            if (format == DepthFormat::U16Millimetres) {
+                uint16_t mm;
+                std::memcpy(&mm, row + 2 * std::size_t(u), 2);  // unaligned rows are allowed
+                z = float(mm) * 1e-3f;
+            } else {
+                std::memcpy(&z, row + 4 * std::size_t(u), 4);
+            }
+            depth[std::size_t(v) * width + u] = z;
+        }
+    }
+    return depth;
+}
 
 void validate_camera(const PinholeCamera& c) {
     SSC_REQUIRE_ARG_S(std::isfinite(c.fx) && std::isfinite(c.fy) && c.fx > 0 && c.fy > 0,

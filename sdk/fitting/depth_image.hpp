@@ -3,9 +3,17 @@
 // the camera (a camera sees the outside of the surface, so that is the outward normal).
 #pragma once
 
-#include "fitting/fitter.hpp"
+#include "fitting/observations.hpp"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace ssc::fitting {
+
+using Eigen::Matrix3d;
 
 // A pinhole camera without lens distortion. Camera frame as in OpenCV: x right, y down, z forward
 // (the optical axis); a pixel (u, v) with depth z is the camera point
@@ -24,6 +32,15 @@ struct DepthView {
     PinholeCamera camera;
     double min_depth = 0, max_depth = 0;  // metres: readings outside are ignored; max 0 = no limit
 };
+
+// How a depth camera stores its samples.
+enum class DepthFormat { U16Millimetres, F32Metres };
+
+// A depth image's samples as DepthView::depth wants them: width * height packed floats in metres.
+// Rows lie row_stride bytes apart (0: packed). Throws ssc::Error(SSC_ERROR_INVALID_ARGUMENT) for a
+// size outside 5 .. 16384 per side or a stride that is shorter than a row or not a multiple of the
+// sample size.
+std::vector<float> depth_in_metres(const void* samples, uint32_t width, uint32_t height, std::size_t row_stride, DepthFormat format);
 
 // Throws ssc::Error(SSC_ERROR_INVALID_ARGUMENT) for degenerate intrinsics (focal lengths not
 // positive, centre not finite), a rotation that is not orthonormal, or a non-finite position.

@@ -1,5 +1,5 @@
 // How well a posed model explains a cloud: the measure that chooses between start candidates and
-// between limb poses (fitter.cpp). Unlike the fit's cost, which gates correspondences away, it
+// between limb poses (solver.cpp). Unlike the fit's cost, which gates correspondences away, it
 // counts both ways over fixed point samples with truncated squared distances, so a candidate
 // cannot look good by leaving data unexplained.
 #pragma once

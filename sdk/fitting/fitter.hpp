@@ -1,124 +1,58 @@
-// Fitting the model to measurements of one person: landmarks and point clouds (scans, depth
-// images turned into points), in one or several frames that share a shape and have a pose each.
-//
-// Method (each choice is explained where it is made in fitter.cpp):
-//   start   rigid alignment with scale from landmarks (Umeyama) when a frame has any; otherwise
-//           from the cloud's principal axes, trying the plausible facing directions
-//           (rigid_start.hpp), the best two (two more at a time, up to all eight, while the
-//           best ends in an implausible pose) given a short coarse fit;
-//   solve   Levenberg-Marquardt over shape, per-joint rotations, translation and optional scale, with
-//           the analytic Jacobians of kinematics.hpp;
-//   data    landmarks (robust Huber loss), clouds with correspondences both ways (uniform grids,
-//           grid_index.hpp: every query has a gate; the start search's far-reaching ones use
-//           nanoflann k-d trees), point-to-plane where normals exist, normal-compatibility and
-//           distance tests
-//           (model-to-scan pairs must agree with the scan point's own nearest model point, so
-//           holes do not drag the model), Geman-McClure loss and trimming (robust.hpp);
-//   priors  Gaussian on shape (the model's own: coefficients are standard deviations) and on each
-//           joint's rotation, and soft walls at the anatomical joint limits (joint_limits.hpp);
-//           coarse-to-fine stages (rigid, then trunk and limbs with few components, then
-//           everything on half the scan points, then a two-iteration polish on all of them); a
-//           frame started by the cloud search skips the rigid stage;
-//   limbs   between the coarse and the fine stage, a search over anatomical poses of each arm and
-//           leg with clouds (raised overhead, forward, bent elbows and knees; upper and middle
-//           joint together, the best refined) that the coarse stage's short-reaching
-//           correspondences cannot find from the rest pose (limb_search.hpp, scored by explained.hpp),
-//           the limbs before one whose move changed much searched again;
-//   hands   after the fine stage, each hand's closure (open .. fist) that explains the scan best
-//           (hand_search.hpp); the fingers' prior is then centred on that closure;
-//   restart a single frame's fit from the automatic start that ends in an implausible pose is
-//           redone from the start search's next candidates (at most two).
+// A fit of the model to one person: the observations, frame by frame, and after solve() the
+// solution, the fitted surfaces and each scan point's residual. What ssc_fitter wraps, as ssc_body
+// wraps Body; the work is fit() (solver.hpp).
 #pragma once
 
 #include "common/thread_pool.hpp"
-#include "fitting/kinematics.hpp"
+#include "fitting/depth_image.hpp"
+#include "fitting/observations.hpp"
+#include "fitting/solver.hpp"
 
-#include <functional>
-#include <memory>
+#include <cstdint>
 #include <vector>
 
 namespace ssc::fitting {
 
-struct LandmarkTarget {
-    uint32_t landmark = 0;  // model landmark index
-    Vector3d position;      // metres
-    double weight = 1;      // relative confidence, > 0
+class Fitter {
+public:
+    // options.components: 0 or more than the model has are refused (Error, INVALID_ARGUMENT), as
+    // are options fit() refuses. The model must outlive the fitter.
+    Fitter(const Model& model, const FitOptions& options);
+
+    const Model& model() const { return linear_.model; }
+    const FitOptions& options() const { return options_; }
+
+    // Observations join frame `frame`: an existing one, or frame_count() to start the next. Each is
+    // checked whole (observations.hpp) before anything is added; adding forgets the solution.
+    uint32_t frame_count() const { return uint32_t(frames_.size()); }
+    void add_landmarks(uint32_t frame, const std::vector<LandmarkTarget>& targets);
+    void add_cloud(uint32_t frame, PointCloud cloud);  // at least 16 points
+    uint32_t add_depth_image(uint32_t frame, const DepthView& image);  // returns the points it gave
+    uint32_t point_count(uint32_t frame) const;  // 0 for a frame that does not exist
+    void clear();  // every frame and the solution
+
+    // Fits every frame (fit()). A cancelled fit (progress returned false) keeps the best state so
+    // far as the solution, with report.cancelled set.
+    const FitReport& solve(const FitProgress& progress = {}, ThreadPool* pool = nullptr);
+
+    // After a solve (else Error, INVALID_ARGUMENT): the solution, one frame's state, its posed
+    // vertices, and per scan point of the frame (in the order added) the distance to the fitted
+    // surface along the nearest vertex's normal, metres.
+    bool solved() const { return solved_; }
+    const FitSolution& solution() const;
+    const FitState& frame_state(uint32_t frame) const;
+    std::vector<Vector3d> vertices(uint32_t frame) const;
+    const std::vector<float>& point_residuals(uint32_t frame) const;
+
+private:
+    Frame& frame_for_adding(uint32_t frame);
+
+    FitOptions options_;
+    LinearModel linear_;
+    std::vector<Frame> frames_;
+    bool solved_ = false;
+    FitSolution solution_;
+    std::vector<std::vector<float>> residuals_;  // per frame, per point
 };
-
-struct PointCloud {
-    std::vector<Vector3d> points;      // metres
-    std::vector<Vector3d> normals;     // empty, or one per point: unit, or zero where unknown (estimated)
-    std::vector<double> confidence;    // empty or one weight in [0, 1] per point
-};
-
-// One observation of the person in one pose.
-struct Frame {
-    std::vector<LandmarkTarget> landmarks;
-    std::vector<PointCloud> clouds;
-};
-
-struct FitOptions {
-    uint32_t components = 0xFFFFFFFFu;  // shape components used (clamped to the model's)
-    bool fit_scale = false;             // solve a global scale too (data in unknown units)
-    double landmark_sigma = 0.01;       // metres: expected landmark placement error
-    double point_sigma = 0.004;         // metres: expected scan noise plus model error
-    double shape_prior = 1;             // multiplies the Gaussian shape prior (0 = none)
-    double pose_prior = 1;              // multiplies the joint rotation prior (0 = none)
-    bool joint_limits = true;           // keep joints within their anatomical ranges (joint_limits.hpp)
-    uint32_t max_iterations = 60;       // Levenberg-Marquardt iterations, all stages together
-    uint32_t max_points = 3000;         // scan points used per iteration (a fixed random subset)
-    uint32_t seed = 1;                  // for that subset
-    bool auto_start = true;             // false: start from the given state instead
-    bool hand_search = true;            // search each hand's closure (open .. fist) in scans (hand_search.hpp)
-};
-
-struct FitReport {
-    uint32_t iterations = 0;
-    bool converged = false, cancelled = false;
-    double initial_cost = 0, final_cost = 0;
-    double landmark_rms = 0;   // metres, over all landmarks of all frames
-    double point_mean = 0;     // metres, mean distance of accepted scan points to the model surface
-    double inlier_fraction = 0;
-    double seconds = 0;
-    // Fits redone from another start candidate because the one before ended implausible
-    // (single-frame fits from the automatic start; see fitter.cpp). iterations counts them all.
-    uint32_t restarts = 0;
-    // Share of the scan points (a fixed sample of each frame's) farther than 5 cm from the fitted
-    // surface, the worst frame's: 0 for landmark-only fits. Above 0.1 the fit has not found the
-    // person (a limb or the whole body in the wrong place): converged is then false.
-    double unexplained = 0;
-};
-
-// Called once per iteration; return false to cancel (the best state so far is kept).
-using FitProgress = std::function<bool(uint32_t iteration, double cost)>;
-
-struct FitSolution {
-    std::vector<double> shape;      // components() values; the rest of the model's are zero
-    std::vector<FitState> frames;   // per frame: pose, translation, scale (shape copied in)
-    FitReport report;
-};
-
-// Fits frames to the model. `start` (optional, one per frame) is used when auto_start is false.
-// `pool` (optional) lends worker threads (start candidates, correspondences, normal equations, limb
-// search); results do not depend on its size.
-// Throws ssc::Error on invalid input (no data, NaN, bad indices).
-FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,
-                const std::vector<FitState>* start = nullptr, const FitProgress& progress = {}, ThreadPool* pool = nullptr);
-
-// Measured coordinates beyond this magnitude (metres, or the data's unit when scale is fitted)
-// are no measurement of a person: they would overflow extents and centroids.
-constexpr double kMaxCoordinate = 1e6;
-
-// Whether a measured point (landmark, cloud point) is finite and within kMaxCoordinate: the
-// fitter's and the C API's one rule.
-bool measured_point(const Vector3d& p);
-
-// Per-joint prior standard deviation of the rotation (radians): loose for the trunk and limbs,
-// tight for fingers and the toes, which sparse data rarely constrain.
-double joint_rotation_sigma(const std::string& joint_name);
-
-// The six CAESAR hand landmarks (metacarpal-phalangeal II and V, dactylion, each side): scanned
-// subjects often close their hands, so fits commonly leave them out.
-bool is_hand_landmark(const std::string& landmark_name);
 
 }  // namespace ssc::fitting

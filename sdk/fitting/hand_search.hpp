@@ -1,7 +1,7 @@
 // The fitter's search over how closed each hand is, after the limb search.
 //
 // Why: scanned people hold their hands relaxed or in fists, the model's are spread open, and the
-// fingers' tight prior (fitter.cpp) keeps a fit's fingers near wherever they start: the hands were
+// fingers' tight prior (solver.cpp) keeps a fit's fingers near wherever they start: the hands were
 // the largest residual of good fits. After the fine stage (the wrists in place), each hand tries
 // closures 0, 0.25, .. 1 (anatomy/hand_closure.hpp), then halfway to the best one's neighbours,
 // scored with the explained measure of the hand alone (LimbScore of the hand joint), keeping the

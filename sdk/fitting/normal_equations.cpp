@@ -112,7 +112,7 @@ std::size_t NormalEquations::reserve(uint32_t set, uint32_t rows) {
 
 void NormalEquations::allocate() {
     // One buffer for the rows and one for the products of the sets reserved in this sum, reused
-    // from sum to sum: a fit of many frames sums its frames in batches (fitter.cpp) and the
+    // from sum to sum: a fit of many frames sums its frames in batches (solver.cpp) and the
     // memory is that of one batch.
     std::size_t rows = 0, products = 0;
     for (Set& s : sets_) {

@@ -47,7 +47,7 @@ private:
         return normals_agree((*cloud_.normals)[i], model_normal, cloud_.oriented, 0.0);
     }
 
-    // Correspondences both ways, as the fitter's (fitter.cpp, find_frame_pairs), with the scan
+    // Correspondences both ways, as the fitter's (solver.cpp, find_frame_pairs), with the scan
     // points carried into the rest frame for the model's fixed tree.
     void find_pairs(const Similarity& T) {
         pairs_.clear();

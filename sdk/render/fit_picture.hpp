@@ -2,7 +2,7 @@
 // data) the true body, each from the front and the side of the fitted body's own frame.
 #pragma once
 
-#include "fitting/fitter.hpp"
+#include "fitting/solver.hpp"
 
 #include <string>
 #include <vector>

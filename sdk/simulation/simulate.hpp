@@ -3,7 +3,7 @@
 // and benchmarks measure the fitter's accuracy with them.
 #pragma once
 
-#include "fitting/fitter.hpp"
+#include "fitting/solver.hpp"
 
 #include <random>
 #include <vector>
