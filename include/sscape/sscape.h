@@ -917,7 +917,8 @@ typedef struct ssc_fit_report {
     uint32_t struct_size;     /**< sizeof(ssc_fit_report), set by the caller. */
     uint32_t iterations;      /**< Levenberg-Marquardt iterations run. */
     uint32_t converged;       /**< Non-zero when the cost stopped decreasing before the iteration limit
-                                   and the fit explains its scans (see unexplained_fraction). */
+                                   and the fit explains its scans (see unexplained_fraction and
+                                   implausible). */
     uint32_t reserved;        /**< 0. */
     float initial_cost;       /**< Cost at the start (robust, in units of the sigmas). */
     float final_cost;         /**< Cost at the end. */
@@ -932,6 +933,10 @@ typedef struct ssc_fit_report {
                                    worst frame's; 0 without points). Above SSC_FIT_UNEXPLAINED_LIMIT
                                    the fit has not found the person (a limb or the body in the wrong
                                    place) and converged is 0. */
+    uint32_t implausible;     /**< Non-zero when a frame's fit, after every restart, still ends in an
+                                   implausible pose (joints far past their limits) or leaves over 5 %
+                                   of its scan unexplained: a limb or the body is likely in the wrong
+                                   place, and converged is 0. */
 } ssc_fit_report;
 
 /** The unexplained_fraction above which a fit is reported as not converged: it failed. */

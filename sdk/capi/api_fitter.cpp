@@ -188,6 +188,7 @@ ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* 
             out.seconds = float(r.seconds);
             out.restarts = r.restarts;
             out.unexplained_fraction = float(r.unexplained);
+            out.implausible = r.implausible;
             const uint32_t n = report->struct_size < sizeof out ? report->struct_size : uint32_t(sizeof out);
             std::memcpy(report, &out, n);
             report->struct_size = n;

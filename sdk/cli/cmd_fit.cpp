@@ -187,7 +187,10 @@ int run_fit(Options o) {
         }
         check(status, "fit");
     }
-    std::printf("fit: %u iterations, %s, %.1f ms; cost %.4g -> %.4g\n", report.iterations, report.converged ? "converged" : "iteration limit",
+    const char* outcome = report.converged ? "converged" : report.implausible ? "failed (implausible)"
+                          : report.unexplained_fraction > SSC_FIT_UNEXPLAINED_LIMIT ? "failed (scan unexplained)"
+                                                                                     : "iteration limit";
+    std::printf("fit: %u iterations, %s, %.1f ms; cost %.4g -> %.4g\n", report.iterations, outcome,
                 report.seconds * 1e3, report.initial_cost, report.final_cost);
     if (report.restarts) std::printf("restarts: %u (the fit from the best start candidate ended in an implausible pose)\n", report.restarts);
     if (!o.landmarks.empty()) std::printf("landmark rms distance: %.2f mm\n", report.landmark_rms * 1e3);
@@ -202,6 +205,14 @@ int run_fit(Options o) {
                          100 * double(report.unexplained_fraction), 100 * double(SSC_FIT_UNEXPLAINED_LIMIT));
             return 1;
         }
+    }
+    if (report.implausible) {
+        std::fprintf(stderr,
+                     "sscape fit: failed: after %u restart(s) the best fit still has joints far past their anatomical limits or "
+                     "leaves %.0f %% of the scan farther than 5 cm (over 5 %%): a limb or the whole body is most likely in the "
+                     "wrong place (a hard pose: try adding landmarks with --landmarks); nothing written\n",
+                     report.restarts, 100 * double(report.unexplained_fraction));
+        return 1;
     }
 
     const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model), J = ssc_model_joint_count(model);

@@ -312,6 +312,7 @@ public:
         sol.report.iterations = iteration;
         // A fit that leaves this much of a scan unexplained has not found the person: not converged.
         sol.report.converged = converged && sol.report.unexplained <= kFailedUnexplained;
+        sol.report.implausible = implausible_;
         sol.report.cancelled = cancelled;
         sol.report.landmark_rms = nl ? std::sqrt(lm2 / double(nl)) : 0;
         sol.report.point_mean = np ? pd / double(np) : 0;
@@ -403,7 +404,10 @@ private:
         shape_ = best.shape;
         states_ = best.states;
         update_kinematics();
-        return best.converged;
+        // Still implausible after the restarts: most likely a limb or the body in the wrong place
+        // (benchmark poses crouching and bent over), reported as failed.
+        implausible_ = !cancelled && !acceptable(best.prior, best.unexplained);
+        return best.converged && !implausible_;
     }
 
     // Model vertices for the model-to-scan direction, drawn by surface area (uniform over the
@@ -1164,6 +1168,7 @@ private:
     ThreadPool* pool_;
     std::vector<std::size_t> pair_candidates_;
     std::vector<double> joint_sigma_;
+    bool implausible_ = false;  // restart_if_implausible found no acceptable fit
     std::vector<Vector3d> closed_fingers_;  // per joint: a finger's rotation vector at closure 1, else zero
     std::vector<int8_t> hand_of_joint_;     // per joint: 0 left hand's finger, 1 right, -1 neither
     std::vector<anatomy::JointLimit> limits_;  // empty when the options turn limits off
@@ -1235,7 +1240,7 @@ FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const 
     // refinement). The cost is about that of the single fits; fitted together from the start,
     // frames got no limb search nor restarts and ended worse than alone on real scans.
     uint32_t iterations = 0, restarts = 0;
-    bool cancelled = false;
+    bool cancelled = false, implausible = false;
     std::vector<FitState> starts;
     std::vector<std::vector<double>> shapes;
     for (const Frame& frame : frames) {
@@ -1244,6 +1249,7 @@ FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const 
         FitSolution one = alone.run(nullptr, each, std::chrono::steady_clock::now());
         iterations += one.report.iterations;
         restarts += one.report.restarts;
+        implausible |= one.report.implausible;
         starts.push_back(one.frames[0]);
         shapes.push_back(one.shape);
         if (one.report.cancelled) {
@@ -1277,6 +1283,8 @@ FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const 
     FitSolution sol = together.run(&starts, rest, t0, true);
     sol.report.iterations += iterations;
     sol.report.restarts += restarts;
+    sol.report.implausible |= implausible;
+    sol.report.converged &= !sol.report.implausible;
     return sol;
 }
 

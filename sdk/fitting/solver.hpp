@@ -70,6 +70,10 @@ struct FitReport {
     // surface, the worst frame's: 0 for landmark-only fits. Above 0.1 the fit has not found the
     // person (a limb or the whole body in the wrong place): converged is then false.
     double unexplained = 0;
+    // A single frame's fit (any frame's, with several) that still ends in an implausible pose or
+    // leaves more than 5 % of its scan unexplained after every restart: a limb or the body is
+    // likely in the wrong place, and converged is false.
+    bool implausible = false;
 };
 
 // Called once per iteration; return false to cancel (the best state so far is kept).
