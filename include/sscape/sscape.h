@@ -927,14 +927,14 @@ typedef struct ssc_fit_report {
     float inlier_fraction;    /**< Share of correspondence candidates accepted (0 if no points). */
     float seconds;            /**< Wall time of the solve. */
     uint32_t restarts;        /**< Fits redone from another automatic start candidate because the one
-                                   before ended in an implausible pose or left over 5 % of the scan
+                                   before ended in an implausible pose or left over 3 % of the scan
                                    unexplained (one frame, no given start); iterations counts them all. */
     float unexplained_fraction; /**< Share of scan points farther than 5 cm from the fitted surface (the
                                    worst frame's; 0 without points). Above SSC_FIT_UNEXPLAINED_LIMIT
                                    the fit has not found the person (a limb or the body in the wrong
                                    place) and converged is 0. */
     uint32_t implausible;     /**< Non-zero when a frame's fit, after every restart, still ends in an
-                                   implausible pose (joints far past their limits) or leaves over 5 %
+                                   implausible pose (joints far past their limits) or leaves over 3 %
                                    of its scan unexplained: a limb or the body is likely in the wrong
                                    place, and converged is 0. */
 } ssc_fit_report;

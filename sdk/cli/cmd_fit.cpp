@@ -209,7 +209,7 @@ int run_fit(Options o) {
     if (report.implausible) {
         std::fprintf(stderr,
                      "sscape fit: failed: after %u restart(s) the best fit still has joints far past their anatomical limits or "
-                     "leaves %.0f %% of the scan farther than 5 cm (over 5 %%): a limb or the whole body is most likely in the "
+                     "leaves %.0f %% of the scan farther than 5 cm (over 3 %%): a limb or the whole body is most likely in the "
                      "wrong place (a hard pose: try adding landmarks with --landmarks); nothing written\n",
                      report.restarts, 100 * double(report.unexplained_fraction));
         return 1;

@@ -71,7 +71,7 @@ struct FitReport {
     // person (a limb or the whole body in the wrong place): converged is then false.
     double unexplained = 0;
     // A single frame's fit (any frame's, with several) that still ends in an implausible pose or
-    // leaves more than 5 % of its scan unexplained after every restart: a limb or the body is
+    // leaves more than 3 % of its scan unexplained after every restart: a limb or the body is
     // likely in the wrong place, and converged is false.
     bool implausible = false;
 };
