@@ -367,6 +367,25 @@ TEST_CASE("scan fits find fists and half-closed hands, and leave open hands open
     }
 }
 
+TEST_CASE("clutter around a scanned body is not taken for a failed fit", "[fitting]") {
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    std::mt19937 rng(43);
+    const auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, 0.4), Eigen::Vector3d::Zero());
+    simulation::CloudSpec spec;
+    spec.points = 20000;
+    spec.outliers = 0.08;  // uniform in the body's box: 8 % of the points
+    fitting::Frame frame;
+    frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
+    const auto sol = fitting::fit(lin, {frame}, fitting::FitOptions{});
+    const double err = simulation::mean_vertex_error(simulation::fitted_vertices(m, sol.frames[0]), truth.vertices);
+    INFO("unexplained " << sol.report.unexplained << ", error " << err * 1e3 << " mm, restarts " << sol.report.restarts);
+    CHECK(err < 0.006);
+    CHECK(sol.report.unexplained < 0.01);
+    CHECK(sol.report.converged);
+    CHECK_FALSE(sol.report.implausible);
+}
+
 TEST_CASE("frames of one person fitted together share a shape and fit each frame as well as alone or better", "[fitting]") {
     const Model& m = default_model().model();
     const fitting::LinearModel lin(m, m.component_count());

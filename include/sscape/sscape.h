@@ -929,8 +929,9 @@ typedef struct ssc_fit_report {
     uint32_t restarts;        /**< Fits redone from another automatic start candidate because the one
                                    before ended in an implausible pose or left over 3 % of the scan
                                    unexplained (one frame, no given start); iterations counts them all. */
-    float unexplained_fraction; /**< Share of scan points farther than 5 cm from the fitted surface (the
-                                   worst frame's; 0 without points). Above SSC_FIT_UNEXPLAINED_LIMIT
+    float unexplained_fraction; /**< Share of scan points farther than 5 cm from the fitted surface that
+                                   lie on a surface (3 other points within 3 cm; isolated outliers and
+                                   sparse clutter do not count): the worst frame's; 0 without points. Above SSC_FIT_UNEXPLAINED_LIMIT
                                    the fit has not found the person (a limb or the body in the wrong
                                    place) and converged is 0. */
     uint32_t implausible;     /**< Non-zero when a frame's fit, after every restart, still ends in an

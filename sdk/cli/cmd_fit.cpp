@@ -195,7 +195,7 @@ int run_fit(Options o) {
     if (report.restarts) std::printf("restarts: %u (the fit from the best start candidate ended in an implausible pose)\n", report.restarts);
     if (!o.landmarks.empty()) std::printf("landmark rms distance: %.2f mm\n", report.landmark_rms * 1e3);
     if (!o.points.empty() || !o.depth.empty()) {
-        std::printf("points: mean correspondence distance %.2f mm, inliers %.1f %%, %.1f %% farther than 5 cm from the fit\n",
+        std::printf("points: mean correspondence distance %.2f mm, inliers %.1f %%, %.1f %% on a surface farther than 5 cm from the fit\n",
                     report.point_mean * 1e3, 100 * report.inlier_fraction, 100 * report.unexplained_fraction);
         if (report.unexplained_fraction > SSC_FIT_UNEXPLAINED_LIMIT) {
             std::fprintf(stderr,

@@ -67,7 +67,7 @@ struct FitReport {
     // (single-frame fits from the automatic start; see solver.cpp). iterations counts them all.
     uint32_t restarts = 0;
     // Share of the scan points (a fixed sample of each frame's) farther than 5 cm from the fitted
-    // surface, the worst frame's: 0 for landmark-only fits. Above 0.1 the fit has not found the
+    // surface and on a surface (isolated outliers do not count), the worst frame's: 0 for landmark-only fits. Above 0.1 the fit has not found the
     // person (a limb or the whole body in the wrong place): converged is then false.
     double unexplained = 0;
     // A single frame's fit (any frame's, with several) that still ends in an implausible pose or
