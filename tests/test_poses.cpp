@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -138,4 +139,41 @@ TEST_CASE("closing the hands curls each fingertip towards its palm and leaves th
     CHECK(ssc_model_close_hands(p.model, 0.5f, 0.5f, nullptr, J) != SSC_OK);
     CHECK(ssc_model_close_hands(nullptr, 0.5f, 0.5f, q.data(), J) != SSC_OK);
     CHECK(q == sitting);
+}
+
+TEST_CASE("random shapes are reproducible, within their truncation, and refuse bad arguments", "[synthesis][capi]") {
+    Posed p;
+    const uint32_t K = ssc_model_shape_count(p.model), n = 200;
+    std::vector<float> a(std::size_t(n) * K), b(a.size());
+    REQUIRE(ssc_model_sample_shapes(p.model, 7, n, 2.5f, a.data(), uint32_t(a.size())) == SSC_OK);
+    REQUIRE(ssc_model_sample_shapes(p.model, 7, n, 2.5f, b.data(), uint32_t(b.size())) == SSC_OK);
+    CHECK(a == b);
+    REQUIRE(ssc_model_sample_shapes(p.model, 8, n, 2.5f, b.data(), uint32_t(b.size())) == SSC_OK);
+    CHECK(a != b);
+    double sum = 0, sum2 = 0, largest = 0;
+    for (float c : a) sum += c, sum2 += double(c) * c, largest = std::max(largest, double(std::abs(c)));
+    CHECK(largest <= 2.5);
+    CHECK(std::abs(sum / double(a.size())) < 0.02);                // mean 0
+    CHECK(std::sqrt(sum2 / double(a.size())) == Approx(0.95).margin(0.03));  // a normal truncated at 2.5 SD: sd 0.95
+    CHECK(ssc_model_sample_shapes(p.model, 7, n, 2.5f, a.data(), uint32_t(a.size()) - 1) != SSC_OK);
+    CHECK(ssc_model_sample_shapes(p.model, 7, n, 0.0f, a.data(), uint32_t(a.size())) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_model_sample_shapes(p.model, 7, n, std::nanf(""), a.data(), uint32_t(a.size())) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_model_sample_shapes(nullptr, 7, n, 2.5f, a.data(), uint32_t(a.size())) != SSC_OK);
+}
+
+TEST_CASE("an axis-angle vector becomes the quaternion the body poses with", "[synthesis][capi]") {
+    Posed p;
+    const float aa[3] = {0.0f, 0.0f, float(M_PI / 2)};
+    float q[4] = {0, 0, 0, 0};
+    REQUIRE(ssc_rotation_from_axis_angle(aa, q) == SSC_OK);
+    CHECK(q[0] == Approx(0.0f).margin(1e-7));
+    CHECK(q[2] == Approx(std::sin(M_PI / 4)));
+    CHECK(q[3] == Approx(std::cos(M_PI / 4)));
+    const float zero[3] = {0, 0, 0};
+    REQUIRE(ssc_rotation_from_axis_angle(zero, q) == SSC_OK);
+    CHECK(q[3] == 1.0f);
+    const float bad[3] = {std::nanf(""), 0, 0};
+    CHECK(ssc_rotation_from_axis_angle(bad, q) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_rotation_from_axis_angle(nullptr, q) != SSC_OK);
+    CHECK(ssc_rotation_from_axis_angle(aa, nullptr) != SSC_OK);
 }

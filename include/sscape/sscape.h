@@ -386,6 +386,23 @@ SSC_API ssc_status ssc_body_get_shape(const ssc_body* body, float* out, uint32_t
 SSC_API ssc_status ssc_body_set_pose(ssc_body* body, const float* rotations, uint32_t joint_count,
                                      const float* translation);
 
+/**
+ * Random plausible shapes: every coefficient standard normal, drawn again while beyond
+ * +-truncation standard deviations. The same seed gives the same shapes (what `sscape synth
+ * --random N --seed S` writes).
+ * @param count       shapes, one after another, each ssc_model_shape_count floats.
+ * @param truncation  in (0, SSC_SHAPE_COEFFICIENT_LIMIT]; 2.5 keeps every body plausible.
+ * @param out         count * ssc_model_shape_count floats; capacity in floats.
+ * Threads: any.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_model_sample_shapes(const ssc_model* model, uint32_t seed, uint32_t count, float truncation,
+                                                    float* out, uint32_t capacity);
+
+/** The unit quaternion (x y z w) of an axis-angle vector (axis times angle, radians), as
+ *  ssc_body_set_pose_axis_angle reads them. SSC_ERROR_INVALID_ARGUMENT for non-finite input.
+ *  Threads: any. */
+SSC_EXPERIMENTAL ssc_status ssc_rotation_from_axis_angle(const float* axis_angle, float* out_xyzw);
+
 /** Sets the pose from axis-angle vectors, 3 floats per joint; otherwise as ssc_body_set_pose. */
 SSC_API ssc_status ssc_body_set_pose_axis_angle(ssc_body* body, const float* rotations, uint32_t joint_count,
                                                 const float* translation);

@@ -1,6 +1,7 @@
 // Bodies: shape and pose in, vertices, normals and transforms out.
 #include "guard.hpp"
 #include "handles.hpp"
+#include "synthesis/random_shapes.hpp"
 #include "synthesis/rotation.hpp"
 #include "synthesis/shape_range.hpp"
 
@@ -114,6 +115,31 @@ ssc_status ssc_body_get_shape(const ssc_body* body, float* out, uint32_t capacit
 
 ssc_status ssc_body_set_pose(ssc_body* body, const float* rotations, uint32_t joint_count, const float* translation) {
     return guarded(__func__, [&] { set_pose(body, SSC_ROTATION_QUATERNION, rotations, joint_count, translation); });
+}
+
+ssc_status ssc_model_sample_shapes(const ssc_model* model, uint32_t seed, uint32_t count, float truncation, float* out, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        SSC_REQUIRE_ARG(truncation > 0 && truncation <= SSC_SHAPE_COEFFICIENT_LIMIT,
+                        "truncation is " + std::to_string(truncation) + "; it must lie in (0, " +
+                            std::to_string(SSC_SHAPE_COEFFICIENT_LIMIT) + "] standard deviations");
+        const uint64_t needed = uint64_t(count) * model->model.component_count();
+        SSC_REQUIRE_ARG(needed <= 0xFFFFFFFFu, "count x components exceeds 2^32 floats");
+        check_output(out, capacity, uint32_t(needed), 0, 4);
+        const std::vector<float> shapes = random_shapes(model->model, seed, count, truncation);
+        std::memcpy(out, shapes.data(), 4 * shapes.size());
+    });
+}
+
+ssc_status ssc_rotation_from_axis_angle(const float* axis_angle, float* out_xyzw) {
+    return guarded(__func__, [&] {
+        need(axis_angle, "axis_angle");
+        need(out_xyzw, "out_xyzw");
+        std::string error;
+        float q[4];
+        SSC_REQUIRE_ARG(to_unit_quaternions(SSC_ROTATION_AXIS_ANGLE, axis_angle, 1, q, error), error);
+        std::memcpy(out_xyzw, q, sizeof q);
+    });
 }
 
 ssc_status ssc_body_set_pose_axis_angle(ssc_body* body, const float* rotations, uint32_t joint_count,

@@ -60,8 +60,9 @@ int run_measure(Options o) {
     for (uint32_t m = 0; m < M; ++m) check(ssc_measurement_get_info(m, &names[m], &units[m], &definitions[m]), "measurement info");
     check(ssc_body_create(model, nullptr, &guard.body), "body");
 
-    std::mt19937 rng(o.seed);
-    std::normal_distribution<float> normal;
+    // Random shapes as sscape synth --random draws them (truncated at 2.5 SD).
+    std::vector<float> random(std::size_t(o.random) * K);
+    if (o.random) check(ssc_model_sample_shapes(model, o.seed, o.random, 2.5f, random.data(), uint32_t(random.size())), "random shapes");
     const uint32_t n = o.random ? o.random : 1;
     std::ostringstream csv;
     csv << "body";
@@ -88,10 +89,7 @@ int run_measure(Options o) {
             return 130;
         }
         std::vector<float> shape = o.shape;
-        if (o.random) {
-            shape.resize(K);  // standard normal, truncated at 2.5 SD as sscape synth --random
-            for (float& c : shape) do c = normal(rng); while (std::abs(c) > 2.5f);
-        }
+        if (o.random) shape.assign(random.begin() + std::ptrdiff_t(i) * K, random.begin() + std::ptrdiff_t(i + 1) * K);
         check(ssc_body_set_shape(guard.body, shape.data(), uint32_t(shape.size())), "shape");
         check(ssc_body_measure(guard.body, values.data(), M), "measure");
         csv << i;

@@ -101,8 +101,7 @@ std::vector<float> parse_pose(ssc_model* model, const std::string& text) {
         if (angle > 2 * M_PI)
             throw UsageError("--pose " + name + ": a rotation of " + std::to_string(angle) +
                              " radians is more than a full turn; angles are in radians (degrees x pi / 180)");
-        const double s = angle > 0 ? std::sin(angle / 2) / angle : 0.5;
-        q[4 * j] = float(s * v[0]), q[4 * j + 1] = float(s * v[1]), q[4 * j + 2] = float(s * v[2]), q[4 * j + 3] = float(std::cos(angle / 2));
+        check(ssc_rotation_from_axis_angle(v.data(), &q[4 * j]), "--pose " + name);
     }
     return q;
 }
@@ -253,8 +252,9 @@ int run_synth(Options o) {
         if (outside) std::printf("pose: %u joint(s) clamped to their anatomical limits\n", outside);
     }
 
-    std::mt19937 rng(o.seed);
-    std::normal_distribution<float> normal;
+    // Random shapes: standard normal coefficients, truncated at 2.5 SD so no body is implausibly extreme.
+    std::vector<float> random(std::size_t(o.random) * K);
+    if (o.random) check(ssc_model_sample_shapes(model, o.seed, o.random, 2.5f, random.data(), uint32_t(random.size())), "random shapes");
     const uint32_t n = o.random ? o.random : 1;
     std::vector<float> verts(3ull * V);
     std::vector<std::vector<float>> rendered;
@@ -266,11 +266,7 @@ int run_synth(Options o) {
             return 130;
         }
         std::vector<float> shape = o.params.empty() ? o.shape : fitted.shape;
-        if (o.random) {
-            // Standard normal coefficients, truncated at 2.5 SD so no body is implausibly extreme.
-            shape.resize(K);
-            for (float& c : shape) do c = normal(rng); while (std::abs(c) > 2.5f);
-        }
+        if (o.random) shape.assign(random.begin() + std::ptrdiff_t(i) * K, random.begin() + std::ptrdiff_t(i + 1) * K);
         check(ssc_body_set_shape(guard.body, shape.data(), uint32_t(shape.size())), "shape");
         if (!o.sliders.empty() || !o.measurements.empty()) {
             shape_by_meaning(model, guard.body, o);
