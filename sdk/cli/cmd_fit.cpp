@@ -3,7 +3,7 @@
 #include "cli.hpp"
 #include "progress.hpp"
 
-#include "capi/handles.hpp"
+#include "capi/cpp_access.hpp"
 #include "common/files.hpp"
 #include "export/body_export.hpp"
 #include "export/mesh_writers.hpp"
@@ -288,7 +288,7 @@ int run_fit(Options o) {
         s.scale = scale;
         std::vector<Eigen::Vector3d> fitted(V);
         for (uint32_t v = 0; v < V; ++v) fitted[v] = Eigen::Vector3d(verts[3 * v], verts[3 * v + 1], verts[3 * v + 2]);
-        render::write_fit_picture(o.png, model->model, s, shown, fitted, {});
+        render::write_fit_picture(o.png, model_of(model), s, shown, fitted, {});
         std::printf("wrote %s (input, then the fit; front and side)\n", o.png.c_str());
     }
     return 0;

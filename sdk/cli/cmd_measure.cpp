@@ -3,7 +3,7 @@
 #include "cli.hpp"
 #include "progress.hpp"
 
-#include "capi/handles.hpp"
+#include "capi/cpp_access.hpp"
 #include "common/files.hpp"
 #include "measure/measurements.hpp"
 #include "render/measure_picture.hpp"
@@ -119,7 +119,7 @@ int run_measure(Options o) {
             check(ssc_body_get_rest_vertices(guard.body, rest.data(), V, 0), "rest vertices");
             check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
             std::vector<measure::Path> paths;
-            model->measurer().measure(guard.body->body, &paths);
+            measurer_of(model).measure(body_of(guard.body), &paths);
             render::write_measurement_picture(o.png, rest, tris, paths);
         }
     }

@@ -4,7 +4,7 @@
 // camera in its header), and the true mesh (OBJ) to compare fits with.
 #include "cli.hpp"
 
-#include "capi/handles.hpp"
+#include "capi/cpp_access.hpp"
 #include "export/mesh_writers.hpp"
 #include "io/writers.hpp"
 #include "simulation/depth_camera.hpp"
@@ -36,7 +36,7 @@ int run_simulate(const Options& o) {
     else if (!o.depth.empty()) views = {"front", "back"};
     ssc_model* model = load_model(model_path);
     const Handles guard(model);
-    const Model& m = model->model;
+    const Model& m = model_of(model);
     std::mt19937 rng(seed);
     auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, pose_amount), Eigen::Vector3d::Zero());
     simulation::transform_body(truth, Eigen::AngleAxisd(heading * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d::Zero());
