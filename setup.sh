@@ -11,7 +11,7 @@ case "$mode" in run|test) ;; *) echo "usage: $0 [run|test]" >&2; exit 2 ;; esac
 jobs="${JOBS:-$(nproc)}"
 
 packages=(cmake make g++ pkg-config libeigen3-dev libnanoflann-dev libflatbuffers-dev flatbuffers-compiler
-          libzstd-dev libxxhash-dev libpng-dev nlohmann-json3-dev libcli11-dev gnuplot-nox catch2 libbenchmark-dev)
+          libzstd-dev libxxhash-dev libpng-dev nlohmann-json3-dev libcli11-dev catch2 libbenchmark-dev)
 # The test suite also fuzzes, with clang's libFuzzer.
 if [ "$mode" = test ]; then packages+=(clang libclang-rt-14-dev); fi
 missing=()

@@ -5,9 +5,12 @@
 #include "io/readers.hpp"
 #include "support.hpp"
 #include "io/writers.hpp"
+#include "render/plot.hpp"
+#include "render/text.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -168,4 +171,30 @@ TEST_CASE("the C API writes a body as OBJ, PLY and rigged glTF that read back as
     CHECK(ssc_body_write_file(d.body, nullptr, SSC_FILE_OBJ) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(ssc_body_write_file(nullptr, "io_body.obj", SSC_FILE_OBJ) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(ssc_body_write_file(d.body, "no-such-dir/io_body.obj", SSC_FILE_OBJ) == SSC_ERROR_IO);
+}
+
+TEST_CASE("pictures carry text and plots: the built-in font and the line plot", "[render]") {
+    // "1" at scale 2: the stem is the glyph's middle column, two pixels wide, seven glyph rows high.
+    render::Image img(20, 20);
+    const uint8_t black[3] = {0, 0, 0};
+    render::draw_text(img, 0, 0, "1", 2, black);
+    auto dark = [&](int x, int y) { return img.rgb[(std::size_t(y) * img.width + x) * 3] == 0; };
+    for (int y = 0; y < 14; ++y) CHECK((dark(4, y) && dark(5, y)));
+    CHECK_FALSE(dark(0, 6));  // left of the stem, mid-height
+    CHECK(render::text_width("ab", 2) == 22);
+
+    render::LinePlot plot{"compactness", "number of components", "explained", {1, 2, 5, 10}, {0.5, 0.8, 0.95, 0.99}};
+    const std::string path = "io_test_plot.png";
+    std::remove(path.c_str());
+#if SSCAPE_WITH_PNG
+    render::write_line_plot(path, plot);
+    std::ifstream f(path, std::ios::binary);
+    char signature[8] = {};
+    f.read(signature, 8);
+    CHECK(std::string(signature + 1, 3) == "PNG");
+#endif
+    plot.y.pop_back();
+    CHECK(status_of([&] { render::write_line_plot(path + "x", plot); }) == SSC_ERROR_INVALID_ARGUMENT);
+    plot.y.push_back(std::nan(""));
+    CHECK(status_of([&] { render::write_line_plot(path + "x", plot); }) == SSC_ERROR_INVALID_ARGUMENT);
 }

@@ -1,6 +1,7 @@
 #include "evaluate.hpp"
 
 #include "common/files.hpp"
+#include "render/plot.hpp"
 
 #include <Eigen/Dense>
 
@@ -85,23 +86,21 @@ std::vector<std::string> write_quality_report(const std::string& prefix, const s
     const std::string text = csv.str(), csv_path = prefix + "quality.csv";
     write_file_atomically(csv_path, text.data(), text.size());
     std::vector<std::string> pngs;
-    if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) return pngs;
-    const char* plots[3][3] = {{"compactness", "2", "cumulative explained variance"},
-                               {"generalization", "3", "held-out mean vertex error (mm)"},
-                               {"specificity", "4", "distance to nearest training body (mm)"}};
-    std::ostringstream gp;
-    gp << "set terminal png size 640,420\nset datafile separator ','\nset key autotitle columnhead\nset key off\nset grid\n"
-       << "set xlabel 'number of components'\n";
-    for (const auto& p : plots) {
-        const std::string png = prefix + p[0] + ".png";
-        gp << "set output '" << png << "'\nset title '" << p[0] << "'\nset ylabel '" << p[2] << "'\n"
-           << "plot '" << csv_path << "' using 1:" << p[1] << " with linespoints lw 2 pt 7\n";
-        pngs.push_back(png);
+    render::LinePlot plots[3];
+    plots[0] = {"compactness", "number of components", "cumulative explained variance", {}, {}};
+    plots[1] = {"generalization", "number of components", "held-out mean vertex error (mm)", {}, {}};
+    plots[2] = {"specificity", "number of components", "distance to nearest training body (mm)", {}, {}};
+    for (const auto& point : q) {
+        for (auto& plot : plots) plot.x.push_back(point.components);
+        plots[0].y.push_back(point.compactness);
+        plots[1].y.push_back(point.generalization * 1e3);
+        plots[2].y.push_back(point.specificity * 1e3);
     }
-    const std::string script = prefix + "quality.gnuplot";
-    const std::string gtext = gp.str();
-    write_file_atomically(script, gtext.data(), gtext.size());
-    if (std::system(("gnuplot '" + script + "'").c_str()) != 0) pngs.clear();
+    if (q.empty()) return pngs;
+    for (const auto& plot : plots) {
+        pngs.push_back(prefix + plot.title + ".png");
+        render::write_line_plot(pngs.back(), plot);
+    }
     return pngs;
 }
 

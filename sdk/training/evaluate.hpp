@@ -22,8 +22,8 @@ struct QualityPoint {
 std::vector<QualityPoint> evaluate_quality(const Pca& p, const SampleMatrix& training_centred, const SampleMatrix& heldout,
                                            const std::vector<uint32_t>& ks, uint32_t samples, uint32_t seed);
 
-// Writes the table as CSV and, when gnuplot is installed, three PNG plots next to it
-// (prefix + "compactness.png" and so on). Returns the PNG paths written.
+// Writes the table as CSV and three PNG plots next to it (prefix + "compactness.png" and so on,
+// drawn by render/plot.hpp). Returns the PNG paths written.
 std::vector<std::string> write_quality_report(const std::string& prefix, const std::vector<QualityPoint>& q);
 
 }  // namespace ssc::training
