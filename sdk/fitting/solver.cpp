@@ -110,6 +110,12 @@ constexpr std::size_t kExplainedSamples = 1000;
 // Joint limits are soft walls: beyond a limit the cost grows as (excess / kLimitSigma)^2 / 2, so
 // 10 degrees past a limit costs as much as 75 scan points each 3 sigma off.
 constexpr double kLimitSigma = 0.02;
+// A stage, correspondence search or evaluation over every frame rather than one (frame_only).
+constexpr uint32_t kAllFrames = 0xFFFFFFFFu;
+// Levenberg-Marquardt damping (run_stage): the start of each stage, the factor a rejected step
+// multiplies it by and an accepted one divides it by, its floor, and the steps tried per iteration.
+constexpr double kInitialDamping = 1e-3, kDampingUp = 10, kDampingDown = 3, kMinDamping = 1e-7;
+constexpr int kDampedAttempts = 8;
 
 Matrix3d skew(const Vector3d& a) {
     Matrix3d m;
@@ -180,6 +186,58 @@ struct Stage {
     // the benchmark's errors and cost a tenth of the fit's time.
     uint32_t stall = kStall;
 };
+
+// The stages of a fit, coarse to fine (Solver::run): each a function, so its settings have names.
+// Rigid: translation, rotation (and scale) only. A given start may be off by tens of centimetres
+// at the head: the stage then reaches far with a wide loss; after the automatic start search it
+// stays close.
+Stage rigid_stage(uint32_t iterations, bool given_start) {
+    Stage s{};
+    s.iterations = iterations;
+    s.body_joints = s.all_joints = false;
+    s.components = 0;
+    s.max_distance = given_start ? 1.0 : 0.3;
+    s.gm_scale = given_start ? 40.0 : 10.0;
+    s.min_normal_dot = 0.0;
+    s.point_fraction = 0.25;
+    s.tolerance = 1e-3;
+    return s;
+}
+
+// Coarse: the trunk and limbs (not wrists, fingers, toes) and the first few shape components.
+Stage coarse_stage(uint32_t iterations, uint32_t components) {
+    Stage s{};
+    s.iterations = iterations;
+    s.body_joints = true;
+    s.all_joints = false;
+    s.components = components;
+    s.max_distance = 0.10;
+    s.gm_scale = 6.0;
+    s.min_normal_dot = 0.3;
+    s.point_fraction = 0.5;
+    s.tolerance = 1e-4;
+    return s;
+}
+
+// Fine: every joint and component, dense correspondences, on half the points until the first
+// iteration without a gain; then the polish, the same on all of them. The fine stage's first steps
+// (shape components 11 to 50 joining, the wrists and fingers free) need no more, and the last steps
+// get the full accuracy. Against the whole fine stage on all points (benchmark, 30 trials): a tenth
+// less CPU time, mean errors up to 0.2 mm higher (scan 2.18 against 2.04 mm).
+Stage fine_stage(uint32_t iterations, uint32_t components, bool polish) {
+    Stage s{};
+    s.iterations = iterations;
+    s.body_joints = s.all_joints = true;
+    s.components = components;
+    s.max_distance = 0.04;
+    s.gm_scale = 4.0;
+    s.min_normal_dot = 0.5;
+    s.point_fraction = polish ? 1.0 : 0.5;
+    s.tolerance = 1e-5;
+    s.dense_model = true;
+    s.stall = polish ? 2 : 1;
+    return s;
+}
 
 struct FrameData {
     std::vector<SurfacePoint> landmark_points;
@@ -273,19 +331,8 @@ public:
         const uint32_t n0 = std::max<uint32_t>(1, total / 5), n1 = std::max<uint32_t>(1, total / 3);
         const uint32_t later = total - n0 - n1;  // at least 1: the fine stage keeps one
         const uint32_t n2 = later - std::min(kPolish, later - 1);
-        const Stage stages[4] = {
-            // A given start may be off by tens of centimetres at the head: the rigid stage then reaches
-            // far with a wide loss. After the automatic start search it stays close.
-            {n0, false, false, 0, given_start ? 1.0 : 0.3, given_start ? 40.0 : 10.0, 0.0, 0.25, 1e-3},
-            {n1, true, false, std::min<uint32_t>(K_, 10), 0.10, 6.0, 0.3, 0.5, 1e-4},
-            // Fine, on half the points until the first iteration without a gain, then a polish on
-            // all of them: the fine stage's first steps (shape components 11 to 50 joining, the
-            // wrists and fingers free) need no more, and the last steps get the full accuracy.
-            // Against the whole fine stage on all points (benchmark, 30 trials): a tenth less
-            // CPU time, mean errors up to 0.2 mm higher (scan 2.18 against 2.04 mm).
-            {n2, true, true, K_, 0.04, 4.0, 0.5, 0.5, 1e-5, true, 1},
-            {total - n0 - n1 - n2, true, true, K_, 0.04, 4.0, 0.5, 1.0, 1e-5, true, 2},
-        };
+        const Stage stages[4] = {rigid_stage(n0, given_start), coarse_stage(n1, std::min<uint32_t>(K_, 10)),
+                                 fine_stage(n2, K_, false), fine_stage(total - n0 - n1 - n2, K_, true)};
         bool cancelled = false;
         uint32_t iteration = 0;
         // Frames whose start search ended with a short coarse fit need no rigid stage.
@@ -339,25 +386,26 @@ private:
         for (int si = first_stage; si < 4 && !cancelled; ++si) {
             if (stages[si].iterations == 0) continue;
             // The polish has a fixed budget: convergence is the fine stage's.
-            const bool stage_converged = run_stage(stages[si], 0xFFFFFFFFu, &progress, iteration, cancelled, first_cost);
+            const bool stage_converged = run_stage(stages[si], kAllFrames, &progress, iteration, cancelled, first_cost);
             if (si < 3) converged = stage_converged;
             // After the fine stage, with the wrists in place: how closed each hand is, and when a
             // hand changed, the fine stage again from there.
             if (si == 2 && o_.hand_search && !cancelled && search_hands()) {
                 Stage again = stages[2];
                 again.iterations = std::max<uint32_t>(2, again.iterations / 2);
-                converged = run_stage(again, 0xFFFFFFFFu, &progress, iteration, cancelled);
+                converged = run_stage(again, kAllFrames, &progress, iteration, cancelled);
             }
             // Between the coarse and the fine stage: limbs the coarse stage could not reach, each
             // search settled by a short coarse stage when a limb moved. Limbs are searched one after
             // another, so a limb that gained kResweep of the measure (a raised leg found) changed
             // what the limbs searched before it had to explain: they are searched again.
             if (si == 1 && !cancelled) {
-                const Stage again{std::max<uint32_t>(1, stages[1].iterations / 2), true, false, stages[1].components, 0.10, 6.0, 0.3, 0.5, 1e-4};
+                Stage again = stages[1];
+                again.iterations = std::max<uint32_t>(1, stages[1].iterations / 2);
                 std::size_t count = kLimbCount;
                 for (int sweep = 0; sweep < 2 && count > 0 && !cancelled; ++sweep) {
                     const LimbGains gains = search_limbs(count);
-                    if (*std::max_element(gains.begin(), gains.end()) > 0) run_stage(again, 0xFFFFFFFFu, &progress, iteration, cancelled);
+                    if (*std::max_element(gains.begin(), gains.end()) > 0) run_stage(again, kAllFrames, &progress, iteration, cancelled);
                     const std::size_t searched = count;
                     count = 0;  // the limbs before the last that gained kResweep
                     for (std::size_t i = 0; i < searched; ++i)
@@ -440,7 +488,7 @@ private:
     // Levenberg-Marquardt iterations of one stage (all frames, or one). Returns whether it converged.
     bool run_stage(const Stage& st, uint32_t frame_only, const FitProgress* progress, uint32_t& iteration, bool& cancelled,
                    double* first_cost = nullptr) {
-        double mu = 1e-3;
+        double mu = kInitialDamping;
         // Correspondences are found again every iteration, so the cost keeps moving by a little
         // even at the solution: a stage also ends when st.stall iterations in a row fail to beat
         // its best cost by a fraction kPlateau.
@@ -463,10 +511,10 @@ private:
             const std::vector<FitState> states0 = states_;
             bool improved = false;
             double new_cost = cost;
-            for (int attempt = 0; attempt < 8 && !improved; ++attempt) {
+            for (int attempt = 0; attempt < kDampedAttempts && !improved; ++attempt) {
                 const VectorXd delta = H.damped_solve(g, cols, mu, *pool_);
                 if (!delta.allFinite()) {
-                    mu *= 10;
+                    mu *= kDampingUp;
                     continue;
                 }
                 apply(delta);
@@ -474,11 +522,11 @@ private:
                 new_cost = evaluate(st, nullptr, nullptr, frame_only);
                 if (new_cost < cost) {
                     improved = true;
-                    mu = std::max(mu / 3, 1e-7);
+                    mu = std::max(mu / kDampingDown, kMinDamping);
                 } else {
                     shape_ = shape0;
                     states_ = states0;
-                    mu *= 10;
+                    mu *= kDampingUp;
                 }
             }
             if (!improved || cost - new_cost < st.tolerance * std::max(cost, 1e-12)) {
@@ -796,7 +844,7 @@ private:
         });
     }
 
-    void find_pairs(const Stage& st, uint32_t frame_only = 0xFFFFFFFFu) {
+    void find_pairs(const Stage& st, uint32_t frame_only = kAllFrames) {
         pair_candidates_.assign(F_, 0);
         for (uint32_t f = 0; f < F_; ++f) {
             if (frames_[f].points.empty() || (frame_only < F_ && f != frame_only)) continue;
@@ -991,7 +1039,7 @@ private:
 
     // Cost of the current state with the current correspondences; with H and g, the normal
     // equations of its linearisation. frame_only < F_ restricts the data to one frame.
-    double evaluate(const Stage& st, ArrowSystem* H, VectorXd* g, uint32_t frame_only = 0xFFFFFFFFu) {
+    double evaluate(const Stage& st, ArrowSystem* H, VectorXd* g, uint32_t frame_only = kAllFrames) {
         const uint32_t P = parameters();
         const uint32_t PL = K_ + B_;
         // Only active parameters get rows: the rigid and coarse stages cost a fraction of the full one.
