@@ -13,6 +13,7 @@
 #include "common/rigid.hpp"
 #include "anatomy/hand_closure.hpp"
 #include "anatomy/joint_limits.hpp"
+#include "anatomy/joint_roles.hpp"
 #include "anatomy/named_poses.hpp"
 #include "fitting/nearest.hpp"
 #include "fitting/normal_equations.hpp"
@@ -286,7 +287,11 @@ public:
             }
             kin_.emplace_back(lin);
         }
-        for (const auto& name : d.skeleton.joint_names) joint_sigma_.push_back(joint_rotation_sigma(name));
+        for (const auto& name : d.skeleton.joint_names) {
+            const anatomy::JointRole role = anatomy::joint_role(name);
+            joint_sigma_.push_back(role.rotation_sigma);
+            coarse_joint_.push_back(role.coarse);
+        }
         // The fingers' rotation vectors at closure 1: at closure c the prior's centre is c times
         // that (each finger segment turns about a fixed axis).
         closed_fingers_.assign(lin.J, Vector3d::Zero());
@@ -958,8 +963,8 @@ private:
         if (st.all_joints) return true;
         // Coarse stages move the trunk and limbs, not the wrists (nor fingers and toes): their far-
         // reaching correspondences bent a hand over a hole in the scan onto the forearm's points,
-        // and the fine stage could not bend it back.
-        return st.body_joints && joint_sigma_[j] >= 0.5;
+        // and the fine stage could not bend it back (anatomy/joint_roles.hpp).
+        return st.body_joints && coarse_joint_[j] != 0;
     }
 
     // The columns a step solves for: active in the stage and, for joint rotations and frame
@@ -1229,7 +1234,8 @@ private:
     ThreadPool inline_pool_{1};  // when the caller gives none
     ThreadPool* pool_;
     std::vector<std::size_t> pair_candidates_;
-    std::vector<double> joint_sigma_;
+    std::vector<double> joint_sigma_;     // per joint: the rotation prior's sigma (joint_roles.hpp)
+    std::vector<uint8_t> coarse_joint_;   // per joint: moved by the coarse stages
     bool implausible_ = false;  // restart_if_implausible found no acceptable fit
     std::vector<Vector3d> closed_fingers_;  // per joint: a finger's rotation vector at closure 1, else zero
     std::vector<int8_t> hand_of_joint_;     // per joint: 0 left hand's finger, 1 right, -1 neither
@@ -1275,14 +1281,6 @@ bool is_hand_landmark(const std::string& name) {
     std::string lower;
     for (char c : name) lower += char(std::tolower(static_cast<unsigned char>(c)));
     return lower.find("metacarpal") != std::string::npos || lower.find("dactylion") != std::string::npos;
-}
-
-double joint_rotation_sigma(const std::string& name) {
-    for (const char* small : {"thumb", "index", "middle", "ring", "pinky", "ball"})
-        if (name.find(small) != std::string::npos) return 0.15;
-    // Wrists: a flat hand fits nearly as well turned over, so the prior keeps them near neutral.
-    if (name.rfind("hand", 0) == 0) return 0.3;
-    return 0.6;
 }
 
 FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,

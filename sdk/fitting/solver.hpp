@@ -92,9 +92,6 @@ struct FitSolution {
 FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,
                 const std::vector<FitState>* start = nullptr, const FitProgress& progress = {}, ThreadPool* pool = nullptr);
 
-// Per-joint prior standard deviation of the rotation (radians): loose for the trunk and limbs,
-// tight for fingers and the toes, which sparse data rarely constrain.
-double joint_rotation_sigma(const std::string& joint_name);
 
 // The six CAESAR hand landmarks (metacarpal-phalangeal II and V, dactylion, each side): scanned
 // subjects often close their hands, so fits commonly leave them out.

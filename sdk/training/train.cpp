@@ -1,6 +1,7 @@
 #include "train.hpp"
 
 #include "anatomy/joint_limits.hpp"
+#include "anatomy/joint_roles.hpp"
 #include "common/error.hpp"
 #include "landmarks.hpp"
 #include "render/landmark_picture.hpp"
@@ -19,16 +20,8 @@
 namespace ssc::training {
 namespace {
 
-// Vertex sets (body parts) by each vertex's dominant game bone.
-std::string part_of(const std::string& bone) {
-    auto has = [&](const char* s) { return bone.find(s) != std::string::npos; };
-    if (has("head") || has("neck")) return "head";
-    if (has("thumb") || has("index") || has("middle") || has("ring") || has("pinky") || has("hand")) return "hands";
-    if (has("upperarm") || has("lowerarm")) return "arms";
-    if (has("thigh") || has("calf")) return "legs";
-    if (has("foot") || has("ball")) return "feet";
-    return "torso";
-}
+// Vertex sets (body parts) by each vertex's dominant game bone (anatomy/joint_roles.hpp).
+std::string part_of(const std::string& bone) { return anatomy::part_name(anatomy::joint_role(bone).part); }
 
 }  // namespace
 
