@@ -1,0 +1,40 @@
+#!/bin/sh
+# The layering of sdk/: each folder may include headers only from the folders below it in the
+# pipeline (format -> synthesis -> anatomy, measure -> semantics, fitting, export -> capi; the
+# offline tools and the command line above). The build links the stages the same way
+# (sdk/CMakeLists.txt); this catches an #include that reaches up before a link error would.
+# The command line reaches the C API's internals only through capi/cpp_access.hpp.
+# usage: layering.sh SDK_DIR
+set -u
+sdk=$1
+runtime="common sscape_format synthesis anatomy measure semantics fitting export"
+allowed() {  # allowed FOLDER: the folders its files may include from
+    case $1 in
+        common) echo "" ;;
+        synthesis) echo "common sscape_format" ;;
+        anatomy|measure|export) echo "common sscape_format synthesis" ;;
+        semantics) echo "common sscape_format synthesis measure" ;;
+        fitting) echo "common sscape_format synthesis anatomy" ;;
+        capi) echo "$runtime" ;;
+        io) echo "common" ;;
+        render) echo "common sscape_format synthesis anatomy measure fitting" ;;
+        simulation|testing) echo "common sscape_format synthesis anatomy fitting" ;;
+        training) echo "$runtime render makehuman" ;;
+        cli) echo "$runtime capi render simulation io testing training" ;;
+        *) echo "?" ;;
+    esac
+}
+fails=0
+for dir in "$sdk"/*/; do
+    folder=$(basename "$dir")
+    ok=$(allowed "$folder")
+    if [ "$ok" = "?" ]; then echo "FAIL: sdk/$folder is not in the layering table of tests/layering.sh"; fails=1; continue; fi
+    for used in $(grep -rhoE '^#include "[a-z_]+/' "$dir" | sed -E 's/#include "//; s/\///' | sort -u); do
+        [ "$used" = "$folder" ] && continue
+        case " $ok " in *" $used "*) ;; *) echo "FAIL: sdk/$folder includes $used/ (allowed: ${ok:-nothing})"; fails=1 ;; esac
+    done
+done
+# The command line: of capi/, only the documented bridge.
+bad=$(grep -rhoE '^#include "capi/[a-z_.]+"' "$sdk/cli" | grep -v '"capi/cpp_access.hpp"' | sort -u)
+[ -z "$bad" ] || { echo "FAIL: sdk/cli includes C API internals: $bad"; fails=1; }
+[ "$fails" -eq 0 ] && echo "layering kept"
