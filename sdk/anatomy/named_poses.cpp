@@ -91,7 +91,7 @@ const std::vector<NamedPose> kPoses = {
 
 const std::vector<NamedPose>& named_poses() { return kPoses; }
 
-std::vector<float> named_pose(const Model& model, const std::string& name) {
+std::vector<float> named_pose(const Model& model, const std::string& name, const std::vector<JointLimit>* given) {
     bool known = false;
     for (const auto& p : kPoses) known |= name == p.name;
     if (!known) {
@@ -102,7 +102,8 @@ std::vector<float> named_pose(const Model& model, const std::string& name) {
     const uint32_t J = model.joint_count();
     std::vector<float> q(4 * std::size_t(J), 0.f);
     for (uint32_t j = 0; j < J; ++j) q[4 * j + 3] = 1.f;
-    const auto limits = joint_limits(model);
+    const std::vector<JointLimit> made = given ? std::vector<JointLimit>() : joint_limits(model);
+    const std::vector<JointLimit>& limits = given ? *given : made;
     for (const Angle& a : kAngles) {
         if (name != a.pose) continue;
         for (const char* side : {"_l", "_r", ""}) {

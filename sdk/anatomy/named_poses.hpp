@@ -3,6 +3,7 @@
 // the game-engine joint names. Every angle lies within the joint's anatomical limits.
 #pragma once
 
+#include "anatomy/joint_limits.hpp"
 #include "synthesis/model.hpp"
 
 #include <string>
@@ -20,7 +21,8 @@ const std::vector<NamedPose>& named_poses();
 
 // The local joint rotations of a named pose for a model: 4 floats (x y z w) per joint, identity for
 // joints the pose leaves alone or the rig lacks. Throws ssc::Error(SSC_ERROR_NOT_FOUND) for an
-// unknown name.
-std::vector<float> named_pose(const Model& model, const std::string& name);
+// unknown name. limits: the model's joint_limits() where the caller holds them (the C API's
+// model, the fitter's LinearModel); null: made for this call.
+std::vector<float> named_pose(const Model& model, const std::string& name, const std::vector<JointLimit>* limits = nullptr);
 
 }  // namespace ssc::anatomy

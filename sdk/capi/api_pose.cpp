@@ -33,7 +33,7 @@ ssc_status ssc_model_get_named_pose(const ssc_model* model, const char* name, fl
         need(model, "model");
         need(name, "name");
         check_output(rotations, joint_capacity, model->model.joint_count(), 0, 16);
-        const auto q = anatomy::named_pose(model->model, name);
+        const auto q = anatomy::named_pose(model->model, name, &model->limits);
         std::copy(q.begin(), q.end(), rotations);
     });
 }

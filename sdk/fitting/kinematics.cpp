@@ -77,6 +77,7 @@ LinearModel::LinearModel(const Model& m, uint32_t components)
         rest_world[j] = parent < 0 ? rest_orient[j] : Matrix3d(rest_world[uint32_t(parent)] * rest_orient[j]);
         for (int32_t a = int32_t(j); a >= 0; a = d.skeleton.parents[uint32_t(a)]) chains[j].push_back(uint32_t(a));
     }
+    limits = anatomy::joint_limits(m);
 }
 
 Kinematics::Kinematics(const LinearModel& lin) : lin_(lin), model_(lin.model), K_(lin.K), J_(lin.J) {

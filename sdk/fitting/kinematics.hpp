@@ -10,6 +10,7 @@
 // A surface point is final = scale * v + translation, v the linear-blend-skinned model point.
 #pragma once
 
+#include "anatomy/joint_limits.hpp"
 #include "synthesis/model.hpp"
 
 #include <Eigen/Core>
@@ -55,6 +56,7 @@ struct LinearModel {
     std::vector<Matrix3d> rest_orient;  // R_j (local rest orientation)
     std::vector<Matrix3d> rest_world;   // W_j = W_parent R_j
     std::vector<std::vector<uint32_t>> chains;  // ancestors of each joint, itself first
+    std::vector<anatomy::JointLimit> limits;    // per joint (anatomy/joint_limits.hpp), made once here
 };
 
 class Kinematics {
@@ -62,6 +64,7 @@ public:
     explicit Kinematics(const LinearModel& lin);
 
     const Model& model() const { return model_; }
+    const LinearModel& linear() const { return lin_; }
     uint32_t components() const { return K_; }
     uint32_t joints() const { return J_; }
     // Parameter layout.

@@ -30,7 +30,7 @@ LimbGains search_limbs(Kinematics& kin, Body& body, FitState& state, const Cloud
                        ThreadPool& pool, std::size_t count) {
     std::vector<Vector3d> posed, posed_normals;
     const Model& model = kin.model();
-    const auto limits = anatomy::joint_limits(model);
+    const std::vector<anatomy::JointLimit>& limits = kin.linear().limits;
     constexpr double d = M_PI / 180;
     struct Limb {
         const char *upper, *middle;

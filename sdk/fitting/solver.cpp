@@ -301,7 +301,7 @@ public:
                 closed_fingers_[r.joint] = log_rotation(r.rotation);
                 hand_of_joint_[r.joint] = int8_t(hand);
             }
-        if (o.joint_limits) limits_ = anatomy::joint_limits(lin.model);
+        if (o.joint_limits) limits_ = lin.limits;
         bool any_points = false;
         for (const auto& fd : frames_) any_points |= !fd.points.empty();
         if (any_points) sample_vertices(rng);
@@ -710,7 +710,7 @@ private:
         start_templates_.reserve(std::size(kStartPoses));
         for (const char* name : kStartPoses) {
             StartTemplate& t = start_templates_.emplace_back();
-            const std::vector<float> q = anatomy::named_pose(lin_.model, name);
+            const std::vector<float> q = anatomy::named_pose(lin_.model, name, &lin_.limits);
             for (uint32_t j = 0; j < lin_.J; ++j) t.pose.emplace_back(q[4 * j + 3], q[4 * j], q[4 * j + 1], q[4 * j + 2]);
             FitState st = kin_[0].zero_state();
             st.pose = t.pose;
