@@ -1,33 +1,25 @@
 // Fitting the model to measurements of one person: landmarks and point clouds (scans, depth
 // images turned into points), in one or several frames that share a shape and have a pose each.
 //
-// Method (each choice is explained where it is made in solver.cpp):
-//   start   rigid alignment with scale from landmarks (Umeyama) when a frame has any; otherwise
-//           from the cloud's principal axes, trying the plausible facing directions
-//           (rigid_start.hpp), the best two (two more at a time, up to all eight, while the
-//           best ends in an implausible pose) given a short coarse fit;
-//   solve   Levenberg-Marquardt over shape, per-joint rotations, translation and optional scale, with
-//           the analytic Jacobians of kinematics.hpp;
-//   data    landmarks (robust Huber loss), clouds with correspondences both ways (uniform grids,
-//           grid_index.hpp: every query has a gate; the start search's far-reaching ones use
-//           nanoflann k-d trees), point-to-plane where normals exist, normal-compatibility and
-//           distance tests
-//           (model-to-scan pairs must agree with the scan point's own nearest model point, so
-//           holes do not drag the model), Geman-McClure loss and trimming (robust.hpp);
-//   priors  Gaussian on shape (the model's own: coefficients are standard deviations) and on each
-//           joint's rotation, and soft walls at the anatomical joint limits (joint_limits.hpp);
-//           coarse-to-fine stages (rigid, then trunk and limbs with few components, then
-//           everything on half the scan points, then a two-iteration polish on all of them); a
-//           frame started by the cloud search skips the rigid stage;
-//   limbs   between the coarse and the fine stage, a search over anatomical poses of each arm and
-//           leg with clouds (raised overhead, forward, bent elbows and knees; upper and middle
-//           joint together, the best refined) that the coarse stage's short-reaching
-//           correspondences cannot find from the rest pose (limb_search.hpp, scored by explained.hpp),
-//           the limbs before one whose move changed much searched again;
-//   hands   after the fine stage, each hand's closure (open .. fist) that explains the scan best
-//           (hand_search.hpp); the fingers' prior is then centred on that closure;
-//   restart a single frame's fit from the automatic start that ends in an implausible pose is
-//           redone from the start search's next candidates (at most two).
+// The method, and where each part lives (docs/fitting.md tells the longer story):
+//   schedule       solver.cpp: the start, the stages, the limb and hand searches, restarts, the
+//                  report, and several frames fitted alone and then together;
+//   start          landmarks: a rigid alignment with scale (Umeyama); clouds: rigid_start.hpp over
+//                  the template at rest and in start poses (start_templates.hpp), the best
+//                  candidates given a short coarse fit;
+//   stages         stages.hpp: rigid, coarse (trunk and limbs, few components), fine (everything,
+//                  half the points), polish (all the points);
+//   problem        fit_problem.hpp: the frames' prepared data, the parameters, the posed model;
+//   energy         data_term.hpp (landmarks: Huber; clouds: point-to-plane, Geman-McClure,
+//                  robust.hpp) and priors.hpp (shape, per-joint rotation, joint-limit walls);
+//   correspondences correspondences.hpp: both ways through uniform grids (grid_index.hpp), with
+//                  normal and reciprocity tests and trimming; missing normals from scan_normals.hpp;
+//   solve          levenberg_marquardt.hpp over the analytic Jacobians of kinematics.hpp, the
+//                  normal equations summed in blocks (normal_equations.hpp) into the arrow of shape
+//                  and per-frame columns (arrow_system.hpp);
+//   searches       limb_search.hpp (raised, bent arms and legs) between the coarse and the fine
+//                  stage, hand_search.hpp (closure of each hand) after the fine stage, both scored
+//                  by explained.hpp.
 #pragma once
 
 #include "common/thread_pool.hpp"

@@ -1,0 +1,60 @@
+// The coarse-to-fine stages of a fit: what each moves, how far its correspondences reach and how
+// robust its loss is. Each stage is a function so that its settings have names; the schedule that
+// runs them is in solver.cpp, the reasons behind the numbers in docs/fitting.md.
+#pragma once
+
+#include <cstdint>
+
+namespace ssc::fitting {
+
+// Iterations in a row without a relative gain of kPlateau that end a stage (Stage::stall; see
+// levenberg_marquardt.hpp).
+constexpr uint32_t kStall = 3;
+
+struct Stage {
+    uint32_t iterations;
+    bool body_joints, all_joints;  // rigid only when both are false
+    uint32_t components;
+    double max_distance;  // metres, correspondence gate
+    double gm_scale;      // Geman-McClure scale in sigmas
+    double min_normal_dot;
+    double point_fraction;  // of FitOptions::max_points
+    double tolerance = 1e-5;  // converged when a step lowers the cost by less than this fraction
+    // Scan-to-model correspondences against every vertex, or (coarse stages) against the
+    // area-sampled subset only: a tree a quarter the size, and coarse steps need no more.
+    bool dense_model = false;
+    // Iterations in a row without a gain of kPlateau that end the stage. The fine stage starts
+    // close, with dense and steady correspondences: a third such iteration there did not change
+    // the benchmark's errors and cost a tenth of the fit's time.
+    uint32_t stall = kStall;
+};
+
+// Rigid: translation, rotation (and scale) only. A given start may be off by tens of centimetres
+// at the head: the stage then reaches far with a wide loss; after the automatic start search it
+// stays close.
+Stage rigid_stage(uint32_t iterations, bool given_start);
+
+// Coarse: the trunk and limbs (the joints whose role says so, anatomy/joint_roles.hpp) and the
+// first few shape components.
+Stage coarse_stage(uint32_t iterations, uint32_t components);
+
+// Fine: every joint and component, dense correspondences, on half the points until the first
+// iteration without a gain; polish: the same on all of them for a fixed budget.
+Stage fine_stage(uint32_t iterations, uint32_t components, bool polish);
+
+// The short coarse fit each start candidate gets (solver.cpp, short_fits): a little farther and
+// more robust than the coarse stage, on a quarter of the points.
+Stage start_stage(uint32_t components);
+
+// Shape components the coarse stages fit.
+constexpr uint32_t kCoarseComponents = 10;
+
+// The four stages of a fit (rigid, coarse, fine, polish) sharing a budget of iterations: a fifth
+// rigid, a third coarse, two (when there is room) the polish, the rest fine.
+struct Schedule {
+    Stage stages[4];
+    static constexpr int kRigid = 0, kCoarse = 1, kFine = 2, kPolish = 3;
+};
+Schedule schedule(uint32_t max_iterations, uint32_t components, bool given_start);
+
+}  // namespace ssc::fitting
