@@ -185,6 +185,30 @@ TEST_CASE("semantic errors are rejected with a message that names them", "[corru
     CHECK(load_broken([&](auto& m) { m.joint_limits = {limit(2)}; m.joint_limits[0].frame[0] = 2; }) == SSC_ERROR_MODEL_CORRUPT);
     CHECK(load_broken([&](auto& m) { m.joint_limits = {limit(2)}; m.joint_limits[0].upper[0] = -2; }) == SSC_ERROR_MODEL_CORRUPT);
     CHECK(load_broken([&](auto& m) { m.joint_limits = {limit(2)}; m.joint_limits[0].lower[1] = std::nanf(""); }) == SSC_ERROR_MODEL_CORRUPT);
+    // Joint roles (root, pelvis, spine, head, arm_l, arm_r): one per joint, values in range, a
+    // limb with both its joints, the middle one below the upper one.
+    auto roles = [](format::ModelData& m) { m.joint_roles.assign(m.joint_count(), format::JointRole{}); };
+    auto limb = [](format::ModelData& m, uint32_t upper, uint32_t middle) {
+        m.joint_roles[upper] = {2, 1, 0.6, true, 1};
+        m.joint_roles[middle] = {2, 1, 0.6, true, 2};
+    };
+    CHECK(load_broken([&](auto& m) { roles(m); }) == SSC_OK);
+    CHECK(load_broken([&](auto& m) { roles(m); limb(m, 2, 4); }) == SSC_OK);
+    CHECK(load_broken([&](auto& m) { roles(m); m.joint_roles.pop_back(); }, &msg) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(msg.find("joint_roles") != std::string::npos);
+    CHECK(load_broken([&](auto& m) { roles(m); m.joint_roles[2].part = 6; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { roles(m); m.joint_roles[2].side = 3; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { roles(m); m.joint_roles[2].limb_joint = 3; }) == SSC_ERROR_MODEL_CORRUPT);
+    for (double sigma : {0.0, -1.0, 7.0, double(NAN), double(INFINITY)})
+        CHECK(load_broken([&](auto& m) { roles(m); m.joint_roles[2].rotation_sigma = sigma; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { roles(m); limb(m, 2, 4); m.joint_roles[4].limb_joint = 0; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { roles(m); limb(m, 4, 2); }, &msg) == SSC_ERROR_MODEL_CORRUPT);  // the middle above
+    CHECK(msg.find("below") != std::string::npos);
+    CHECK(load_broken([&](auto& m) { roles(m); limb(m, 4, 5); }) == SSC_ERROR_MODEL_CORRUPT);  // siblings
+    CHECK(load_broken([&](auto& m) { roles(m); limb(m, 2, 4); m.joint_roles[3] = m.joint_roles[4]; }) == SSC_ERROR_MODEL_CORRUPT);
+    CHECK(load_broken([&](auto& m) { roles(m); limb(m, 2, 4); m.joint_roles[2].part = 0; }) == SSC_ERROR_MODEL_CORRUPT);  // torso
+    CHECK(load_broken([&](auto& m) { roles(m); limb(m, 2, 4); m.joint_roles[2].side = m.joint_roles[4].side = 0; }) ==
+          SSC_ERROR_MODEL_CORRUPT);
     // Attributes: wrong sizes, an asymmetric or singular covariance, repeated names.
     auto attributes = [](format::ModelData& m) {
         m.attributes.attributes = {{"stature", "m", "", 1.7f, 1.5f, 1.9f, true}, {"mass", "kg", "", 70, 50, 100, true}};

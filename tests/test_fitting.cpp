@@ -7,6 +7,7 @@
 #include "fitting/fitter.hpp"
 #include "anatomy/hand_closure.hpp"
 #include "anatomy/joint_limits.hpp"
+#include "anatomy/joint_roles.hpp"
 #include "anatomy/named_poses.hpp"
 #include "fitting/grid_index.hpp"
 #include "fitting/nearest.hpp"
@@ -910,4 +911,50 @@ TEST_CASE("everyday poses lie within the joint limits and impossible ones outsid
     // Raising the left arm sideways is -z', on the right too (mirrored).
     CHECK(angles("upperarm_l", Eigen::Vector3d::UnitZ(), 1.0).z() == Approx(-1.0).margin(0.05));
     CHECK(angles("upperarm_r", Eigen::Vector3d::UnitZ(), -1.0).z() == Approx(-1.0).margin(0.05));
+}
+
+TEST_CASE("joint roles are model data: the file's, else the table of names, and the fit follows them", "[fitting][roles]") {
+    const Model& m = default_model().model();
+    const format::ModelData& d = m.data();
+    // Training wrote the table's roles; a model without them gets the same from its names.
+    REQUIRE(d.joint_roles.size() == m.joint_count());
+    const std::vector<format::JointRole> table = anatomy::compute_joint_roles(d.skeleton);
+    format::ModelData bare = d;
+    bare.joint_roles.clear();
+    const Model without(std::move(bare), nullptr);
+    const std::vector<anatomy::JointRole> from_file = anatomy::joint_roles(m), from_names = anatomy::joint_roles(without);
+    for (uint32_t j = 0; j < m.joint_count(); ++j) {
+        INFO(d.skeleton.joint_names[j]);
+        CHECK((table[j].part == d.joint_roles[j].part && table[j].side == d.joint_roles[j].side &&
+               table[j].rotation_sigma == d.joint_roles[j].rotation_sigma && table[j].coarse == d.joint_roles[j].coarse &&
+               table[j].limb_joint == d.joint_roles[j].limb_joint));
+        CHECK((from_file[j].part == from_names[j].part && from_file[j].rotation_sigma == from_names[j].rotation_sigma &&
+               from_file[j].limb_joint == from_names[j].limb_joint));
+    }
+    // Each arm and leg has its upper and middle joint for the limb search.
+    for (auto part : {anatomy::BodyPart::Arm, anatomy::BodyPart::Leg})
+        for (auto side : {anatomy::Side::Left, anatomy::Side::Right}) {
+            const int64_t upper = anatomy::find_limb_joint(from_file, part, side, anatomy::LimbJoint::Upper);
+            const int64_t middle = anatomy::find_limb_joint(from_file, part, side, anatomy::LimbJoint::Middle);
+            REQUIRE(upper >= 0);
+            CHECK(d.skeleton.parents[std::size_t(middle)] == upper);
+        }
+    // The fitter reads the roles, not the names: without limb joints in the file, no limb search,
+    // and raised arms stay where the coarse stage leaves them.
+    format::ModelData no_limbs = d;
+    for (auto& r : no_limbs.joint_roles) r.limb_joint = 0;
+    const Model searched_not(std::move(no_limbs), nullptr);
+    std::mt19937 rng(23);
+    const auto shape = simulation::random_shape(m, rng);
+    const auto truth = simulation::make_body(m, shape, anatomy::named_pose(m, "arms_raised"), Eigen::Vector3d::Zero());
+    double err[2];
+    for (int with = 0; with < 2; ++with) {
+        const Model& used = with ? m : searched_not;
+        const fitting::LinearModel lin(used, used.component_count());
+        std::mt19937 scan_rng(5);
+        err[with] = fit_scan(used, lin, truth, 0.7, Eigen::Vector3d(0, 0.1, 1.5), scan_rng).second;
+    }
+    INFO("arms raised: mean vertex error " << err[1] * 1e3 << " mm with the limb search, " << err[0] * 1e3 << " mm without");
+    CHECK(err[1] < 0.015);
+    CHECK(err[0] > 2 * err[1]);
 }

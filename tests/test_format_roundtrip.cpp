@@ -27,6 +27,11 @@ TEST_CASE("a model written and read back has every field equal", "[format]") {
     std::copy(frame, frame + 9, limit.frame);
     limit.lower[0] = -0.5f, limit.upper[0] = 2.f, limit.lower[2] = -0.1f, limit.upper[2] = 0.4f;
     m.joint_limits = {limit};
+    // Roles: root, pelvis, spine, head, arm_l, arm_r (a left arm of one joint has no limb joints).
+    m.joint_roles.assign(m.joint_count(), format::JointRole{});
+    m.joint_roles[3] = {1, 0, 0.25, true, 0};
+    m.joint_roles[4] = {2, 1, 0.6, true, 0};
+    m.joint_roles[5] = {2, 2, 0.123456789012345, false, 0};
     m.attributes.attributes = {{"stature", "m", "height", 1.7f, 1.5f, 1.9f, true}, {"age", "years", "age", 40, 18, 80, false}};
     m.attributes.covariance = {0.01f, 0.02f, 0.02f, 300.f};
     for (uint32_t k = 0; k < 2 * m.component_count(); ++k) m.attributes.shape_covariance.push_back(0.01f * float(k));
@@ -80,6 +85,12 @@ TEST_CASE("a model written and read back has every field equal", "[format]") {
     CHECK(r.joint_limits[0].joint == 2);
     for (int i = 0; i < 9; ++i) CHECK(r.joint_limits[0].frame[i] == limit.frame[i]);
     for (int i = 0; i < 3; ++i) CHECK((r.joint_limits[0].lower[i] == limit.lower[i] && r.joint_limits[0].upper[i] == limit.upper[i]));
+    REQUIRE(r.joint_roles.size() == m.joint_roles.size());
+    for (std::size_t j = 0; j < r.joint_roles.size(); ++j) {
+        const format::JointRole &a = r.joint_roles[j], &b = m.joint_roles[j];
+        CHECK((a.part == b.part && a.side == b.side && a.rotation_sigma == b.rotation_sigma && a.coarse == b.coarse &&
+               a.limb_joint == b.limb_joint));
+    }
     REQUIRE(r.attributes.attributes.size() == 2);
     for (std::size_t i = 0; i < 2; ++i) {
         const auto &a = r.attributes.attributes[i], &b = m.attributes.attributes[i];

@@ -161,6 +161,17 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
         m.attributes.covariance.assign(cov->begin(), cov->end());
         m.attributes.shape_covariance.assign(shape_cov->begin(), shape_cov->end());
     }
+    if (const auto* roles = root->joint_roles()) {
+        for (const auto* r : *roles) {
+            JointRole out;
+            out.part = r->part();
+            out.side = r->side();
+            out.rotation_sigma = r->rotation_sigma();
+            out.coarse = r->coarse();
+            out.limb_joint = r->limb_joint();
+            m.joint_roles.push_back(out);
+        }
+    }
 
     validate_model(m);
     return m;

@@ -77,8 +77,13 @@ std::vector<unsigned char> write_model(const ModelData& m, const WriteOptions& o
                                               fbb.CreateVector(m.attributes.shape_covariance));
     }
 
+    std::vector<flatbuffers::Offset<fb::JointRole>> roles;
+    for (const auto& r : m.joint_roles)
+        roles.push_back(fb::CreateJointRole(fbb, r.part, r.side, r.rotation_sigma, r.coarse, r.limb_joint));
+
     auto root = fb::CreateModel(fbb, meta, mesh, shape, skeleton, skin, fbb.CreateVector(landmarks),
-                                fbb.CreateVector(sets), m.joint_limits.empty() ? 0 : fbb.CreateVector(limits), attributes);
+                                fbb.CreateVector(sets), m.joint_limits.empty() ? 0 : fbb.CreateVector(limits), attributes,
+                                m.joint_roles.empty() ? 0 : fbb.CreateVector(roles));
     fb::FinishModelBuffer(fbb, root);
     return pack_container(fbb.GetBufferPointer(), fbb.GetSize(), options.zstd_level);
 }

@@ -171,6 +171,34 @@ void validate_model(const ModelData& m) {
                               what + ": bounds must be finite, ordered and within one turn");
     }
 
+    // Joint roles: one per joint; a limb (arm or leg, left or right) has both its joints or none,
+    // the middle one below the upper one.
+    if (!m.joint_roles.empty()) {
+        SSC_REQUIRE_MODEL(m.joint_roles.size() == J, "joint_roles must hold one role per joint");
+        int limb[2][2][2];  // [arm, leg][left, right][upper, middle]: the joint, or -1
+        for (auto& a : limb)
+            for (auto& b : a) b[0] = b[1] = -1;
+        for (uint32_t j = 0; j < J; ++j) {
+            const JointRole& r = m.joint_roles[j];
+            const std::string what = "joint role " + std::to_string(j);
+            SSC_REQUIRE_MODEL(r.part <= 5 && r.side <= 2 && r.limb_joint <= 2, what + ": part, side or limb_joint out of range");
+            SSC_REQUIRE_MODEL(std::isfinite(r.rotation_sigma) && r.rotation_sigma > 0 && r.rotation_sigma <= 2 * M_PI,
+                              what + ": rotation_sigma must be in (0, 2 pi] radians");
+            if (r.limb_joint == 0) continue;
+            SSC_REQUIRE_MODEL((r.part == 2 || r.part == 4) && r.side != 0, what + ": a limb joint must be of a left or right arm or leg");
+            int& slot = limb[r.part == 4][r.side - 1][r.limb_joint - 1];
+            SSC_REQUIRE_MODEL(slot < 0, what + ": its limb already has that joint");
+            slot = int(j);
+        }
+        for (auto& a : limb)
+            for (auto& b : a) {
+                SSC_REQUIRE_MODEL((b[0] < 0) == (b[1] < 0), "joint_roles: a limb needs both its upper and middle joint, or neither");
+                int up = b[1];
+                while (up > b[0]) up = m.skeleton.parents[std::size_t(up)];
+                SSC_REQUIRE_MODEL(up == b[0], "joint_roles: a limb's middle joint must lie below its upper joint");
+            }
+    }
+
     // Attributes: named, finite, a symmetric covariance with a positive diagonal.
     const auto& am = m.attributes;
     const std::size_t A = am.attributes.size();

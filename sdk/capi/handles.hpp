@@ -2,20 +2,17 @@
 // holds its context, a body holds its model, so callers may release handles in any order.
 #pragma once
 
-#include "anatomy/joint_limits.hpp"
 #include "common/error.hpp"
 #include "common/alloc.hpp"
 #include "common/thread_pool.hpp"
 #include "fitting/fitter.hpp"
-#include "measure/measurements.hpp"
-#include "semantics/attribute_model.hpp"
+#include "runtime/runtime_model.hpp"
 #include "synthesis/body.hpp"
 #include "synthesis/model.hpp"
 
 #include <atomic>
 #include <cstdarg>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -34,41 +31,19 @@ struct ssc_context {
     }
 };
 
+// The shim's view of a model: the C++ RuntimeModel (runtime/runtime_model.hpp) holds the state;
+// the references name its parts for the C API's functions.
 struct ssc_model {
     std::atomic<uint32_t> refs{1};
     ssc_context* context;  // holds one reference
-    ssc::Model model;
-    ssc::semantics::AttributeModel attributes;   // sliders, made-to-measure regression
-    std::vector<ssc::anatomy::JointLimit> limits;  // per joint
+    ssc::RuntimeModel runtime;
+    const ssc::Model& model = runtime.model();
+    const ssc::semantics::AttributeModel& attributes = runtime.attributes();  // sliders, made-to-measure regression
+    const std::vector<ssc::anatomy::JointLimit>& limits = runtime.anatomy()->limits;  // per joint
 
-    ssc_model(ssc_context* ctx, ssc::format::ModelData data)
-        : context(ctx), model(std::move(data), &ctx->allocator), attributes(model.data()), limits(ssc::anatomy::joint_limits(model)) {}
+    ssc_model(ssc_context* ctx, ssc::format::ModelData data) : context(ctx), runtime(std::move(data), &ctx->allocator) {}
 
-    // Built on first use: its edge lists cost milliseconds that loading should not pay. Thread-safe.
-    // A model without the landmarks the definitions need fails (SSC_ERROR_NOT_FOUND) and that
-    // failure is kept: later calls report it without building again. Running out of memory is not
-    // kept, so a later call may succeed. (A mutex, not std::call_once: a once-callable that throws is
-    // retried, which some pthread_once implementations and ThreadSanitizer handle badly.)
-    const ssc::measure::Measurer& measurer() const {
-        std::lock_guard<std::mutex> lock(measurer_mutex_);
-        if (!measurer_ && measurer_error_.empty()) {
-            try {
-                measurer_ = std::make_unique<ssc::measure::Measurer>(model);
-            } catch (const ssc::Error& e) {
-                if (e.status() == SSC_ERROR_OUT_OF_MEMORY) throw;
-                measurer_status_ = e.status();
-                measurer_error_ = e.what();
-            }
-        }
-        if (!measurer_) ssc::fail(measurer_status_, measurer_error_);
-        return *measurer_;
-    }
-
-private:
-    mutable std::mutex measurer_mutex_;
-    mutable std::unique_ptr<ssc::measure::Measurer> measurer_;
-    mutable ssc_status measurer_status_ = SSC_ERROR_INTERNAL;
-    mutable std::string measurer_error_;
+    const ssc::measure::Measurer& measurer() const { return runtime.measurer(); }
 };
 
 struct ssc_body {
@@ -82,7 +57,7 @@ struct ssc_fitter {
     ssc_model* model;  // holds one reference
     ssc::fitting::Fitter fitter;
 
-    ssc_fitter(ssc_model* m, const ssc::fitting::FitOptions& o) : model(m), fitter(m->model, o) {}
+    ssc_fitter(ssc_model* m, const ssc::fitting::FitOptions& o) : model(m), fitter(m->model, o, m->runtime.anatomy()) {}
 };
 
 namespace ssc::capi {

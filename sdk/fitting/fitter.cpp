@@ -25,7 +25,8 @@ FitOptions checked(const Model& model, FitOptions o) {
 
 }  // namespace
 
-Fitter::Fitter(const Model& model, const FitOptions& options) : options_(checked(model, options)), linear_(model, options_.components) {}
+Fitter::Fitter(const Model& model, const FitOptions& options, std::shared_ptr<const anatomy::ModelAnatomy> anatomy)
+    : options_(checked(model, options)), linear_(model, options_.components, std::move(anatomy)) {}
 
 Frame& Fitter::frame_for_adding(uint32_t frame) {
     SSC_REQUIRE_ARG_S(frame <= frames_.size(), "frame " << frame << " is beyond the next new frame (" << frames_.size() << ")");

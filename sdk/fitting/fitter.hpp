@@ -9,6 +9,7 @@
 #include "fitting/solver.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace ssc::fitting {
@@ -16,8 +17,9 @@ namespace ssc::fitting {
 class Fitter {
 public:
     // options.components: 0 or more than the model has are refused (Error, INVALID_ARGUMENT), as
-    // are options fit() refuses. The model must outlive the fitter.
-    Fitter(const Model& model, const FitOptions& options);
+    // are options fit() refuses. The model must outlive the fitter. anatomy: the model's, shared
+    // (null: derived here).
+    Fitter(const Model& model, const FitOptions& options, std::shared_ptr<const anatomy::ModelAnatomy> anatomy = nullptr);
 
     const Model& model() const { return linear_.model; }
     const FitOptions& options() const { return options_; }

@@ -50,8 +50,10 @@ Eigen::Quaterniond exp_rotation(const Vector3d& w) {
 
 }  // namespace
 
-LinearModel::LinearModel(const Model& m, uint32_t components)
-    : model(m), K(std::min(components, m.component_count())), J(m.joint_count()), V(m.vertex_count()) {
+LinearModel::LinearModel(const Model& m, uint32_t components, std::shared_ptr<const anatomy::ModelAnatomy> shared)
+    : model(m), K(std::min(components, m.component_count())), J(m.joint_count()), V(m.vertex_count()),
+      anatomy(shared ? std::move(shared) : std::make_shared<const anatomy::ModelAnatomy>(m)), limits(anatomy->limits),
+      roles(anatomy->roles) {
     const auto& d = m.data();
     const float* step_in = m.basis_step();
     step.assign(step_in, step_in + K);
@@ -77,7 +79,6 @@ LinearModel::LinearModel(const Model& m, uint32_t components)
         rest_world[j] = parent < 0 ? rest_orient[j] : Matrix3d(rest_world[uint32_t(parent)] * rest_orient[j]);
         for (int32_t a = int32_t(j); a >= 0; a = d.skeleton.parents[uint32_t(a)]) chains[j].push_back(uint32_t(a));
     }
-    limits = anatomy::joint_limits(m);
 }
 
 Kinematics::Kinematics(const LinearModel& lin) : lin_(lin), model_(lin.model), K_(lin.K), J_(lin.J) {

@@ -10,7 +10,7 @@
 // A surface point is final = scale * v + translation, v the linear-blend-skinned model point.
 #pragma once
 
-#include "anatomy/joint_limits.hpp"
+#include "anatomy/model_anatomy.hpp"
 #include "synthesis/model.hpp"
 
 #include <Eigen/Core>
@@ -43,7 +43,8 @@ struct SurfacePoint {
 // The model's linear parts in double precision for the used components: built once, shared by every
 // frame's Kinematics.
 struct LinearModel {
-    LinearModel(const Model& model, uint32_t components);
+    // anatomy: the model's (shared, read-only); null: derived here.
+    LinearModel(const Model& model, uint32_t components, std::shared_ptr<const anatomy::ModelAnatomy> anatomy = nullptr);
     const Model& model;
     uint32_t K, J, V;
     // The shape basis as the model stores it (quantized), laid out per vertex: [v][axis][k], each
@@ -56,7 +57,9 @@ struct LinearModel {
     std::vector<Matrix3d> rest_orient;  // R_j (local rest orientation)
     std::vector<Matrix3d> rest_world;   // W_j = W_parent R_j
     std::vector<std::vector<uint32_t>> chains;  // ancestors of each joint, itself first
-    std::vector<anatomy::JointLimit> limits;    // per joint (anatomy/joint_limits.hpp), made once here
+    std::shared_ptr<const anatomy::ModelAnatomy> anatomy;
+    const std::vector<anatomy::JointLimit>& limits;  // per joint: anatomy->limits
+    const std::vector<anatomy::JointRole>& roles;    // per joint: anatomy->roles
 };
 
 class Kinematics {

@@ -1,6 +1,7 @@
 #include "fitting/limb_search.hpp"
 
 #include "anatomy/joint_limits.hpp"
+#include "anatomy/joint_roles.hpp"
 #include "fitting/explained.hpp"
 #include "fitting/posed_surface.hpp"
 
@@ -29,21 +30,21 @@ constexpr double kRefineWithin = 1.5;
 LimbGains search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
                        ThreadPool& pool, std::size_t count) {
     std::vector<Vector3d> posed, posed_normals;
-    const Model& model = kin.model();
     const std::vector<anatomy::JointLimit>& limits = kin.linear().limits;
+    const std::vector<anatomy::JointRole>& roles = kin.linear().roles;
     constexpr double d = M_PI / 180;
     struct Limb {
-        const char *upper, *middle;
+        anatomy::BodyPart part;
         std::vector<Vector3d> upper_angles, middle_angles;  // radians (flexion, axial, abduction)
     };
     std::vector<Limb> limbs(2);
-    limbs[0] = {"upperarm", "lowerarm", {}, {}};
+    limbs[0] = {anatomy::BodyPart::Arm, {}, {}};
     for (double abd : {40.0, 0.0, -47.0, -100.0, -132.0})  // along the body ... overhead
         for (double flex : {0.0, -60.0, -110.0})           // in the frontal plane ... forward
             for (double axial : {0.0, -70.0, 70.0})         // where a bent elbow points
                 limbs[0].upper_angles.push_back(d * Vector3d(flex, axial, abd));
     for (double flex : {40.0, -20.0, -80.0}) limbs[0].middle_angles.push_back(d * Vector3d(flex, 0, 0));  // straight ... bent
-    limbs[1] = {"thigh", "calf", {}, {}};
+    limbs[1] = {anatomy::BodyPart::Leg, {}, {}};
     for (double flex : {0.0, -45.0, -90.0})
         for (double abd : {0.0, -25.0}) limbs[1].upper_angles.push_back(d * Vector3d(flex, 0, abd));
     for (double flex : {0.0, 45.0, 90.0, 120.0}) limbs[1].middle_angles.push_back(d * Vector3d(flex, 0, 0));
@@ -55,10 +56,10 @@ LimbGains search_limbs(Kinematics& kin, Body& body, FitState& state, const Cloud
     // tests (15 cm let an arm raised over a hole curl onto the head instead).
     constexpr double cap = 0.15, model_cap = 0.08;
     for (const Limb& limb : limbs)
-        for (const char* side : {"_l", "_r"}) {
+        for (const anatomy::Side side : {anatomy::Side::Left, anatomy::Side::Right}) {
             if (index++ >= count) return gains;
-            const int64_t ju = model.find_joint(std::string(limb.upper) + side);
-            const int64_t jm = model.find_joint(std::string(limb.middle) + side);
+            const int64_t ju = anatomy::find_limb_joint(roles, limb.part, side, anatomy::LimbJoint::Upper);
+            const int64_t jm = anatomy::find_limb_joint(roles, limb.part, side, anatomy::LimbJoint::Middle);
             if (ju < 0 || jm < 0 || !limits[std::size_t(ju)].limited || !limits[std::size_t(jm)].limited) continue;
             kin.update(state, false);
             posed_surface(body, state, posed, &posed_normals);

@@ -33,7 +33,8 @@ using LimbGains = std::array<double, kLimbCount>;
 // each to its best pose. kin and body: scratch for the frame's model (their state is overwritten).
 // state: the frame's state, updated. cloud: the frame's cloud; vertex_sample: area-uniform model
 // vertices. Candidates are scored on the pool's threads; the result does not depend on their
-// number. Models without joint limits or without the named limbs are left as they are (gain 0).
+// number. Models without joint limits or without the limbs' joints (LinearModel::roles: each limb's upper
+// and middle joint) are left as they are (gain 0).
 LimbGains search_limbs(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
                        ThreadPool& pool, std::size_t count = kLimbCount);
 

@@ -1,7 +1,6 @@
 #include "fitting/priors.hpp"
 
 #include "anatomy/hand_closure.hpp"
-#include "anatomy/joint_roles.hpp"
 
 #include <cmath>
 
@@ -41,8 +40,7 @@ Vector3d log_rotation(const Eigen::Quaterniond& q) {
 }
 
 PosePrior::PosePrior(const LinearModel& lin, double weight, bool limits) : weight_(weight) {
-    for (const auto& name : lin.model.data().skeleton.joint_names) {
-        const anatomy::JointRole role = anatomy::joint_role(name);
+    for (const anatomy::JointRole& role : lin.roles) {
         joint_sigma_.push_back(role.rotation_sigma);
         coarse_joint_.push_back(role.coarse);
     }

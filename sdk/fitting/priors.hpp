@@ -19,7 +19,7 @@ constexpr double kLimitSigma = 0.02;
 Vector3d log_rotation(const Eigen::Quaterniond& q);
 
 // The pose prior and the limit walls of one frame. Built once per fit from the model: each joint's
-// sigma from its role (anatomy/joint_roles.hpp), the fingers' closed rotations
+// sigma from its role (LinearModel::roles, anatomy/joint_roles.hpp), the fingers' closed rotations
 // (anatomy/hand_closure.hpp), the joint limits (LinearModel::limits). Immutable once built.
 class PosePrior {
 public:

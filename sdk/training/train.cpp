@@ -20,8 +20,10 @@
 namespace ssc::training {
 namespace {
 
-// Vertex sets (body parts) by each vertex's dominant game bone (anatomy/joint_roles.hpp).
-std::string part_of(const std::string& bone) { return anatomy::part_name(anatomy::joint_role(bone).part); }
+// Vertex sets (body parts) by each vertex's dominant game bone: its joint role's part.
+std::string part_of(const format::ModelData& m, uint16_t joint) {
+    return anatomy::part_name(anatomy::BodyPart(m.joint_roles[joint].part));
+}
 
 }  // namespace
 
@@ -149,6 +151,7 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     sk.regressor_vertices.assign(reg.vertices.begin(), reg.vertices.end());
     sk.regressor_weights.assign(reg.weights.begin(), reg.weights.end());
     m.joint_limits = anatomy::compute_joint_limits(sk);
+    m.joint_roles = anatomy::compute_joint_roles(sk);
 
     std::vector<uint16_t> sj;
     std::vector<float> sw;
@@ -157,7 +160,7 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     m.skin.weights.assign(sw.begin(), sw.end());
 
     std::map<std::string, std::vector<uint32_t>> parts;
-    for (uint32_t v = 0; v < V; ++v) parts[part_of(a.game_rig.bones[sj[4 * v]].name)].push_back(v);
+    for (uint32_t v = 0; v < V; ++v) parts[part_of(m, sj[4 * v])].push_back(v);
     for (const char* name : {"head", "torso", "arms", "hands", "legs", "feet"}) {
         format::VertexSet set;
         set.name = name;
@@ -191,7 +194,7 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     {
         std::vector<uint8_t> torso(V, 0), trunk_legs(V, 0);
         for (uint32_t v = 0; v < V; ++v) {
-            const std::string part = part_of(a.game_rig.bones[sj[4 * v]].name);
+            const std::string part = part_of(m, sj[4 * v]);
             torso[v] = part == "torso";
             trunk_legs[v] = part == "torso" || part == "legs";
         }

@@ -74,6 +74,15 @@ struct JointLimit {
     float lower[3] = {0, 0, 0}, upper[3] = {0, 0, 0};  // radians
 };
 
+// See the schema (JointRole).
+struct JointRole {
+    uint8_t part = 0;             // 0 torso, 1 head, 2 arm, 3 hand, 4 leg, 5 foot
+    uint8_t side = 0;             // 0 centre, 1 left, 2 right
+    double rotation_sigma = 0.6;  // radians
+    bool coarse = false;
+    uint8_t limb_joint = 0;       // 0 none, 1 upper, 2 middle
+};
+
 struct Attribute {
     std::string name, unit, description;
     float mean = 0, minimum = 0, maximum = 0;
@@ -97,6 +106,7 @@ struct ModelData {
     std::vector<VertexSet> vertex_sets;
     std::vector<JointLimit> joint_limits;  // sorted by joint, at most one per joint
     AttributeModel attributes;
+    std::vector<JointRole> joint_roles;    // one per joint, or empty (the runtime's table by names)
 
     uint32_t vertex_count() const { return mesh.vertex_count; }
     uint32_t joint_count() const { return static_cast<uint32_t>(skeleton.parents.size()); }
