@@ -22,6 +22,20 @@ std::string assets_root() {
     return env && std::filesystem::is_directory(std::string(env) + "/makehuman") ? env : "";
 }
 
+// A small training run's settings, or false (with a visible skip) where the assets are absent.
+bool small_training(ssc::training::TrainSpec& spec) {
+    const std::string root = assets_root();
+    if (root.empty()) {
+        WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");
+        return false;
+    }
+    spec.assets_root = root;
+    spec.population.count = 160;
+    spec.components = 10;
+    spec.heldout = 30;
+    return true;
+}
+
 }  // namespace
 
 TEST_CASE("MakeHuman macro rules follow the asset README", "[training]") {
@@ -44,16 +58,8 @@ TEST_CASE("MakeHuman macro rules follow the asset README", "[training]") {
 }
 
 TEST_CASE("training reports its stages and bodies and stops when the progress callback says so", "[training][makehuman]") {
-    const std::string root = assets_root();
-    if (root.empty()) {
-        WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");
-        return;
-    }
     ssc::training::TrainSpec spec;
-    spec.assets_root = root;
-    spec.population.count = 160;
-    spec.components = 10;
-    spec.heldout = 30;
+    if (!small_training(spec)) return;
     std::vector<std::string> stages;
     uint32_t last_done = 0, total = 0;
     const ssc::training::Progress stop_at_body_5 = [&](const std::string& stage, uint32_t done, uint32_t of) {
@@ -75,17 +81,9 @@ TEST_CASE("training reports its stages and bodies and stops when the progress ca
 }
 
 TEST_CASE("a small model retrained from the MakeHuman assets meets its quality numbers", "[training][makehuman]") {
-    const std::string root = assets_root();
-    if (root.empty()) {
-        WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");
-        return;
-    }
     ssc::training::TrainSpec spec;
-    spec.assets_root = root;
-    spec.population.count = 160;
+    if (!small_training(spec)) return;
     spec.population.seed = 3;
-    spec.components = 10;
-    spec.heldout = 30;
     spec.made_to_measure_bodies = 8;
     ssc::training::TrainReport report;
     const auto model = ssc::training::train_model(spec, report);
@@ -110,6 +108,7 @@ TEST_CASE("a small model retrained from the MakeHuman assets meets its quality n
     CHECK(report.quantization.max_error <= 1e-4);
     // Joint limits and the attribute model (sliders, made to measure) are learned and stored.
     CHECK(model.joint_limits.size() == 21);  // 5 spine, neck and head joints, 8 on each side
+    CHECK(model.joint_roles.size() == 53);    // the table's roles, as model data
     REQUIRE(model.attributes.attributes.size() >= 15);
     int sliders = 0;
     for (const auto& a : model.attributes.attributes) sliders += a.slider;
