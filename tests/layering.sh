@@ -1,13 +1,13 @@
 #!/bin/sh
 # The layering of sdk/: each folder may include headers only from the folders below it in the
-# pipeline (format -> synthesis -> anatomy, measure -> semantics, fitting, export -> runtime -> capi; the
+# pipeline (format -> synthesis -> anatomy, measure -> semantics, fitting -> registration, export -> runtime -> capi; the
 # offline tools and the command line above). The build links the stages the same way
 # (sdk/CMakeLists.txt); this catches an #include that reaches up before a link error would.
 # The command line reaches the C API's internals only through capi/cpp_access.hpp.
 # usage: layering.sh SDK_DIR
 set -u
 sdk=$1
-runtime="common sscape_format synthesis anatomy measure semantics fitting export runtime"
+runtime="common sscape_format synthesis anatomy measure semantics fitting registration export runtime"
 allowed() {  # allowed FOLDER: the folders its files may include from
     case $1 in
         common) echo "" ;;
@@ -15,11 +15,12 @@ allowed() {  # allowed FOLDER: the folders its files may include from
         anatomy|measure|export) echo "common sscape_format synthesis" ;;
         semantics) echo "common sscape_format synthesis measure" ;;
         fitting) echo "common sscape_format synthesis anatomy" ;;
+        registration) echo "common sscape_format synthesis anatomy measure fitting" ;;
         runtime) echo "common sscape_format synthesis anatomy measure semantics" ;;
         capi) echo "$runtime" ;;
         io) echo "common" ;;
         render) echo "common sscape_format synthesis anatomy measure fitting" ;;
-        simulation|testing) echo "common sscape_format synthesis anatomy fitting" ;;
+        simulation|testing) echo "common sscape_format synthesis anatomy fitting registration" ;;
         training) echo "$runtime render makehuman" ;;
         cli) echo "$runtime capi render simulation io testing training" ;;
         *) echo "?" ;;

@@ -34,7 +34,7 @@ void Image::set(int x, int y, uint8_t r, uint8_t g, uint8_t b) {
 }
 
 void draw_mesh(Image& img, std::vector<float>& depth, const Viewport& vp, View view, const float* xyz,
-               const uint32_t* tris, uint32_t count, const uint8_t colour[3]) {
+               const uint32_t* tris, uint32_t count, const uint8_t colour[3], const uint8_t* triangle_colours) {
     depth.resize(std::size_t(img.width) * img.height, -1e30f);
     // Light from the upper front-left of the viewer.
     const float L[3] = {-0.35f, 0.5f, 0.79f};
@@ -81,7 +81,8 @@ void draw_mesh(Image& img, std::vector<float>& depth, const Viewport& vp, View v
                 float& d = depth[std::size_t(y) * img.width + x];
                 if (z <= d) continue;
                 d = z;
-                img.set(x, y, uint8_t(colour[0] * shade), uint8_t(colour[1] * shade), uint8_t(colour[2] * shade));
+                const uint8_t* c = triangle_colours ? triangle_colours + 3 * std::size_t(t) : colour;
+                img.set(x, y, uint8_t(c[0] * shade), uint8_t(c[1] * shade), uint8_t(c[2] * shade));
             }
     }
 }

@@ -22,9 +22,10 @@ struct Viewport {
     float centre_x, centre_y, scale;  // world point at the rectangle's centre; pixels per metre
 };
 
-// Draws a triangle mesh (packed xyz, 3 indices per triangle) into a viewport.
+// Draws a triangle mesh (packed xyz, 3 indices per triangle) into a viewport, in one colour or,
+// when triangle_colours is given (3 bytes per triangle), each triangle in its own.
 void draw_mesh(Image& img, std::vector<float>& depth, const Viewport& vp, View view, const float* xyz,
-               const uint32_t* triangles, uint32_t triangle_count, const uint8_t colour[3]);
+               const uint32_t* triangles, uint32_t triangle_count, const uint8_t colour[3], const uint8_t* triangle_colours = nullptr);
 
 // The direction from the body towards the viewer of a view (for culling marks on the far side).
 void view_direction(View view, float out[3]);

@@ -2,6 +2,7 @@
 
 #include "anatomy/joint_limits.hpp"
 #include "fitting/posed_surface.hpp"
+#include "registration/registration_quality.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -204,6 +205,21 @@ std::vector<Vector3d> fitted_vertices(const Model& m, const fitting::FitState& s
     std::vector<Vector3d> v;
     fitting::posed_surface(body, s, v);
     return v;
+}
+
+void add_bumps(TrueBody& b, const Model& m, int count, std::mt19937& rng) {
+    std::uniform_int_distribution<std::size_t> vertex(0, b.vertices.size() - 1);
+    std::uniform_real_distribution<double> height(0.01, 0.02), width(0.04, 0.10), sign(-1, 1);
+    std::vector<Vector3d> moved = b.vertices;
+    for (int k = 0; k < count; ++k) {
+        const Vector3d c = b.vertices[vertex(rng)];
+        const double h = height(rng) * (sign(rng) < 0 ? -1 : 1), w = width(rng);
+        for (std::size_t v = 0; v < b.vertices.size(); ++v)
+            moved[v] += h * std::exp(-(b.vertices[v] - c).squaredNorm() / (w * w)) * b.normals[v];
+    }
+    b.vertices = moved;
+    const std::vector<uint32_t> triangles(m.data().mesh.triangles.begin(), m.data().mesh.triangles.end());
+    b.normals = registration::vertex_normals(b.vertices, triangles);
 }
 
 }  // namespace ssc::simulation

@@ -49,6 +49,10 @@ struct CloudSpec {
 // Points drawn uniformly over the posed surface (by triangle area).
 fitting::PointCloud simulate_cloud(const Model& m, const TrueBody& b, const CloudSpec& spec, std::mt19937& rng);
 
+// Bumps and dents the model cannot represent: `count` Gaussian displacements along the normal,
+// 1 to 2 cm high and 4 to 10 cm wide, at random vertices; the normals follow.
+void add_bumps(TrueBody& b, const Model& m, int count, std::mt19937& rng);
+
 // Mean distance between corresponding vertices of two posed meshes.
 double mean_vertex_error(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b);
 

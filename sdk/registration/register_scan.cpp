@@ -1,0 +1,236 @@
+#include "registration/register_scan.hpp"
+
+#include "common/error.hpp"
+#include "common/rigid.hpp"
+#include "fitting/nearest.hpp"
+#include "fitting/posed_surface.hpp"
+#include "fitting/scan_normals.hpp"
+#include "registration/nonrigid.hpp"
+#include "registration/scan_boundary.hpp"
+#include "synthesis/body.hpp"
+
+#include <Eigen/Geometry>
+
+#include <chrono>
+#include <cmath>
+
+namespace ssc::registration {
+
+namespace {
+
+// The stiffness and landmark weights fall by this factor after each round (the reference's), until
+// the stiffness has fallen by kRelaxedRange.
+constexpr double kRelax = 0.25;
+constexpr double kRelaxedRange = 1000;
+// A round's iterations stop when no vertex moved farther than this (metres).
+constexpr double kSettled = 0.0005;
+// Scans smaller than this are no body scan.
+constexpr std::size_t kMinPoints = 100;
+
+TemplatePoint template_point(const format::ModelData& d, uint32_t l) {
+    const auto& lm = d.landmarks[l];
+    TemplatePoint p;
+    if (lm.vertex != format::kNone) {
+        p.vertex[0] = lm.vertex;
+        return p;
+    }
+    for (int i = 0; i < 3; ++i) {
+        p.vertex[i] = d.mesh.triangles[3 * std::size_t(lm.triangle) + std::size_t(i)];
+        p.weight[i] = lm.barycentric[i];
+    }
+    return p;
+}
+
+// The stiffness of each round: relaxed by kRelax from `first` until it has fallen by kRelaxedRange,
+// or that many rounds at the last value.
+std::vector<double> round_factors(Schedule schedule) {
+    std::vector<double> f;
+    for (double x = 1; ; x *= kRelax) {
+        f.push_back(x);
+        if (1 / x >= kRelaxedRange) break;
+    }
+    if (schedule == Schedule::Constant) std::fill(f.begin(), f.end(), f.back());
+    return f;
+}
+
+}  // namespace
+
+// Why these rules: the head's hair and ears scan poorly (a wider gate, a tighter normal cone); the
+// hands are often in another posture than the template's (a low data weight, stiffer), so the
+// fingers follow the hand rather than stray onto nearby points.
+RegionRule region_rule(const std::string& region) {
+    if (region == "head") return {0.03, 45, 1.0, 2.0};
+    if (region == "hands") return {0.02, 60, 0.3, 4.0};
+    return {0.02, 60, 1.0, 1.0};
+}
+
+Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, const RegistrationOptions& options,
+                           const RegistrationProgress& progress, ThreadPool* pool) {
+    const auto t0 = std::chrono::steady_clock::now();
+    ThreadPool inline_pool(1);
+    ThreadPool& workers = pool ? *pool : inline_pool;
+    const Model& model = lin.model;
+    const format::ModelData& d = model.data();
+    const uint32_t V = model.vertex_count();
+    fitting::validate_cloud(scan.cloud, "register: scan");
+    SSC_REQUIRE_ARG_S(scan.cloud.points.size() >= kMinPoints,
+                      "register: the scan has " << scan.cloud.points.size() << " points; a body scan needs at least " << kMinPoints);
+    for (std::size_t l = 0; l < scan.landmarks.size(); ++l) fitting::validate_landmark(d, scan.landmarks[l], "register: landmark " + std::to_string(l));
+    SSC_REQUIRE_ARG(std::isfinite(options.stiffness) && options.stiffness > 0 && std::isfinite(options.landmarks) && options.landmarks >= 0 &&
+                        std::isfinite(options.gamma) && options.gamma > 0 && options.max_iterations >= 1,
+                    "register: stiffness and gamma must be positive, landmarks >= 0, max_iterations >= 1");
+    auto tick = [&](const char* stage, uint32_t done, uint32_t total) {
+        if (progress && !progress(stage, done, total)) fail(SSC_ERROR_CANCELLED, "registration cancelled");
+    };
+
+    // The scan: normals where missing, its rim.
+    const std::vector<Vector3d>& points = scan.cloud.points;
+    std::vector<Vector3d> normals = scan.cloud.normals.empty() ? std::vector<Vector3d>(points.size(), Vector3d::Zero()) : scan.cloud.normals;
+    const fitting::PointIndex index(points);
+    const bool oriented = fitting::estimate_missing_normals(points, index, normals);
+    const std::vector<uint8_t> rim = scan.triangles.empty() ? cloud_boundary(points, normals, index, workers)
+                                                             : mesh_boundary(scan.triangles, points.size());
+
+    // The start: the template placed, posed and shaped by the initialisation.
+    Registration out;
+    std::vector<Vector3d> start;
+    Body body(model, nullptr);
+    body.set_pool(&workers);
+    fitting::FitState rest;
+    rest.shape.assign(lin.K, 0.0);
+    rest.pose.assign(lin.J, Eigen::Quaterniond::Identity());
+    switch (options.initialisation) {
+        case Initialisation::Model: {
+            fitting::Frame frame;
+            frame.landmarks = scan.landmarks;
+            frame.clouds.push_back({points, normals, scan.cloud.confidence});
+            const fitting::FitProgress fit_progress = [&](uint32_t iteration, double) {
+                return !progress || progress("fit", iteration, options.fit.max_iterations);
+            };
+            out.fit = fitting::fit(lin, {frame}, options.fit, nullptr, fit_progress, &workers);
+            if (out.fit.report.cancelled) fail(SSC_ERROR_CANCELLED, "registration cancelled");
+            fitting::posed_surface(body, out.fit.frames[0], start);
+            out.report.fit_seconds = out.fit.report.seconds;
+            break;
+        }
+        case Initialisation::Rigid: {
+            SSC_REQUIRE_ARG(scan.landmarks.size() >= 3, "register: the rigid initialisation needs at least 3 landmarks");
+            fitting::posed_surface(body, rest, start);
+            NonrigidSystem at_rest(start, {}, {}, {});
+            const Eigen::MatrixX3d I = at_rest.identity();
+            Eigen::Matrix3Xd src(3, scan.landmarks.size()), dst(3, scan.landmarks.size());
+            for (std::size_t l = 0; l < scan.landmarks.size(); ++l) {
+                src.col(Eigen::Index(l)) = at_rest.deformed(I, template_point(d, scan.landmarks[l].landmark));
+                dst.col(Eigen::Index(l)) = scan.landmarks[l].position;
+            }
+            const Similarity T = align_points(src, dst, true);
+            for (Vector3d& v : start) v = T.scale * T.R * v + T.t;
+            break;
+        }
+        case Initialisation::Rbf:
+            fail(SSC_ERROR_INVALID_ARGUMENT, "register: the rbf initialisation is not available yet");
+    }
+
+    // Regions and their rules, per vertex and per edge.
+    std::vector<std::string> region_names;
+    std::vector<int> region(V, -1);
+    for (const auto& set : d.vertex_sets) {
+        region_names.push_back(set.name);
+        for (uint32_t v : set.vertices)
+            if (region[v] < 0) region[v] = int(region_names.size() - 1);
+    }
+    std::vector<RegionRule> rules;
+    for (const auto& name : region_names) rules.push_back(region_rule(name));
+    const RegionRule other = region_rule("");
+    auto rule_of = [&](uint32_t v) -> const RegionRule& { return region[v] < 0 ? other : rules[std::size_t(region[v])]; };
+    const std::vector<uint32_t> triangles(d.mesh.triangles.begin(), d.mesh.triangles.end());
+    const auto edges = mesh_edges(triangles, V);
+    std::vector<double> edge_stiffness;
+    for (const auto& e : edges) edge_stiffness.push_back(0.5 * (rule_of(e[0]).stiffness + rule_of(e[1]).stiffness));
+    std::vector<TemplatePoint> marks;
+    std::vector<LandmarkTarget> landmarks;
+    for (const auto& l : scan.landmarks) {
+        marks.push_back(template_point(d, l.landmark));
+        landmarks.push_back({marks.back(), l.position});
+    }
+    NonrigidSystem system(start, edges, edge_stiffness, marks, options.gamma);
+    // Each vertex's data weight is its share of the surface (a third of its triangles' area, over
+    // the mean): the data term then measures the surface, not the mesh. The template's face, hands
+    // and feet are meshed several times finer than its body, and equal weights per vertex let
+    // their many vertices each chase its own noisy scan point (a crumpled face).
+    std::vector<double> area(V, 0.0);
+    double total_area = 0;
+    for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+        const double a = 0.5 * (start[triangles[t + 1]] - start[triangles[t]]).cross(start[triangles[t + 2]] - start[triangles[t]]).norm();
+        for (int k = 0; k < 3; ++k) area[triangles[t + std::size_t(k)]] += a / 3;
+        total_area += a;
+    }
+    for (double& a : area) a *= double(V) / std::max(total_area, 1e-12);
+
+    // Correspondences: each deformed vertex's nearest scan point, when it is compatible and not on
+    // the scan's rim (holes are filled by the template's shape). Which vertices have data (the
+    // weights) is settled at a round's first iteration, so the round's later iterations reuse its
+    // factorisation (nonrigid.hpp); a vertex whose new nearest point fails the test there keeps its
+    // last target.
+    std::vector<Vector3d> targets(V, Vector3d::Zero());
+    std::vector<double> weights(V, 0.0);
+    auto correspond = [&](const std::vector<Vector3d>& x, bool settle_weights) {
+        const std::vector<Vector3d> n = vertex_normals(x, triangles);
+        constexpr std::size_t kChunks = 32;
+        workers.parallel_for(kChunks, [&](std::size_t c, unsigned) {
+            for (uint32_t v = uint32_t(c * V / kChunks); v < uint32_t((c + 1) * V / kChunks); ++v) {
+                const RegionRule& r = rule_of(v);
+                double d2;
+                const uint32_t q = index.nearest(x[v], &d2);
+                const double dot = normals[q].squaredNorm() > 0 ? normals[q].dot(n[v]) : 1.0;
+                const bool ok = d2 <= r.max_distance * r.max_distance && !rim[q] &&
+                                (oriented ? dot : std::abs(dot)) >= std::cos(r.max_angle * M_PI / 180);
+                if (settle_weights) weights[v] = ok ? r.data_weight * area[v] : 0.0;
+                // The point of the scan's tangent plane at q nearest the vertex: a sparse scan's
+                // nearest sample lies up to half a spacing aside, and would pull the vertex along the
+                // surface towards it.
+                const Vector3d& nq = normals[q];
+                const Vector3d target = nq.squaredNorm() > 0 ? Vector3d(x[v] - (x[v] - points[q]).dot(nq) * nq) : points[q];
+                if (ok || settle_weights) targets[v] = target;
+            }
+        });
+    };
+
+    Eigen::MatrixX3d X = system.identity();
+    // With landmarks, a round without data first brings them into place.
+    if (!landmarks.empty() && options.landmarks > 0) {
+        std::fill(weights.begin(), weights.end(), 0.0);
+        system.factorize({0.0, options.stiffness, options.landmarks}, weights, landmarks);
+        X = system.solve(targets, landmarks, X);
+        ++out.report.solves;
+    }
+    const std::vector<double> factors = round_factors(options.schedule);
+    for (std::size_t round = 0; round < factors.size(); ++round) {
+        tick("deform", uint32_t(round), uint32_t(factors.size()));
+        const EnergyWeights k{1.0, options.stiffness * factors[round], options.landmarks * factors[round]};
+        std::vector<Vector3d> x = system.deformed(X);
+        for (uint32_t it = 0; it < options.max_iterations; ++it) {
+            correspond(x, it == 0);
+            if (it == 0) system.factorize(k, weights, landmarks);
+            X = system.solve(targets, landmarks, X);
+            ++out.report.solves;
+            const std::vector<Vector3d> next = system.deformed(X);
+            double moved = 0;
+            for (uint32_t v = 0; v < V; ++v) moved = std::max(moved, (next[v] - x[v]).squaredNorm());
+            x = next;
+            if (moved < kSettled * kSettled) break;
+        }
+        ++out.report.rounds;
+    }
+    tick("deform", uint32_t(factors.size()), uint32_t(factors.size()));
+    out.vertices = system.deformed(X);
+    correspond(out.vertices, true);
+    out.valid.resize(V);
+    for (uint32_t v = 0; v < V; ++v) out.valid[v] = weights[v] > 0, out.report.valid += out.valid[v];
+    out.report.quality = registration_quality(out.vertices, triangles, vertex_normals(out.vertices, triangles), region,
+                                              region_names, points, normals, oriented, index, workers);
+    out.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+}
+
+}  // namespace ssc::registration

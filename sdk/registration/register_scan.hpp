@@ -1,0 +1,84 @@
+// Registering a raw body scan to the model's template: the template mesh deformed onto the scan,
+// vertex for vertex, so that scans can be learned from (docs/registration.md).
+//
+// 1. Initialisation: `model` fits the model's shape and pose to the scan (fitting/solver.hpp) and
+//    starts from the fitted body; `rigid` aligns the template's landmarks to the scan's (with
+//    scale); `rbf` also warps the template through its landmarks (not yet: refused).
+// 2. Non-rigid deformation (nonrigid.hpp): per-vertex affine transforms, correspondences found
+//    again every iteration, the stiffness relaxed round by round.
+// 3. Quality (registration_quality.hpp).
+#pragma once
+
+#include "common/thread_pool.hpp"
+#include "fitting/kinematics.hpp"
+#include "fitting/observations.hpp"
+#include "fitting/solver.hpp"
+#include "registration/registration_quality.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ssc::registration {
+
+using Eigen::Vector3d;
+
+enum class Initialisation { Model, Rigid, Rbf };
+enum class Schedule {
+    Relaxed,   // the stiffness and landmark weights fall by kRelax each round until the stiffness has fallen by 1000
+    Constant,  // the same rounds at the final weights throughout
+};
+
+struct RegistrationOptions {
+    Initialisation initialisation = Initialisation::Model;
+    Schedule schedule = Schedule::Relaxed;
+    double stiffness = 0.1;  // b at the first round (chosen on the benchmark: docs/registration.md)
+    double landmarks = 10;   // c at the first round, relative to the data term's 1
+    double gamma = 1;        // G's weight of the transforms' translation
+    uint32_t max_iterations = 4;  // solves per round at most (correspondences found again before each)
+    fitting::FitOptions fit;      // the model fit of the `model` initialisation
+};
+
+// One region's correspondence rules (by the model's vertex sets; docs/registration.md).
+struct RegionRule {
+    double max_distance;  // metres
+    double max_angle;     // degrees between the vertex's and the scan point's normals
+    double data_weight;   // the data term's weight on the region's vertices
+    double stiffness;     // multiplies the smoothness of the region's edges
+};
+RegionRule region_rule(const std::string& region);
+
+struct RegistrationReport {
+    double seconds = 0, fit_seconds = 0;
+    uint32_t rounds = 0, solves = 0;
+    std::size_t valid = 0;  // template vertices that ended on a compatible scan point
+    RegistrationQuality quality;
+};
+
+struct Registration {
+    std::vector<Vector3d> vertices;  // the template, deformed onto the scan (model vertex order)
+    std::vector<uint8_t> valid;      // per vertex: it ended on a compatible scan point
+    fitting::FitSolution fit;        // the model fit that initialised it (`model`; empty otherwise)
+    RegistrationReport report;
+};
+
+// The scan: points (metres), their normals (empty, or unit or zero per point: estimated where
+// zero), its triangles when it is a mesh (empty for a cloud), and named landmarks on it.
+struct Scan {
+    fitting::PointCloud cloud;
+    std::vector<uint32_t> triangles;
+    std::vector<fitting::LandmarkTarget> landmarks;
+};
+
+// Stage names for progress: "fit", "deform" (done = round, total = rounds). Return false to cancel
+// (ssc::Error, CANCELLED).
+using RegistrationProgress = std::function<bool(const char* stage, uint32_t done, uint32_t total)>;
+
+// Throws ssc::Error: INVALID_ARGUMENT for a scan with fewer than 100 points or bad values, an
+// initialisation the input cannot serve (rigid without 3 landmarks), or a scan the model cannot
+// be fitted to; CANCELLED.
+Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, const RegistrationOptions& options,
+                           const RegistrationProgress& progress = {}, ThreadPool* pool = nullptr);
+
+}  // namespace ssc::registration

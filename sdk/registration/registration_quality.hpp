@@ -1,0 +1,54 @@
+// How well a registration covers its scan, as the reference papers measure it: each scan point's
+// distance to the registered surface, and the share of template vertices within 2, 5, 10 and 20 mm
+// of a compatible scan point, overall and per body region (a low mean can hide a failed hand).
+#pragma once
+
+#include "common/thread_pool.hpp"
+#include "fitting/nearest.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace ssc::registration {
+
+// The thresholds of the registration-to-scan shares, metres.
+constexpr std::array<double, 4> kBelow = {0.002, 0.005, 0.010, 0.020};
+
+struct DistanceSummary {
+    double mean = 0, median = 0, p95 = 0;  // metres
+    std::size_t count = 0;
+};
+
+struct RegionQuality {
+    std::string region;                  // a vertex set's name
+    DistanceSummary scan_to_registration;  // the scan points whose nearest registered vertex is in the region
+    std::array<double, 4> below{};       // shares of the region's vertices within kBelow of the scan
+    std::size_t vertices = 0;
+};
+
+struct RegistrationQuality {
+    DistanceSummary scan_to_registration;
+    std::array<double, 4> below{};  // shares of all template vertices
+    std::vector<RegionQuality> regions;
+};
+
+// The registered mesh (vertices, triangles, unit vertex normals, each vertex's region: an index
+// into region_names or -1), and the scan (points, unit or zero normals, a k-d tree over the points).
+// A vertex counts as matched within d when its nearest scan point is closer than d (and than 5 cm)
+// with normals less than 60 degrees apart (up to sign when the scan's normals are not oriented).
+RegistrationQuality registration_quality(const std::vector<Eigen::Vector3d>& vertices, const std::vector<uint32_t>& triangles,
+                                         const std::vector<Eigen::Vector3d>& vertex_normals, const std::vector<int>& region,
+                                         const std::vector<std::string>& region_names, const std::vector<Eigen::Vector3d>& points,
+                                         const std::vector<Eigen::Vector3d>& normals, bool oriented, const fitting::PointIndex& index,
+                                         ThreadPool& pool);
+
+// The distance from p to the triangle (a, b, c).
+double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+// Unit area-weighted vertex normals of a triangle mesh (zero for a vertex no triangle uses).
+std::vector<Eigen::Vector3d> vertex_normals(const std::vector<Eigen::Vector3d>& vertices, const std::vector<uint32_t>& triangles);
+
+}  // namespace ssc::registration

@@ -1,0 +1,335 @@
+// Scan registration: the non-rigid deformation's energy against finite differences and its exact
+// solve against a dense one on a tiny mesh, the block Cholesky, scan rims.
+#include "registration/block_cholesky.hpp"
+#include "registration/nonrigid.hpp"
+#include "registration/register_scan.hpp"
+#include "registration/scan_boundary.hpp"
+#include "capi/cpp_access.hpp"
+#include "common/error.hpp"
+#include "simulation/simulate.hpp"
+#include "synthesis/model.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <Eigen/Cholesky>
+
+#include <random>
+
+using namespace ssc;
+using registration::NonrigidSystem;
+using Eigen::Vector3d;
+
+namespace {
+
+// A bumpy 4 x 4 grid of vertices (two triangles per cell), about 10 cm across, away from the origin.
+struct TinyMesh {
+    std::vector<Vector3d> vertices;
+    std::vector<uint32_t> triangles;
+    TinyMesh() {
+        std::mt19937 rng(3);
+        std::uniform_real_distribution<double> bump(-0.01, 0.01);
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 4; ++x) vertices.emplace_back(0.3 + 0.03 * x, 1.0 + 0.03 * y, 0.5 + bump(rng));
+        for (uint32_t y = 0; y < 3; ++y)
+            for (uint32_t x = 0; x < 3; ++x) {
+                const uint32_t a = 4 * y + x;
+                for (uint32_t i : {a, a + 1, a + 5, a, a + 5, a + 4}) triangles.push_back(i);
+            }
+    }
+};
+
+struct Problem {
+    TinyMesh mesh;
+    std::vector<registration::TemplatePoint> points;
+    std::vector<registration::LandmarkTarget> landmarks;
+    std::vector<Vector3d> targets;
+    std::vector<double> weights;
+    registration::EnergyWeights k{1.0, 0.3, 2.0};
+    Problem() {
+        std::mt19937 rng(5);
+        std::uniform_real_distribution<double> u(-0.02, 0.02);
+        for (const Vector3d& v : mesh.vertices) {
+            targets.push_back(v + Vector3d(u(rng), u(rng), u(rng)));
+            weights.push_back(rng() % 4 == 0 ? 0.0 : 0.5 + u(rng) * 10);
+        }
+        registration::TemplatePoint on_vertex;
+        on_vertex.vertex[0] = 6;
+        registration::TemplatePoint on_triangle;
+        on_triangle.vertex[0] = 0, on_triangle.vertex[1] = 1, on_triangle.vertex[2] = 5;
+        on_triangle.weight[0] = 0.2, on_triangle.weight[1] = 0.3, on_triangle.weight[2] = 0.5;
+        points = {on_vertex, on_triangle};
+        landmarks = {{on_vertex, mesh.vertices[6] + Vector3d(0.01, 0, 0)}, {on_triangle, Vector3d(0.32, 1.01, 0.49)}};
+    }
+};
+
+}  // namespace
+
+TEST_CASE("mesh edges are the unique undirected edges of the triangles", "[registration]") {
+    const TinyMesh m;
+    const auto edges = registration::mesh_edges(m.triangles, 16);
+    CHECK(edges.size() == 33);  // 3 x 4 rows, 4 x 3 columns, 9 diagonals
+    for (const auto& e : edges) CHECK(e[0] < e[1]);
+}
+
+TEST_CASE("the non-rigid energy's gradient matches finite differences", "[registration]") {
+    Problem p;
+    NonrigidSystem system(p.mesh.vertices, registration::mesh_edges(p.mesh.triangles, 16), {}, p.points, 0.7);
+    std::mt19937 rng(9);
+    std::normal_distribution<double> n(0, 0.05);
+    Eigen::MatrixX3d X = system.identity(), anchor = system.identity();
+    for (Eigen::Index i = 0; i < X.size(); ++i) X.data()[i] += n(rng);
+    Eigen::SparseMatrix<double> K;
+    Eigen::MatrixX3d R;
+    system.assemble(p.k, p.targets, p.weights, p.landmarks, anchor, K, R);
+    const Eigen::MatrixX3d gradient = 2 * (K * X - R);
+    const double h = 1e-6;
+    double worst = 0;
+    for (Eigen::Index i = 0; i < X.size(); ++i) {
+        Eigen::MatrixX3d a = X, b = X;
+        a.data()[i] += h, b.data()[i] -= h;
+        const double fd = (system.energy(a, p.k, p.targets, p.weights, p.landmarks, anchor) -
+                           system.energy(b, p.k, p.targets, p.weights, p.landmarks, anchor)) / (2 * h);
+        worst = std::max(worst, std::abs(fd - gradient.data()[i]) / std::max(1.0, std::abs(fd)));
+    }
+    INFO("worst relative gradient error " << worst);
+    CHECK(worst < 1e-6);
+    // The quadratic form is the energy up to a constant.
+    const double e0 = system.energy(Eigen::MatrixX3d::Zero(X.rows(), 3), p.k, p.targets, p.weights, p.landmarks, anchor);
+    const double quadratic = (X.transpose() * (K * X)).trace() - 2 * (X.transpose() * R).trace();
+    CHECK(system.energy(X, p.k, p.targets, p.weights, p.landmarks, anchor) - e0 == Approx(quadratic).epsilon(1e-9));
+}
+
+TEST_CASE("the non-rigid solve equals a dense solve and minimises the energy", "[registration]") {
+    Problem p;
+    NonrigidSystem system(p.mesh.vertices, registration::mesh_edges(p.mesh.triangles, 16), {}, p.points);
+    const Eigen::MatrixX3d anchor = system.identity();
+    system.factorize(p.k, p.weights, p.landmarks);
+    const Eigen::MatrixX3d X = system.solve(p.targets, p.landmarks, anchor);
+    Eigen::SparseMatrix<double> K;
+    Eigen::MatrixX3d R;
+    system.assemble(p.k, p.targets, p.weights, p.landmarks, anchor, K, R);
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(K);
+    CHECK((dense - dense.transpose()).cwiseAbs().maxCoeff() < 1e-15);
+    const Eigen::MatrixX3d reference = dense.ldlt().solve(R);
+    CHECK((X - reference).cwiseAbs().maxCoeff() < 1e-9 * std::max(1.0, reference.cwiseAbs().maxCoeff()));
+    const double best = system.energy(X, p.k, p.targets, p.weights, p.landmarks, anchor);
+    std::mt19937 rng(1);
+    std::normal_distribution<double> n(0, 1e-4);
+    for (int trial = 0; trial < 20; ++trial) {
+        Eigen::MatrixX3d Y = X;
+        for (Eigen::Index i = 0; i < Y.size(); ++i) Y.data()[i] += n(rng);
+        CHECK(system.energy(Y, p.k, p.targets, p.weights, p.landmarks, anchor) > best);
+    }
+    // Other targets at the same weights reuse the factorisation; other weights reuse the analysis.
+    std::vector<Vector3d> moved_targets = p.targets;
+    for (auto& t : moved_targets) t += Vector3d(0.001, -0.002, 0.003);
+    const Eigen::MatrixX3d X1 = system.solve(moved_targets, p.landmarks, anchor);
+    system.assemble(p.k, moved_targets, p.weights, p.landmarks, anchor, K, R);
+    CHECK((X1 - Eigen::MatrixXd(K).ldlt().solve(R)).cwiseAbs().maxCoeff() < 1e-9);
+    p.k.stiffness = 0.01;
+    system.factorize(p.k, p.weights, p.landmarks);
+    const Eigen::MatrixX3d X2 = system.solve(p.targets, p.landmarks, anchor);
+    system.assemble(p.k, p.targets, p.weights, p.landmarks, anchor, K, R);
+    CHECK((X2 - Eigen::MatrixXd(K).ldlt().solve(R)).cwiseAbs().maxCoeff() < 1e-9);
+    // Stiff enough, the deformation is one affine map; without data or landmarks, the template stays.
+    std::vector<double> none(p.weights.size(), 0.0);
+    system.factorize(p.k, none, {});
+    const Eigen::MatrixX3d still = system.solve(p.targets, {}, anchor);
+    const auto moved = system.deformed(still);
+    for (std::size_t v = 0; v < moved.size(); ++v) CHECK((moved[v] - p.mesh.vertices[v]).norm() < 1e-8);
+}
+
+TEST_CASE("the 4x4 block Cholesky solves as a dense factorisation on a random sparse structure", "[registration]") {
+    std::mt19937 rng(17);
+    std::normal_distribution<double> n(0, 1);
+    const int blocks = 40;
+    // A random symmetric block structure: a ring plus random chords; each block random, the
+    // diagonal made dominant.
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(4 * blocks, 4 * blocks);
+    auto couple = [&](int i, int j) {
+        Eigen::Matrix4d b;
+        for (int k = 0; k < 16; ++k) b.data()[k] = n(rng);
+        dense.block<4, 4>(4 * i, 4 * j) += b;
+        dense.block<4, 4>(4 * j, 4 * i) += b.transpose();
+    };
+    for (int i = 0; i < blocks; ++i) couple(i, (i + 1) % blocks);
+    for (int c = 0; c < 30; ++c) {
+        const int i = int(rng() % blocks), j = int(rng() % blocks);
+        if (i != j) couple(i, j);
+    }
+    for (int i = 0; i < blocks; ++i) {
+        Eigen::Matrix4d b;
+        for (int k = 0; k < 16; ++k) b.data()[k] = n(rng);
+        dense.block<4, 4>(4 * i, 4 * i) += b * b.transpose() + 40 * Eigen::Matrix4d::Identity();
+    }
+    // Stored with every entry of every nonzero block (zeros included), as NonrigidSystem does.
+    std::vector<Eigen::Triplet<double>> t;
+    for (int j = 0; j < blocks; ++j)
+        for (int i = 0; i < blocks; ++i)
+            if (dense.block<4, 4>(4 * i, 4 * j).cwiseAbs().maxCoeff() > 0)
+                for (int b = 0; b < 4; ++b)
+                    for (int a = 0; a < 4; ++a) t.emplace_back(4 * i + a, 4 * j + b, dense(4 * i + a, 4 * j + b));
+    Eigen::SparseMatrix<double> K(4 * blocks, 4 * blocks);
+    K.setFromTriplets(t.begin(), t.end());
+    K.makeCompressed();
+    registration::BlockCholesky4 chol;
+    chol.analyze(K);
+    REQUIRE(chol.factorize(K));
+    Eigen::MatrixX3d B(4 * blocks, 3);
+    for (Eigen::Index i = 0; i < B.size(); ++i) B.data()[i] = n(rng);
+    const Eigen::MatrixX3d X = chol.solve(B), reference = dense.llt().solve(B);
+    CHECK((X - reference).cwiseAbs().maxCoeff() < 1e-10 * std::max(1.0, reference.cwiseAbs().maxCoeff()));
+    // The same structure with other values reuses the analysis; an indefinite matrix is refused.
+    K *= 2.0;
+    REQUIRE(chol.factorize(K));
+    CHECK((chol.solve(B) - 0.5 * reference).cwiseAbs().maxCoeff() < 1e-10);
+    K *= -1.0;
+    CHECK_FALSE(chol.factorize(K));
+}
+
+TEST_CASE("scan boundaries are the rims of holes and of the scan, not its inside", "[registration]") {
+    // A 40 x 40 cm patch of random points (about 4 mm apart) with a round hole of 6 cm radius.
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> u(-0.2, 0.2);
+    std::vector<Vector3d> points, normals;
+    while (points.size() < 8000) {
+        const Vector3d p(u(rng), u(rng), 0);
+        if (p.norm() < 0.06) continue;
+        points.push_back(p);
+        normals.emplace_back(0, 0, 1);
+    }
+    const fitting::PointIndex index(points);
+    ThreadPool pool(2);
+    const auto rim = registration::cloud_boundary(points, normals, index, pool);
+    std::size_t hole_rim = 0, hole_ring = 0, inside = 0, inside_rim = 0, edge = 0, edge_rim = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const double r = points[i].norm(), border = 0.2 - std::max(std::abs(points[i].x()), std::abs(points[i].y()));
+        if (r < 0.064) ++hole_ring, hole_rim += rim[i];
+        else if (border < 0.002) ++edge, edge_rim += rim[i];
+        else if (r > 0.08 && border > 0.02) ++inside, inside_rim += rim[i];
+    }
+    INFO("hole ring " << hole_rim << " of " << hole_ring << ", edge " << edge_rim << " of " << edge << ", inside " << inside_rim << " of " << inside);
+    CHECK(hole_rim > 0.7 * double(hole_ring));
+    CHECK(edge_rim > 0.7 * double(edge));
+    CHECK(inside_rim < 0.01 * double(inside));
+    // A mesh's rim: the vertices of edges one triangle uses (two triangles: the four corners).
+    const auto mesh_rim = registration::mesh_boundary({0, 1, 2, 0, 2, 3}, 5);
+    CHECK(mesh_rim == std::vector<uint8_t>{1, 1, 1, 1, 0});
+}
+
+namespace {
+
+const Model& default_model() {
+    static const Model model = [] {
+        ssc_model* handle = nullptr;
+        REQUIRE(ssc_model_load_default(nullptr, &handle) == SSC_OK);
+        Model copy(format::ModelData(model_of(handle).data()), nullptr);
+        ssc_model_release(handle);
+        return copy;
+    }();
+    return model;
+}
+
+// A body the model cannot represent (bumps and dents), mildly posed, scanned: 40,000 points, 1 mm
+// noise, a tenth of the surface in holes.
+struct BumpyScan {
+    simulation::TrueBody truth;
+    registration::Scan scan;
+    explicit BumpyScan(uint32_t seed) {
+        const Model& m = default_model();
+        std::mt19937 rng(seed);
+        truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, 0.3), Vector3d(0.1, 0, 0.4));
+        simulation::add_bumps(truth, m, 8, rng);
+        simulation::CloudSpec spec;
+        spec.points = 40000;
+        spec.noise = 0.001;
+        spec.missing = 0.1;
+        spec.outliers = 0;
+        scan.cloud = simulation::simulate_cloud(m, truth, spec, rng);
+        scan.landmarks = simulation::simulate_landmarks(m, truth, 0.0, true, rng);
+    }
+};
+
+// Mean distance of the true body's vertices to a mesh of the template's topology (how well its
+// shape is matched, whatever its correspondence), over the torso, arms and legs: the head, hands
+// and feet hold inner surfaces (mouth, between fingers and toes) that a scan does not show.
+double surface_error(const Model& m, const std::vector<Vector3d>& x, const simulation::TrueBody& truth) {
+    const std::vector<uint32_t> triangles(m.data().mesh.triangles.begin(), m.data().mesh.triangles.end());
+    const fitting::PointIndex index(truth.vertices);
+    ThreadPool pool(1);
+    std::vector<int> region(x.size(), -1);
+    std::vector<std::string> names;
+    for (const auto& set : m.data().vertex_sets) {
+        names.push_back(set.name);
+        for (uint32_t v : set.vertices) region[v] = int(names.size() - 1);
+    }
+    const auto q = registration::registration_quality(x, triangles, registration::vertex_normals(x, triangles), region, names,
+                                                      truth.vertices, truth.normals, true, index, pool);
+    double sum = 0;
+    std::size_t n = 0;
+    for (const auto& r : q.regions)
+        if (r.region == "torso" || r.region == "arms" || r.region == "legs")
+            sum += r.scan_to_registration.mean * double(r.scan_to_registration.count), n += r.scan_to_registration.count;
+    return sum / double(n);
+}
+
+}  // namespace
+
+TEST_CASE("a scan registers onto the template closer than the model fit that starts it", "[registration]") {
+    const Model& m = default_model();
+    const fitting::LinearModel lin(m, m.component_count());
+    const BumpyScan s(31);
+    registration::Scan without_landmarks = s.scan;
+    without_landmarks.landmarks.clear();
+    ThreadPool pool(2);
+    const registration::Registration r = registration::register_scan(lin, without_landmarks, {}, {}, &pool);
+    REQUIRE(r.vertices.size() == m.vertex_count());
+    const auto fitted = simulation::fitted_vertices(m, r.fit.frames[0]);
+    const double fit_surface = surface_error(m, fitted, s.truth), reg_surface = surface_error(m, r.vertices, s.truth);
+    const auto& q = r.report.quality;
+    INFO("true surface to fit " << fit_surface * 1e3 << " mm, to registration " << reg_surface * 1e3 << " mm; scan to registration mean "
+                                  << q.scan_to_registration.mean * 1e3 << " mm; valid " << r.report.valid);
+    CHECK(reg_surface < 0.75 * fit_surface);
+    CHECK(reg_surface < 0.001);
+    CHECK(q.scan_to_registration.mean < 0.0015);
+    CHECK(q.below[1] > 0.5);                        // half the vertices within 5 mm of a scan point
+    CHECK(r.report.valid > m.vertex_count() / 2);  // most vertices ended on the scan
+    CHECK(q.regions.size() == m.data().vertex_sets.size());
+    CHECK(r.report.rounds == 6);  // the stiffness relaxed by 4 until it fell by 1000
+}
+
+TEST_CASE("registration starts from landmarks alone, and refuses what it cannot do", "[registration]") {
+    const Model& m = default_model();
+    const fitting::LinearModel lin(m, m.component_count());
+    const BumpyScan s(32);
+    registration::RegistrationOptions rigid;
+    rigid.initialisation = registration::Initialisation::Rigid;
+    const registration::Registration r = registration::register_scan(lin, s.scan, rigid);
+    CHECK(r.fit.frames.empty());
+    INFO("rigid start: scan to registration mean " << r.report.quality.scan_to_registration.mean * 1e3 << " mm");
+    CHECK(r.report.quality.scan_to_registration.mean < 0.006);  // the weak baseline: the template at rest, placed
+    auto status = [&](const registration::Scan& scan, const registration::RegistrationOptions& o, const registration::RegistrationProgress& p = {}) {
+        try {
+            registration::register_scan(lin, scan, o, p);
+        } catch (const Error& e) {
+            return e.status();
+        }
+        return SSC_OK;
+    };
+    registration::Scan no_marks = s.scan;
+    no_marks.landmarks.clear();
+    CHECK(status(no_marks, rigid) == SSC_ERROR_INVALID_ARGUMENT);  // rigid needs landmarks
+    registration::RegistrationOptions rbf;
+    rbf.initialisation = registration::Initialisation::Rbf;
+    CHECK(status(s.scan, rbf) == SSC_ERROR_INVALID_ARGUMENT);
+    registration::Scan tiny;
+    for (int i = 0; i < 50; ++i) tiny.cloud.points.emplace_back(0.01 * i, 1, 0);
+    CHECK(status(tiny, {}) == SSC_ERROR_INVALID_ARGUMENT);
+    registration::Scan nan = s.scan;
+    nan.cloud.points[7].x() = std::nan("");
+    CHECK(status(nan, {}) == SSC_ERROR_INVALID_ARGUMENT);
+    registration::RegistrationOptions bad;
+    bad.stiffness = -1;
+    CHECK(status(s.scan, bad) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(status(s.scan, rigid, [](const char* stage, uint32_t, uint32_t) { return std::string(stage) != "deform"; }) == SSC_ERROR_CANCELLED);
+}
