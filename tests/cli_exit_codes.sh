@@ -15,7 +15,7 @@ expect() {  # expect CODE PATTERN ARGS...: the exit code, and PATTERN in stdout+
 }
 expect 0 "^sscape [0-9]*\.[0-9]*\.[0-9]* (library .*default model sscape-default" --version
 expect 0 "Subcommands:" --help
-for command in info synth measure fit simulate train make-test-model; do
+for command in info synth measure fit register simulate train make-test-model; do
     expect 0 "Usage: sscape $command" "$command" --help
 done
 expect 0 "--units m|cm|mm" fit --help
@@ -26,6 +26,7 @@ expect 2 "sscape fit: --units: furlong not in {m,cm,mm}" fit --landmarks "$out/e
 expect 2 "sscape synth: --random: Value 0 not in range 1 to 10000" synth --random 0 -o "$out/x.obj"
 expect 2 "sscape synth: --shape excludes --random" synth --random 2 --shape 1 -o "$out/x.obj"
 expect 2 "sscape synth: --output is required" synth
+expect 2 "sscape register: -o: the registered mesh is written as .obj or .ply" register "$out/exit.txt" -o "$out/x.glb"
 expect 2 "sscape simulate: --noise: nan is outside\|sscape simulate: --noise: 'nan' is not a finite number" simulate --noise nan -o "$out/x"
 expect 2 "sscape synth: --shape: 'abc' is not a finite number" synth --shape 1,abc -o "$out/x.obj"
 expect 2 "Run 'sscape synth --help' for the options" synth --shape 1,abc -o "$out/x.obj"

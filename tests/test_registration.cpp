@@ -333,3 +333,84 @@ TEST_CASE("registration starts from landmarks alone, and refuses what it cannot 
     CHECK(status(s.scan, bad) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(status(s.scan, rigid, [](const char* stage, uint32_t, uint32_t) { return std::string(stage) != "deform"; }) == SSC_ERROR_CANCELLED);
 }
+
+TEST_CASE("the C API registers a scan and refuses misuse with a status and a message", "[registration][capi]") {
+    ssc_model* model = nullptr;
+    REQUIRE(ssc_model_load_default(nullptr, &model) == SSC_OK);
+    const BumpyScan s(33);
+    ssc_registration* reg = nullptr;
+    CHECK(ssc_registration_create(nullptr, nullptr, &reg) == SSC_ERROR_INVALID_ARGUMENT);
+    ssc_registration_def def;
+    ssc_registration_def_init(&def, sizeof def);
+    CHECK(def.stiffness == Approx(0.1f));
+    def.stiffness = std::nanf("");
+    CHECK(ssc_registration_create(model, &def, &reg) == SSC_ERROR_INVALID_ARGUMENT);
+    def.stiffness = 0.1f;
+    def.start = static_cast<ssc_registration_start>(7);
+    CHECK(ssc_registration_create(model, &def, &reg) == SSC_ERROR_INVALID_ARGUMENT);
+    REQUIRE(ssc_registration_create(model, nullptr, &reg) == SSC_OK);
+    CHECK(ssc_registration_run(reg, nullptr, nullptr, nullptr) == SSC_ERROR_INVALID_ARGUMENT);  // no scan
+    CHECK(std::string(ssc_last_error()).find("no scan") != std::string::npos);
+    std::vector<float> pts;
+    for (const auto& p : s.scan.cloud.points) pts.insert(pts.end(), {float(p.x()), float(p.y()), float(p.z())});
+    const uint32_t n = uint32_t(s.scan.cloud.points.size());
+    CHECK(ssc_registration_set_scan(reg, pts.data(), nullptr, 50, 0, nullptr, 0) == SSC_ERROR_INVALID_ARGUMENT);  // too few
+    std::vector<float> bad = pts;
+    bad[30] = std::nanf("");
+    CHECK(ssc_registration_set_scan(reg, bad.data(), nullptr, n, 0, nullptr, 0) == SSC_ERROR_INVALID_ARGUMENT);
+    const uint32_t out_of_range[3] = {0, 1, n};
+    CHECK(ssc_registration_set_scan(reg, pts.data(), nullptr, n, 0, out_of_range, 1) == SSC_ERROR_INVALID_ARGUMENT);
+    const char* names[1] = {"NoSuchLandmark"};
+    const float where[3] = {0, 1, 0};
+    CHECK(ssc_registration_set_landmarks_by_name(reg, names, where, 1) == SSC_ERROR_NOT_FOUND);
+    REQUIRE(ssc_registration_set_scan(reg, pts.data(), nullptr, n, 0, nullptr, 0) == SSC_OK);
+    const uint32_t V = ssc_model_vertex_count(model);
+    std::vector<float> verts(3ull * V);
+    CHECK(ssc_registration_get_vertices(reg, verts.data(), V, 0) == SSC_ERROR_INVALID_ARGUMENT);  // not run yet
+    CHECK(ssc_registration_region_count(reg) == 0);
+    ssc_registration_report report;
+    report.struct_size = sizeof report;
+    int calls = 0;
+    const ssc_stage_progress_fn count = [](void* user, const char*, uint32_t, uint32_t) {
+        ++*static_cast<int*>(user);
+        return 0;
+    };
+    REQUIRE(ssc_registration_run(reg, count, &calls, &report) == SSC_OK);
+    CHECK(calls > 6);
+    CHECK(report.rounds == 6);
+    CHECK(report.quality.scan_mean < 0.002f);
+    CHECK(ssc_registration_get_vertices(reg, verts.data(), V - 1, 0) == SSC_ERROR_BUFFER_TOO_SMALL);
+    REQUIRE(ssc_registration_get_vertices(reg, verts.data(), V, 0) == SSC_OK);
+    std::vector<uint8_t> valid(V);
+    REQUIRE(ssc_registration_get_valid(reg, valid.data(), V) == SSC_OK);
+    uint32_t on_scan = 0;
+    for (uint8_t v : valid) on_scan += v;
+    CHECK(on_scan == report.valid_vertices);
+    std::vector<float> distance(V);
+    REQUIRE(ssc_registration_get_vertex_distances(reg, distance.data(), V) == SSC_OK);
+    std::vector<float> shape(ssc_model_shape_count(model));
+    CHECK(ssc_registration_get_fit(reg, shape.data(), uint32_t(shape.size()), nullptr, 0, nullptr, nullptr) == SSC_OK);
+    REQUIRE(ssc_registration_region_count(reg) == 6);
+    const char* region = nullptr;
+    ssc_registration_quality q;
+    REQUIRE(ssc_registration_get_region(reg, 1, &region, &q) == SSC_OK);
+    CHECK(std::string(region) == "torso");
+    CHECK(q.within[3] > 0.8f);
+    CHECK(ssc_registration_get_region(reg, 6, &region, &q) == SSC_ERROR_INVALID_ARGUMENT);
+    // The same as the C++ registration of the same scan.
+    ThreadPool pool(1);
+    const fitting::LinearModel lin(default_model(), default_model().component_count());
+    registration::Scan cloud_only;
+    for (uint32_t i = 0; i < n; ++i) cloud_only.cloud.points.emplace_back(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
+    const auto direct = registration::register_scan(lin, cloud_only, {});
+    double worst = 0;
+    for (uint32_t v = 0; v < V; ++v) worst = std::max(worst, (direct.vertices[v] - Vector3d(verts[3 * v], verts[3 * v + 1], verts[3 * v + 2])).norm());
+    CHECK(worst < 1e-5);
+    // A cancel leaves no result.
+    const ssc_stage_progress_fn stop = [](void*, const char* stage, uint32_t, uint32_t) { return std::string(stage) == "deform" ? 1 : 0; };
+    CHECK(ssc_registration_run(reg, stop, nullptr, nullptr) == SSC_ERROR_CANCELLED);
+    CHECK(ssc_registration_get_vertices(reg, verts.data(), V, 0) == SSC_ERROR_INVALID_ARGUMENT);
+    ssc_registration_destroy(reg);
+    ssc_registration_destroy(nullptr);
+    ssc_model_release(model);
+}

@@ -1006,6 +1006,161 @@ SSC_EXPERIMENTAL ssc_status ssc_fitter_get_point_residuals(const ssc_fitter* fit
 /** Number of points added to a frame (0 for an unknown frame). */
 SSC_EXPERIMENTAL uint32_t ssc_fitter_point_count(const ssc_fitter* fitter, uint32_t frame);
 
+/* ---------------------------------------------------------------------------------------------- */
+/* Scan registration (SSC_EXPERIMENTAL: may change in a minor version)                             */
+
+/**
+ * A registration deforms the model's template mesh onto a raw body scan, vertex for vertex: the
+ * result has the model's vertex count and order, so scans registered this way can be compared and
+ * learned from. It starts from the model fitted to the scan (or from landmarks), then gives every
+ * template vertex its own affine transform, solved for with correspondences to the scan found again
+ * each iteration while the stiffness is relaxed round by round (docs/registration.md). Many
+ * registrations may share one model.
+ */
+typedef struct ssc_registration ssc_registration;
+
+/** Where the deformation starts. */
+typedef enum ssc_registration_start {
+    SSC_REGISTRATION_START_MODEL = 0,  /**< The model fitted to the scan (and landmarks when given). */
+    SSC_REGISTRATION_START_RIGID = 1,  /**< The template at rest, aligned (with scale) to 3 or more landmarks. */
+    SSC_REGISTRATION_START_RBF = 2,    /**< Landmarks and a radial-basis warp (not yet available: refused). */
+    SSC_REGISTRATION_START_FORCE32 = 0x7FFFFFFF
+} ssc_registration_start;
+
+/** How the stiffness changes over the rounds. */
+typedef enum ssc_registration_schedule {
+    SSC_REGISTRATION_RELAXED = 0,   /**< Stiffness and landmark weight fall by 4 each round until the
+                                         stiffness has fallen by 1000 (6 rounds). */
+    SSC_REGISTRATION_CONSTANT = 1,  /**< The same rounds at the final weights throughout. */
+    SSC_REGISTRATION_SCHEDULE_FORCE32 = 0x7FFFFFFF
+} ssc_registration_schedule;
+
+/** Options of ssc_registration_create. Fill with ssc_registration_def_init; append-only. */
+typedef struct ssc_registration_def {
+    uint32_t struct_size;                /**< sizeof(ssc_registration_def), set by ssc_registration_def_init. */
+    ssc_registration_start start;        /**< Default SSC_REGISTRATION_START_MODEL. */
+    ssc_registration_schedule schedule;  /**< Default SSC_REGISTRATION_RELAXED. */
+    float stiffness;                     /**< First round's smoothness weight, (0, 1e6]. Default 0.1. */
+    float landmark_weight;               /**< First round's landmark weight, [0, 1e6]. Default 10. */
+    float gamma;                         /**< Weight of the transforms' translation in the smoothness, (0, 1e3]. Default 1. */
+    uint32_t max_iterations;             /**< Solves per round at most, 1..100. Default 4. */
+} ssc_registration_def;
+
+/** Fills def with defaults; size = sizeof(*def). Threads: any. */
+SSC_EXPERIMENTAL void ssc_registration_def_init(ssc_registration_def* def, size_t size);
+
+/**
+ * Creates a registration with no scan.
+ * @param model  the model; the registration takes a reference to it.
+ * @param def    options; NULL = defaults.
+ * @param out    receives the registration; set only on success.
+ * @return SSC_ERROR_INVALID_ARGUMENT for NULL or options out of range.
+ * Ownership: the caller owns *out, ended by ssc_registration_destroy. Threads: any; the
+ * registration itself is used from one thread at a time.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_registration_create(ssc_model* model, const ssc_registration_def* def, ssc_registration** out);
+
+/** Destroys a registration and drops its model reference. NULL is ignored. Threads: its thread. */
+SSC_EXPERIMENTAL void ssc_registration_destroy(ssc_registration* registration);
+
+/**
+ * Sets the scan (replacing one set before; forgets the result).
+ * @param points          count points, 3 floats each at stride bytes (0 = packed), metres.
+ * @param normals         NULL, or count outward normals at the same stride: unit, or (0, 0, 0) where
+ *                        unknown (estimated from the neighbouring points).
+ * @param count           at least 100 points.
+ * @param triangles       NULL for a point cloud, or 3 * triangle_count point indices of the scan's mesh
+ *                        (its hole rims are then its border edges).
+ * @return SSC_ERROR_INVALID_ARGUMENT for NULL, a bad stride, too few points, non-finite values or
+ *         coordinates beyond 1e6 in magnitude, normals neither unit nor zero, triangle indices out of
+ *         range; nothing is changed then.
+ * Ownership: the arrays are copied. Threads: the registration's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_registration_set_scan(ssc_registration* registration, const float* points, const float* normals,
+                                                      uint32_t count, size_t stride, const uint32_t* triangles,
+                                                      uint32_t triangle_count);
+
+/**
+ * Sets landmarks on the scan by name (the model's landmark names, e.g. "Sellion"), replacing those
+ * set before; count 0 removes them.
+ * @param positions  3 * count floats, metres, in the scan's frame.
+ * @return SSC_ERROR_NOT_FOUND (nothing set) for a name that is not one of the model's;
+ *         SSC_ERROR_INVALID_ARGUMENT for NULL or positions that are no measurement.
+ * Ownership: copied. Threads: the registration's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_registration_set_landmarks_by_name(ssc_registration* registration, const char* const* names,
+                                                                   const float* positions, uint32_t count);
+
+/** Called as a long operation goes: its stage ("fit", "deform"), work done and total (0 when unknown); return non-zero to cancel. */
+typedef int (*ssc_stage_progress_fn)(void* user, const char* stage, uint32_t done, uint32_t total);
+
+/** How well a registration (or one body region of it) covers its scan. */
+typedef struct ssc_registration_quality {
+    float scan_mean, scan_median, scan_p95;  /**< Each scan point's distance to the registered surface, metres. */
+    float within[4];                         /**< Shares of template vertices within 2, 5, 10 and 20 mm of a
+                                                  compatible scan point (normals less than 60 degrees apart; for
+                                                  a point cloud, the distance to the nearest point's tangent plane). */
+} ssc_registration_quality;
+
+/** What a run did. Fill struct_size (sizeof) before the call; fields beyond it are not written. */
+typedef struct ssc_registration_report {
+    uint32_t struct_size;              /**< sizeof(ssc_registration_report), set by the caller. */
+    uint32_t rounds;                   /**< Stiffness rounds run. */
+    uint32_t solves;                   /**< Linear solves. */
+    uint32_t valid_vertices;           /**< Template vertices that ended on a compatible scan point. */
+    float seconds;                     /**< Wall time, the model fit included. */
+    float fit_seconds;                 /**< The model fit's share (SSC_REGISTRATION_START_MODEL). */
+    ssc_registration_quality quality;  /**< Over the whole body. */
+} ssc_registration_report;
+
+/**
+ * Registers the scan.
+ * @param progress  NULL or a callback; non-zero from it stops the run with SSC_ERROR_CANCELLED (no
+ *                  result then).
+ * @param report    NULL or a report to fill (struct_size set by the caller).
+ * @return SSC_ERROR_INVALID_ARGUMENT without a scan, for SSC_REGISTRATION_START_RIGID with fewer than
+ *         3 landmarks, for SSC_REGISTRATION_START_RBF, or when the model cannot be fitted to the scan.
+ * Threads: the registration's thread; the model fit and the correspondence searches also use the
+ * worker threads of the model's context.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_registration_run(ssc_registration* registration, ssc_stage_progress_fn progress, void* user,
+                                                 ssc_registration_report* report);
+
+/** The registered mesh after a run: capacity in vertices (>= ssc_model_vertex_count), stride in
+ *  bytes (0 = packed); the model's triangles. Threads: the registration's thread. */
+SSC_EXPERIMENTAL ssc_status ssc_registration_get_vertices(const ssc_registration* registration, float* out, uint32_t capacity,
+                                                          size_t stride);
+
+/** Per vertex after a run: 1 where it ended on a compatible scan point, 0 where it was filled in by
+ *  its neighbours (holes, parts the scan does not show). Threads: the registration's thread. */
+SSC_EXPERIMENTAL ssc_status ssc_registration_get_valid(const ssc_registration* registration, uint8_t* out, uint32_t capacity);
+
+/** Per vertex after a run: its distance to the scan in metres (to the nearest compatible scan point,
+ *  along that point's normal where it has one), or -1 where no compatible point lies within 5 cm.
+ *  Threads: the registration's thread. */
+SSC_EXPERIMENTAL ssc_status ssc_registration_get_vertex_distances(const ssc_registration* registration, float* out, uint32_t capacity);
+
+/**
+ * The model fit that started the run (SSC_REGISTRATION_START_MODEL only, else
+ * SSC_ERROR_INVALID_ARGUMENT): shape (shape_capacity >= ssc_model_shape_count), pose (joint_capacity
+ * >= ssc_model_joint_count quaternions x y z w), translation (3 floats) and scale; any output may be
+ * NULL. Threads: the registration's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_registration_get_fit(const ssc_registration* registration, float* shape, uint32_t shape_capacity,
+                                                     float* rotations, uint32_t joint_capacity, float* translation, float* scale);
+
+/** Body regions of the quality report (the model's vertex sets: head, torso, arms, ...), after a run. */
+SSC_EXPERIMENTAL uint32_t ssc_registration_region_count(const ssc_registration* registration);
+
+/**
+ * One region's quality after a run.
+ * @param name  receives the region's name, owned by the registration (valid until its next run or
+ *              destruction); may be NULL.
+ * Threads: the registration's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_registration_get_region(const ssc_registration* registration, uint32_t index, const char** name,
+                                                        ssc_registration_quality* quality);
+
 #ifdef __cplusplus
 }
 #endif

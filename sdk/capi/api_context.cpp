@@ -17,10 +17,11 @@ void set_last_error(const std::string& message) { t_last_error = message; }
 
 std::size_t check_output(const void* out, uint64_t capacity, uint64_t count, std::size_t stride, std::size_t elem_bytes) {
     SSC_REQUIRE_ARG(out != nullptr, "output buffer is NULL");
+    // Packed (stride 0): elements back to back, whatever their size; a given stride: rows of floats.
     if (stride == 0) stride = elem_bytes;
-    SSC_REQUIRE_ARG(stride >= elem_bytes && stride % 4 == 0, "stride " + std::to_string(stride) +
-                                                             " must be 0 or a multiple of 4 that is >= " +
-                                                             std::to_string(elem_bytes));
+    else
+        SSC_REQUIRE_ARG(stride >= elem_bytes && stride % 4 == 0,
+                        "stride " + std::to_string(stride) + " must be 0 or a multiple of 4 that is >= " + std::to_string(elem_bytes));
     if (capacity < count)
         fail(SSC_ERROR_BUFFER_TOO_SMALL,
              "capacity " + std::to_string(capacity) + " is less than the " + std::to_string(count) + " elements needed");

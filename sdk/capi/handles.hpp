@@ -6,6 +6,7 @@
 #include "common/alloc.hpp"
 #include "common/thread_pool.hpp"
 #include "fitting/fitter.hpp"
+#include "registration/registrar.hpp"
 #include "runtime/runtime_model.hpp"
 #include "synthesis/body.hpp"
 #include "synthesis/model.hpp"
@@ -60,9 +61,18 @@ struct ssc_fitter {
     ssc_fitter(ssc_model* m, const ssc::fitting::FitOptions& o) : model(m), fitter(m->model, o, m->runtime.anatomy()) {}
 };
 
+struct ssc_registration {
+    ssc_model* model;  // holds one reference
+    ssc::registration::Registrar registrar;
+
+    ssc_registration(ssc_model* m, const ssc::registration::RegistrationOptions& o)
+        : model(m), registrar(m->model, o, m->runtime.anatomy()) {}
+};
+
 namespace ssc::capi {
 
 inline Allocator allocator_of(const ssc_fitter* f) { return f->model->context->allocator; }
+inline Allocator allocator_of(const ssc_registration* r) { return r->model->context->allocator; }
 inline Allocator allocator_of(const ssc_context* c) { return c->allocator; }
 inline Allocator allocator_of(const ssc_model* m) { return m->context->allocator; }
 inline Allocator allocator_of(const ssc_body* b) { return b->model->context->allocator; }

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
         return "sscape" + name + ": " + e.what() + "\nRun 'sscape" + (name.empty() ? " COMMAND" : name) + " --help' for the options.\n";
     });
     std::map<std::string, ssc::cli::Run> commands;
-    for (const auto add : {ssc::cli::add_info, ssc::cli::add_synth, ssc::cli::add_measure, ssc::cli::add_fit, ssc::cli::add_simulate,
+    for (const auto add : {ssc::cli::add_info, ssc::cli::add_synth, ssc::cli::add_measure, ssc::cli::add_fit, ssc::cli::add_register, ssc::cli::add_simulate,
                            ssc::cli::add_train, ssc::cli::add_make_test_model}) {
         ssc::cli::Run run = add(app);
         commands[app.get_subcommands({}).back()->get_name()] = std::move(run);

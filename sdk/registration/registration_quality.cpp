@@ -81,7 +81,10 @@ RegistrationQuality registration_quality(const std::vector<Eigen::Vector3d>& ver
             double d2;
             const uint32_t i = index.nearest(vertices[v], &d2);
             const double dot = normals[i].squaredNorm() > 0 ? normals[i].dot(vnormals[v]) : 1.0;
-            if (d2 < kMatchDistance * kMatchDistance && (oriented ? dot : std::abs(dot)) >= kMatchCos) vertex_distance[v] = std::sqrt(d2);
+            // To the nearest point's tangent plane where it has a normal: a scattered scan's nearest
+            // point lies up to half its spacing aside even from a surface that matches exactly.
+            if (d2 < kMatchDistance * kMatchDistance && (oriented ? dot : std::abs(dot)) >= kMatchCos)
+                vertex_distance[v] = normals[i].squaredNorm() > 0 ? std::abs((vertices[v] - points[i]).dot(normals[i])) : std::sqrt(d2);
         }
     });
     std::vector<std::array<std::size_t, 4>> region_below(R + 1, std::array<std::size_t, 4>{});
@@ -118,6 +121,8 @@ RegistrationQuality registration_quality(const std::vector<Eigen::Vector3d>& ver
         }
     });
     q.scan_to_registration = summary(point_distance);
+    q.vertex_distance.resize(V);
+    for (std::size_t v = 0; v < V; ++v) q.vertex_distance[v] = std::isfinite(vertex_distance[v]) ? vertex_distance[v] : -1.0;
     for (std::size_t r = 0; r < R; ++r) {
         RegionQuality rq;
         rq.region = region_names[r];

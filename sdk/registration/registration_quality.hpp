@@ -33,12 +33,16 @@ struct RegistrationQuality {
     DistanceSummary scan_to_registration;
     std::array<double, 4> below{};  // shares of all template vertices
     std::vector<RegionQuality> regions;
+    // Per template vertex: its distance to the scan as the shares count it, or -1 where no compatible
+    // scan point lies within 5 cm.
+    std::vector<double> vertex_distance;
 };
 
 // The registered mesh (vertices, triangles, unit vertex normals, each vertex's region: an index
 // into region_names or -1), and the scan (points, unit or zero normals, a k-d tree over the points).
-// A vertex counts as matched within d when its nearest scan point is closer than d (and than 5 cm)
-// with normals less than 60 degrees apart (up to sign when the scan's normals are not oriented).
+// A vertex counts as matched within d when its nearest scan point (closer than 5 cm, normals less
+// than 60 degrees apart, up to sign when the scan's normals are not oriented) lies within d, along
+// that point's normal where it has one (the distance to the scan's tangent plane there).
 RegistrationQuality registration_quality(const std::vector<Eigen::Vector3d>& vertices, const std::vector<uint32_t>& triangles,
                                          const std::vector<Eigen::Vector3d>& vertex_normals, const std::vector<int>& region,
                                          const std::vector<std::string>& region_names, const std::vector<Eigen::Vector3d>& points,

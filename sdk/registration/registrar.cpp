@@ -1,0 +1,58 @@
+#include "registration/registrar.hpp"
+
+#include "common/error.hpp"
+
+#include <cmath>
+
+namespace ssc::registration {
+
+namespace {
+
+const RegistrationOptions& checked(const RegistrationOptions& o) {
+    SSC_REQUIRE_ARG(std::isfinite(o.stiffness) && o.stiffness > 0 && o.stiffness <= 1e6, "registration: stiffness must be in (0, 1e6]");
+    SSC_REQUIRE_ARG(std::isfinite(o.landmarks) && o.landmarks >= 0 && o.landmarks <= 1e6, "registration: landmark weight must be in [0, 1e6]");
+    SSC_REQUIRE_ARG(std::isfinite(o.gamma) && o.gamma > 0 && o.gamma <= 1e3, "registration: gamma must be in (0, 1e3]");
+    SSC_REQUIRE_ARG(o.max_iterations >= 1 && o.max_iterations <= 100, "registration: max_iterations must be 1 to 100");
+    SSC_REQUIRE_ARG(o.initialisation == Initialisation::Model || o.initialisation == Initialisation::Rigid ||
+                        o.initialisation == Initialisation::Rbf,
+                    "registration: unknown initialisation");
+    SSC_REQUIRE_ARG(o.schedule == Schedule::Relaxed || o.schedule == Schedule::Constant, "registration: unknown schedule");
+    return o;
+}
+
+}  // namespace
+
+Registrar::Registrar(const Model& model, const RegistrationOptions& options, std::shared_ptr<const anatomy::ModelAnatomy> anatomy)
+    : options_(checked(options)), linear_(model, model.component_count(), std::move(anatomy)) {}
+
+void Registrar::set_scan(fitting::PointCloud cloud, std::vector<uint32_t> triangles) {
+    fitting::validate_cloud(cloud, "registration: scan");
+    SSC_REQUIRE_ARG_S(cloud.points.size() >= 100, "registration: the scan has " << cloud.points.size() << " points; a body scan needs at least 100");
+    SSC_REQUIRE_ARG(triangles.size() % 3 == 0, "registration: the scan's triangles need 3 indices each");
+    for (uint32_t i : triangles) SSC_REQUIRE_ARG_S(i < cloud.points.size(), "registration: a scan triangle index (" << i << ") is out of range");
+    scan_.cloud = std::move(cloud);
+    scan_.triangles = std::move(triangles);
+    has_scan_ = true;
+    result_.reset();
+}
+
+void Registrar::set_landmarks(std::vector<fitting::LandmarkTarget> landmarks) {
+    for (std::size_t l = 0; l < landmarks.size(); ++l)
+        fitting::validate_landmark(model().data(), landmarks[l], "registration: landmark " + std::to_string(l));
+    scan_.landmarks = std::move(landmarks);
+    result_.reset();
+}
+
+const Registration& Registrar::run(const RegistrationProgress& progress, ThreadPool* pool) {
+    SSC_REQUIRE_ARG(has_scan_, "registration: no scan (set one first)");
+    result_.reset();
+    result_ = register_scan(linear_, scan_, options_, progress, pool);
+    return *result_;
+}
+
+const Registration& Registrar::result() const {
+    SSC_REQUIRE_ARG(result_.has_value(), "registration: not run yet (or its input changed since)");
+    return *result_;
+}
+
+}  // namespace ssc::registration
