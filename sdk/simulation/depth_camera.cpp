@@ -66,4 +66,36 @@ std::vector<float> render_depth(const Model& m, const TrueBody& b, const fitting
     return z;
 }
 
+fitting::PointCloud booth_scan(const Model& m, const TrueBody& b, const BoothSpec& spec, std::mt19937& rng) {
+    Vector3d lo = Vector3d::Constant(1e30), hi = -lo;
+    for (const Vector3d& v : b.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const Vector3d axis(0.5 * (lo.x() + hi.x()), 0, 0.5 * (lo.z() + hi.z()));
+    fitting::PointCloud all;
+    for (uint32_t c = 0; c < spec.columns; ++c) {
+        const double a = spec.heading + 2 * M_PI * double(c) / double(spec.columns);
+        for (double h : spec.heights) {
+            const Vector3d eye = axis + Vector3d(spec.distance * std::sin(a), lo.y() + h, spec.distance * std::cos(a));
+            const Vector3d target(axis.x(), lo.y() + h, axis.z());
+            fitting::DepthView view;
+            view.width = spec.camera.width, view.height = spec.camera.height;
+            view.camera = look_at(eye, target, spec.camera);
+            const std::vector<float> depth = render_depth(m, b, view.camera, spec.camera, rng);
+            view.depth = depth.data();
+            const fitting::PointCloud one = fitting::depth_to_cloud(view);
+            all.points.insert(all.points.end(), one.points.begin(), one.points.end());
+            all.normals.insert(all.normals.end(), one.normals.begin(), one.normals.end());
+        }
+    }
+    if (spec.points == 0 || all.points.size() <= spec.points) return all;
+    std::vector<uint32_t> order(all.points.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), rng);
+    fitting::PointCloud kept;
+    for (uint32_t k = 0; k < spec.points; ++k) {
+        kept.points.push_back(all.points[order[k]]);
+        kept.normals.push_back(all.normals[order[k]]);
+    }
+    return kept;
+}
+
 }  // namespace ssc::simulation

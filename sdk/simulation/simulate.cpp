@@ -1,6 +1,7 @@
 #include "simulation/simulate.hpp"
 
 #include "anatomy/joint_limits.hpp"
+#include "common/error.hpp"
 #include "fitting/posed_surface.hpp"
 #include "registration/registration_quality.hpp"
 
@@ -83,6 +84,25 @@ std::vector<float> random_pose(const Model& m, std::mt19937& rng, double amount)
     return q;
 }
 
+namespace {
+
+// The model's landmarks on a body's posed vertices.
+void place_landmarks(const Model& m, TrueBody& b) {
+    const auto& d = m.data();
+    b.landmarks.clear();
+    for (const auto& l : d.landmarks) {
+        if (l.vertex != format::kNone) {
+            b.landmarks.push_back(b.vertices[l.vertex]);
+            continue;
+        }
+        Vector3d x = Vector3d::Zero();
+        for (int i = 0; i < 3; ++i) x += double(l.barycentric[i]) * b.vertices[d.mesh.triangles[3 * std::size_t(l.triangle) + i]];
+        b.landmarks.push_back(x);
+    }
+}
+
+}  // namespace
+
 TrueBody make_body(const Model& m, std::vector<float> shape, std::vector<float> pose, const Vector3d& translation) {
     TrueBody b;
     b.shape = std::move(shape);
@@ -99,16 +119,53 @@ TrueBody make_body(const Model& m, std::vector<float> shape, std::vector<float> 
     const float* n = body.normals();
     b.normals.resize(V);
     for (uint32_t v = 0; v < V; ++v) b.normals[v] = Vector3d(n[3 * v], n[3 * v + 1], n[3 * v + 2]).normalized();
+    place_landmarks(m, b);
+    return b;
+}
+
+TrueBody pose_rest_vertices(const Model& m, const std::vector<Vector3d>& rest, std::vector<float> pose, const Vector3d& translation) {
     const auto& d = m.data();
-    for (const auto& l : d.landmarks) {
-        if (l.vertex != format::kNone) {
-            b.landmarks.push_back(b.vertices[l.vertex]);
-            continue;
+    const auto& sk = d.skeleton;
+    const uint32_t V = m.vertex_count(), J = m.joint_count();
+    SSC_REQUIRE_ARG(rest.size() == V && pose.size() == 4 * std::size_t(J), "pose_rest_vertices: one rest vertex per model vertex, 4 floats per joint");
+    // The model's skeleton on these vertices (its regressor), posed as the format describes:
+    // G_j = G_parent [R_j P_j | o_j], a vertex moved by sum_i w_i G_j bind_j^-1.
+    std::vector<Vector3d> p(J, Vector3d::Zero());
+    for (uint32_t j = 0; j < J; ++j)
+        for (uint32_t e = sk.regressor_offsets[j]; e < sk.regressor_offsets[j + 1]; ++e) p[j] += double(sk.regressor_weights[e]) * rest[sk.regressor_vertices[e]];
+    std::vector<Matrix3d> W(J), G(J);
+    std::vector<Vector3d> t(J);
+    for (uint32_t j = 0; j < J; ++j) {
+        const float* r = &sk.rest_orientations[4 * j];
+        const Matrix3d R = Quaterniond(r[3], r[0], r[1], r[2]).normalized().toRotationMatrix();
+        const Matrix3d P = Quaterniond(pose[4 * j + 3], pose[4 * j], pose[4 * j + 1], pose[4 * j + 2]).normalized().toRotationMatrix();
+        const int32_t parent = sk.parents[j];
+        if (parent < 0) {
+            W[j] = R, G[j] = R * P, t[j] = p[j] + translation;
+        } else {
+            const uint32_t q = uint32_t(parent);
+            W[j] = W[q] * R;
+            G[j] = G[q] * R * P;
+            t[j] = G[q] * (W[q].transpose() * (p[j] - p[q])) + t[q];
         }
-        Vector3d x = Vector3d::Zero();
-        for (int i = 0; i < 3; ++i) x += double(l.barycentric[i]) * b.vertices[d.mesh.triangles[3 * std::size_t(l.triangle) + i]];
-        b.landmarks.push_back(x);
     }
+    TrueBody b;
+    b.pose = std::move(pose);
+    b.translation = translation;
+    b.vertices.resize(V);
+    for (uint32_t v = 0; v < V; ++v) {
+        Vector3d x = Vector3d::Zero();
+        for (int i = 0; i < 4; ++i) {
+            const double w = d.skin.weights[4 * std::size_t(v) + std::size_t(i)];
+            if (w == 0) continue;
+            const uint32_t j = d.skin.joints[4 * std::size_t(v) + std::size_t(i)];
+            x += w * (G[j] * (W[j].transpose() * (rest[v] - p[j])) + t[j]);
+        }
+        b.vertices[v] = x;
+    }
+    const std::vector<uint32_t> triangles(d.mesh.triangles.begin(), d.mesh.triangles.end());
+    b.normals = registration::vertex_normals(b.vertices, triangles);
+    place_landmarks(m, b);
     return b;
 }
 

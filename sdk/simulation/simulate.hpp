@@ -31,6 +31,12 @@ std::vector<float> random_pose(const Model& m, std::mt19937& rng, double amount 
 TrueBody make_body(const Model& m, std::vector<float> shape, std::vector<float> pose, const Eigen::Vector3d& translation);
 
 // Rotates and translates a body as a whole (a different facing direction or camera frame).
+// A body from rest vertices that are not the model's (another body of the template's topology, such
+// as a MakeHuman body with targets the model was not trained on), posed by the model's skeleton
+// (regressed from those vertices) and skinning. pose: 4J quaternions x y z w.
+TrueBody pose_rest_vertices(const Model& m, const std::vector<Eigen::Vector3d>& rest, std::vector<float> pose,
+                            const Eigen::Vector3d& translation);
+
 void transform_body(TrueBody& b, const Eigen::Matrix3d& R, const Eigen::Vector3d& t);
 
 // The model's landmarks with isotropic Gaussian noise (sd metres), optionally without the six hand

@@ -1,16 +1,26 @@
 // Scan registration accuracy and speed on simulated scans with known correspondence.
 //
 //   sscape_register_bench [--trials N] [--init model|rigid] [--constant] [--stiffness B] [--threads N]
+//                         [--makehuman DIR] [--landmarks] [--png PREFIX]
+// --landmarks: the CAESAR landmarks (but the hands'), exact, join the scan (always with --init rigid).
 //
-// Each trial: a random body and pose of the default model, with smooth bumps and dents of up to
-// 2 cm that the model cannot represent, scanned (50,000 points, 1 mm noise, 10 % of the surface in
-// holes) and registered. Vertex i of the true body is vertex i of the template, so the
+// Each trial, by default: a random body and pose of the default model, with smooth bumps and dents
+// of up to 2 cm that the model cannot represent, scanned (50,000 points, 1 mm noise, 10 % of the
+// surface in holes) and registered. With --makehuman (the shared/makehuman assets): a body of the
+// MakeHuman population with the neck, head and arm/leg modifiers that training leaves out set at
+// random (half their range; not those that move a part bodily), in the scanning pose with small random changes, scanned by a
+// booth of 8 depth cameras (4 columns, 2 heights; 1 mm noise; 60,000 points kept). Vertex i of the true body is vertex i of the template, so the
 // correspondence error (registered vertex to true vertex) catches sliding along the surface that
 // surface distances hide.
 #include "registration/register_scan.hpp"
 #include "render/registration_picture.hpp"
 #include "registration/registration_quality.hpp"
+#include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
+#ifdef SSCAPE_WITH_TRAINING
+#include "training/makehuman/assets.hpp"
+#include "training/population.hpp"
+#endif
 #include "sscape_format/model_io.hpp"
 
 #include <algorithm>
@@ -43,7 +53,8 @@ double mean_distance(const std::vector<Vector3d>& a, const std::vector<Vector3d>
 
 int main(int argc, char** argv) {
     int trials = 5;
-    std::string png;
+    std::string png, makehuman;
+    bool with_landmarks = false;
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     registration::RegistrationOptions options;
     for (int i = 1; i < argc; ++i) {
@@ -54,12 +65,14 @@ int main(int argc, char** argv) {
         else if (a == "--gamma" && i + 1 < argc) options.gamma = std::atof(argv[++i]);
         else if (a == "--iterations" && i + 1 < argc) options.max_iterations = uint32_t(std::atoi(argv[++i]));
         else if (a == "--png" && i + 1 < argc) png = argv[++i];
+        else if (a == "--makehuman" && i + 1 < argc) makehuman = argv[++i];
+        else if (a == "--landmarks") with_landmarks = true;
         else if (a == "--constant") options.schedule = registration::Schedule::Constant;
         else if (a == "--init" && i + 1 < argc) {
             const std::string v = argv[++i];
             options.initialisation = v == "rigid" ? registration::Initialisation::Rigid : registration::Initialisation::Model;
         } else {
-            std::fprintf(stderr, "usage: sscape_register_bench [--trials N] [--init model|rigid] [--constant] [--stiffness B] [--threads N]\n");
+            std::fprintf(stderr, "usage: sscape_register_bench [--trials N] [--init model|rigid] [--constant] [--stiffness B] [--threads N] [--makehuman DIR] [--landmarks] [--png PREFIX]\n");
             return 2;
         }
     }
@@ -72,20 +85,62 @@ int main(int argc, char** argv) {
             for (uint32_t v : set.vertices) hand[v] = 1;
     ThreadPool pool(threads);
     std::mt19937 rng(2026);
+#ifdef SSCAPE_WITH_TRAINING
+    // The MakeHuman population, then the modifiers training leaves out, drawn per body.
+    training::mh::Assets assets;
+    std::vector<training::BodyParams> people;
+    std::size_t trained_modifiers = 0;
+    if (!makehuman.empty()) {
+        assets = training::mh::load_assets(makehuman);
+        training::PopulationSpec ps;
+        ps.count = uint32_t(trials);
+        ps.seed = 77;
+        people = training::sample_population(assets, ps);
+        trained_modifiers = assets.modifiers.size();
+        training::mh::add_modifier_groups(assets, "modeling_modifiers.json", {"neck", "head", "armslegs"});
+        std::printf("MakeHuman bodies: %zu modifiers the model was trained with, %zu more it was not\n", trained_modifiers,
+                    assets.modifiers.size() - trained_modifiers);
+    }
+#else
+    if (!makehuman.empty()) {
+        std::fprintf(stderr, "--makehuman needs a build with training (SSCAPE_BUILD_TRAINING)\n");
+        return 2;
+    }
+#endif
     std::printf("trial  fit corr  nrd corr  nrd corr (no hands)  hands  scan->reg mean  median  p95   <2mm  <5mm  worst region  time (fit)\n");
     std::vector<double> fit_errors, errors, body_errors, scan_means, times;
     for (int t = 0; t < trials; ++t) {
-        auto truth = simulation::make_body(model, simulation::random_shape(model, rng), simulation::random_pose(model, rng, 0.3),
-                                           Vector3d::Zero());
-        simulation::add_bumps(truth, model, 8, rng);
-        simulation::CloudSpec spec;
-        spec.points = 50000;
-        spec.noise = 0.001;
-        spec.missing = 0.1;
-        spec.outliers = 0;
+        simulation::TrueBody truth;
         registration::Scan scan;
-        scan.cloud = simulation::simulate_cloud(model, truth, spec, rng);
-        if (options.initialisation == registration::Initialisation::Rigid)
+        if (makehuman.empty()) {
+            truth = simulation::make_body(model, simulation::random_shape(model, rng), simulation::random_pose(model, rng, 0.3), Vector3d::Zero());
+            simulation::add_bumps(truth, model, 8, rng);
+            simulation::CloudSpec spec;
+            spec.points = 50000;
+            spec.noise = 0.001;
+            spec.missing = 0.1;
+            spec.outliers = 0;
+            scan.cloud = simulation::simulate_cloud(model, truth, spec, rng);
+        } else {
+#ifdef SSCAPE_WITH_TRAINING
+            training::BodyParams body = people[std::size_t(t)];
+            // Half their range (the ends are caricatures), and none of the modifiers that move a part
+            // bodily (hand-trans, neck-trans: placement, not shape).
+            std::uniform_real_distribution<double> extra(-0.5, 0.5);
+            body.modifiers.resize(assets.modifiers.size(), 0.0);
+            for (std::size_t k = trained_modifiers; k < body.modifiers.size(); ++k)
+                if (assets.modifiers[k].name.find("-trans") == std::string::npos)
+                    body.modifiers[k] = assets.modifiers[k].decr >= 0 ? extra(rng) : 0.5 + extra(rng);
+            std::vector<float> xyz;
+            training::mh::generate_body(assets, body.macro, body.modifiers, xyz);
+            std::vector<Vector3d> rest(model.vertex_count());
+            for (uint32_t v = 0; v < model.vertex_count(); ++v) rest[v] = Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+            truth = simulation::pose_rest_vertices(model, rest, simulation::random_pose(model, rng, 0.15), Vector3d(0, 0, 0));
+            simulation::BoothSpec booth;
+            scan.cloud = simulation::booth_scan(model, truth, booth, rng);
+#endif
+        }
+        if (options.initialisation == registration::Initialisation::Rigid || with_landmarks)
             scan.landmarks = simulation::simulate_landmarks(model, truth, 0.0, true, rng);
         const registration::Registration r = registration::register_scan(lin, scan, options, {}, &pool);
         const double fit_err = r.fit.frames.empty() ? 0 : simulation::mean_vertex_error(simulation::fitted_vertices(model, r.fit.frames[0]), truth.vertices);

@@ -200,6 +200,37 @@ RigWeights read_rig_weights(const std::string& path) {
     return w;
 }
 
+void add_modifier_groups(Assets& a, const std::string& file, const std::vector<std::string>& groups) {
+    const fs::path data = fs::path(a.root) / "makehuman" / "makehuman" / "data";
+    const fs::path targets = data / "targets";
+    const json j = read_json((data / "modifiers" / file).string());
+    for (const auto& group : j) {
+        const std::string g = group.at("group").get<std::string>();
+        if (std::find(groups.begin(), groups.end(), g) == groups.end()) continue;
+        for (const auto& mod : group.at("modifiers")) {
+            if (!mod.contains("target")) continue;  // macro variables are handled by load_assets
+            const std::string t = mod.at("target").get<std::string>();
+            if (t == "stomach-pregnant" || t == "bulge" || t.rfind("nipple", 0) == 0) continue;
+            Modifier m;
+            auto load = [&](const std::string& name) {
+                const fs::path p = targets / g / (name + ".target");
+                if (!fs::exists(p)) fail(SSC_ERROR_IO, "missing target " + p.string());
+                a.modifier_targets.push_back(read_target(p.string()));
+                return int(a.modifier_targets.size()) - 1;
+            };
+            if (mod.contains("min") && mod.contains("max")) {
+                m.name = g + "/" + t + "-" + mod.at("min").get<std::string>() + "|" + mod.at("max").get<std::string>();
+                m.decr = load(t + "-" + mod.at("min").get<std::string>());
+                m.incr = load(t + "-" + mod.at("max").get<std::string>());
+            } else {
+                m.name = g + "/" + t;
+                m.incr = load(t);
+            }
+            a.modifiers.push_back(std::move(m));
+        }
+    }
+}
+
 Assets load_assets(const std::string& root) {
     Assets a;
     a.root = root;
@@ -239,41 +270,9 @@ Assets load_assets(const std::string& root) {
 
     // Body-shape modifiers. Left out on purpose: pregnancy, genital bulge and nipples (not
     // population variation), and the face/hand/foot detail groups.
-    struct Source {
-        const char* file;
-        std::vector<std::string> groups;
-    };
-    const Source sources[] = {{"measurement_modifiers.json", {"measure"}},
-                              {"modeling_modifiers.json", {"torso", "hip", "stomach", "buttocks", "pelvis", "breast"}},
-                              {"bodyshapes_modifiers.json", {"bodyshapes"}}};
-    for (const auto& src : sources) {
-        const json j = read_json((data / "modifiers" / src.file).string());
-        for (const auto& group : j) {
-            const std::string g = group.at("group").get<std::string>();
-            if (std::find(src.groups.begin(), src.groups.end(), g) == src.groups.end()) continue;
-            for (const auto& mod : group.at("modifiers")) {
-                if (!mod.contains("target")) continue;  // macro variables are handled above
-                const std::string t = mod.at("target").get<std::string>();
-                if (t == "stomach-pregnant" || t == "bulge" || t.rfind("nipple", 0) == 0) continue;
-                Modifier m;
-                auto load = [&](const std::string& file) {
-                    const fs::path p = targets / g / (file + ".target");
-                    if (!fs::exists(p)) fail(SSC_ERROR_IO, "missing target " + p.string());
-                    a.modifier_targets.push_back(read_target(p.string()));
-                    return int(a.modifier_targets.size()) - 1;
-                };
-                if (mod.contains("min") && mod.contains("max")) {
-                    m.name = g + "/" + t + "-" + mod.at("min").get<std::string>() + "|" + mod.at("max").get<std::string>();
-                    m.decr = load(t + "-" + mod.at("min").get<std::string>());
-                    m.incr = load(t + "-" + mod.at("max").get<std::string>());
-                } else {
-                    m.name = g + "/" + t;
-                    m.incr = load(t);
-                }
-                a.modifiers.push_back(std::move(m));
-            }
-        }
-    }
+    add_modifier_groups(a, "measurement_modifiers.json", {"measure"});
+    add_modifier_groups(a, "modeling_modifiers.json", {"torso", "hip", "stomach", "buttocks", "pelvis", "breast"});
+    add_modifier_groups(a, "bodyshapes_modifiers.json", {"bodyshapes"});
 
     a.default_rig = read_rig((data / "rigs" / "default.mhskel").string());
     a.default_weights = read_rig_weights((data / "rigs" / "default_weights.mhw").string());

@@ -88,6 +88,11 @@ struct Assets {
 // missing or malformed.
 Assets load_assets(const std::string& root);
 
+// Appends the body-shape modifiers of the named groups of a modifier file of the assets
+// (data/modifiers/FILE, e.g. "modeling_modifiers.json" and {"neck", "armslegs"}) to a.modifiers:
+// what training leaves out, for bodies the trained model cannot represent. Throws like load_assets.
+void add_modifier_groups(Assets& a, const std::string& file, const std::vector<std::string>& groups);
+
 // A body: base + sum of weighted macro targets + modifier targets. modifier_values: one value
 // per Assets::modifiers entry (empty = all zero). xyz receives all vertices, metres.
 void generate_body(const Assets& a, const MacroSliders& s, const std::vector<double>& modifier_values, std::vector<float>& xyz);
