@@ -3,6 +3,7 @@
 //   sscape_register_bench [--trials N] [--init model|rigid] [--constant] [--stiffness B] [--threads N]
 //                         [--makehuman DIR] [--landmarks] [--png PREFIX]
 // --landmarks: the CAESAR landmarks (but the hands'), exact, join the scan (always with --init rigid).
+// --fit-points N, --fit-iterations N: the model fit's FitOptions::max_points and max_iterations.
 //
 // Each trial, by default: a random body and pose of the default model, with smooth bumps and dents
 // of up to 2 cm that the model cannot represent, scanned (50,000 points, 1 mm noise, 10 % of the
@@ -67,6 +68,8 @@ int main(int argc, char** argv) {
         else if (a == "--png" && i + 1 < argc) png = argv[++i];
         else if (a == "--makehuman" && i + 1 < argc) makehuman = argv[++i];
         else if (a == "--landmarks") with_landmarks = true;
+        else if (a == "--fit-points" && i + 1 < argc) options.fit.max_points = uint32_t(std::atoi(argv[++i]));
+        else if (a == "--fit-iterations" && i + 1 < argc) options.fit.max_iterations = uint32_t(std::atoi(argv[++i]));
         else if (a == "--constant") options.schedule = registration::Schedule::Constant;
         else if (a == "--init" && i + 1 < argc) {
             const std::string v = argv[++i];
