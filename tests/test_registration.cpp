@@ -6,6 +6,7 @@
 #include "registration/scan_boundary.hpp"
 #include "capi/cpp_access.hpp"
 #include "common/error.hpp"
+#include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
 #include "synthesis/model.hpp"
 
@@ -413,4 +414,36 @@ TEST_CASE("the C API registers a scan and refuses misuse with a status and a mes
     ssc_registration_destroy(reg);
     ssc_registration_destroy(nullptr);
     ssc_model_release(model);
+}
+
+TEST_CASE("the simulator poses other bodies as the model poses its own, and scans them in a booth", "[registration][simulation]") {
+    const Model& m = default_model();
+    std::mt19937 rng(8);
+    const std::vector<float> shape = simulation::random_shape(m, rng), pose = simulation::random_pose(m, rng, 0.5);
+    std::vector<float> identity(4 * std::size_t(m.joint_count()), 0.f);
+    for (uint32_t j = 0; j < m.joint_count(); ++j) identity[4 * j + 3] = 1.f;
+    const auto at_rest = simulation::make_body(m, shape, identity, Vector3d::Zero());
+    const auto posed = simulation::make_body(m, shape, pose, Vector3d(0.1, 0.2, 0.3));
+    const auto other = simulation::pose_rest_vertices(m, at_rest.vertices, pose, Vector3d(0.1, 0.2, 0.3));
+    double worst = 0;
+    for (std::size_t v = 0; v < posed.vertices.size(); ++v) worst = std::max(worst, (posed.vertices[v] - other.vertices[v]).norm());
+    CHECK(worst < 1e-4);  // the runtime's float synthesis against doubles
+    simulation::BoothSpec booth;
+    booth.points = 20000;
+    const fitting::PointCloud scan = simulation::booth_scan(m, posed, booth, rng);
+    REQUIRE(scan.points.size() == 20000);
+    // Every point lies on the body (noise 1 mm), and the soles are not seen.
+    const std::vector<uint32_t> triangles(m.data().mesh.triangles.begin(), m.data().mesh.triangles.end());
+    const fitting::PointIndex index(scan.points);
+    ThreadPool pool(1);
+    const auto on_body = registration::registration_quality(posed.vertices, triangles, posed.normals, std::vector<int>(posed.vertices.size(), -1),
+                                                            {}, scan.points, scan.normals, true, index, pool);
+    INFO("scan points to the body: mean " << on_body.scan_to_registration.mean * 1e3 << " mm, p95 " << on_body.scan_to_registration.p95 * 1e3);
+    CHECK(on_body.scan_to_registration.mean < 0.0012);
+    CHECK(on_body.scan_to_registration.p95 < 0.003);
+    double lowest = 1e9;
+    for (const auto& v : posed.vertices) lowest = std::min(lowest, v.y());
+    std::size_t facing_down = 0;
+    for (std::size_t i = 0; i < scan.points.size(); ++i) facing_down += scan.points[i].y() < lowest + 0.01 && scan.normals[i].y() < -0.9;
+    CHECK(facing_down == 0);
 }
