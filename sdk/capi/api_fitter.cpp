@@ -23,6 +23,28 @@ void add_landmarks(ssc_fitter* f, uint32_t frame, const std::vector<uint32_t>& i
 
 }  // namespace
 
+namespace ssc::capi {
+
+fitting::PointCloud copy_cloud(const float* points, const float* normals, const float* confidence, uint32_t count, size_t stride) {
+    need(points, "points");
+    if (stride == 0) stride = 12;
+    SSC_REQUIRE_ARG_S(stride >= 12 && stride % 4 == 0, "stride " << stride << " must be 0 or a multiple of 4 that is >= 12");
+    auto at = [&](const float* base, std::size_t i) {
+        const float* p = reinterpret_cast<const float*>(reinterpret_cast<const unsigned char*>(base) + i * stride);
+        return Eigen::Vector3d(p[0], p[1], p[2]);
+    };
+    fitting::PointCloud c;
+    c.points.reserve(count);
+    for (uint32_t i = 0; i < count; ++i) {
+        c.points.push_back(at(points, i));
+        if (normals) c.normals.push_back(at(normals, i));
+        if (confidence) c.confidence.push_back(confidence[i]);
+    }
+    return c;
+}
+
+}  // namespace ssc::capi
+
 extern "C" {
 
 void ssc_fitter_def_init(ssc_fitter_def* def, size_t size) {
@@ -110,21 +132,7 @@ ssc_status ssc_fitter_add_points(ssc_fitter* fitter, uint32_t frame, const float
                                  const float* confidence, uint32_t count, size_t stride) {
     return guarded(__func__, [&] {
         need(fitter, "fitter");
-        need(points, "points");
-        if (stride == 0) stride = 12;
-        SSC_REQUIRE_ARG_S(stride >= 12 && stride % 4 == 0, "stride " << stride << " must be 0 or a multiple of 4 that is >= 12");
-        auto at = [&](const float* base, std::size_t i) {
-            const float* p = reinterpret_cast<const float*>(reinterpret_cast<const unsigned char*>(base) + i * stride);
-            return Eigen::Vector3d(p[0], p[1], p[2]);
-        };
-        fitting::PointCloud c;
-        c.points.reserve(count);
-        for (uint32_t i = 0; i < count; ++i) {
-            c.points.push_back(at(points, i));
-            if (normals) c.normals.push_back(at(normals, i));
-            if (confidence) c.confidence.push_back(confidence[i]);
-        }
-        fitter->fitter.add_cloud(frame, std::move(c));  // checks every point, normal and confidence
+        fitter->fitter.add_cloud(frame, copy_cloud(points, normals, confidence, count, stride));  // checks every value
     });
 }
 

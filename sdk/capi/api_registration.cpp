@@ -68,22 +68,9 @@ ssc_status ssc_registration_set_scan(ssc_registration* registration, const float
                                      size_t stride, const uint32_t* triangles, uint32_t triangle_count) {
     return guarded(__func__, [&] {
         need(registration, "registration");
-        need(points, "points");
         if (triangle_count) need(triangles, "triangles");
-        if (stride == 0) stride = 12;
-        SSC_REQUIRE_ARG_S(stride >= 12 && stride % 4 == 0, "stride " << stride << " must be 0 or a multiple of 4 that is >= 12");
-        auto at = [&](const float* base, std::size_t i) {
-            const float* p = reinterpret_cast<const float*>(reinterpret_cast<const unsigned char*>(base) + i * stride);
-            return Eigen::Vector3d(p[0], p[1], p[2]);
-        };
-        fitting::PointCloud c;
-        c.points.reserve(count);
-        for (uint32_t i = 0; i < count; ++i) {
-            c.points.push_back(at(points, i));
-            if (normals) c.normals.push_back(at(normals, i));
-        }
         std::vector<uint32_t> t(triangles, triangles + 3 * std::size_t(triangle_count));
-        registration->registrar.set_scan(std::move(c), std::move(t));  // checks every value
+        registration->registrar.set_scan(copy_cloud(points, normals, nullptr, count, stride), std::move(t));  // checks every value
     });
 }
 

@@ -89,6 +89,11 @@ T* make(const Allocator& a, Args&&... args) {
     }
 }
 
+// Points (3 floats each at stride bytes, 0 = packed), optional normals at the same stride and optional
+// packed confidences, copied into a cloud; the stride is checked here, the values by whoever takes
+// the cloud (fitting/observations.hpp).
+fitting::PointCloud copy_cloud(const float* points, const float* normals, const float* confidence, uint32_t count, size_t stride);
+
 // A pose as set through the C API, checked (joint count, finite, non-zero quaternions, finite
 // translation) and converted to unit quaternions, 4 per joint; NULL rotations = identity.
 std::vector<float> checked_pose(const ssc_body* body, ssc_rotation_format format, const float* rotations, uint32_t joint_count,

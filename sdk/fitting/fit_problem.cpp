@@ -30,20 +30,6 @@ constexpr double kUnexplainedDistance = 0.05;
 constexpr std::size_t kSurfaceNeighbours = 3;
 constexpr double kSurfaceRadius = 0.03;
 
-SurfacePoint landmark_point(const format::ModelData& d, uint32_t l) {
-    const auto& lm = d.landmarks[l];
-    SurfacePoint p;
-    if (lm.vertex != format::kNone) {
-        p.vertex[0] = lm.vertex;
-        return p;
-    }
-    for (int i = 0; i < 3; ++i) {
-        p.vertex[i] = d.mesh.triangles[3 * std::size_t(lm.triangle) + i];
-        p.weight[i] = lm.barycentric[i];
-    }
-    return p;
-}
-
 // The k-d tree over a frame's cloud, for normal estimation's and the surface test's queries.
 void build_scan_tree(FrameData& fd) {
     if (!fd.scan_index) fd.scan_index = std::make_unique<PointIndex>(fd.points);

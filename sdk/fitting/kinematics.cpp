@@ -50,6 +50,20 @@ Eigen::Quaterniond exp_rotation(const Vector3d& w) {
 
 }  // namespace
 
+SurfacePoint landmark_point(const format::ModelData& d, uint32_t l) {
+    const auto& lm = d.landmarks[l];
+    SurfacePoint p;
+    if (lm.vertex != format::kNone) {
+        p.vertex[0] = lm.vertex;
+        return p;
+    }
+    for (int i = 0; i < 3; ++i) {
+        p.vertex[i] = d.mesh.triangles[3 * std::size_t(lm.triangle) + std::size_t(i)];
+        p.weight[i] = lm.barycentric[i];
+    }
+    return p;
+}
+
 LinearModel::LinearModel(const Model& m, uint32_t components, std::shared_ptr<const anatomy::ModelAnatomy> shared)
     : model(m), K(std::min(components, m.component_count())), J(m.joint_count()), V(m.vertex_count()),
       anatomy(shared ? std::move(shared) : std::make_shared<const anatomy::ModelAnatomy>(m)), limits(anatomy->limits),

@@ -40,6 +40,10 @@ struct SurfacePoint {
     double weight[3] = {1, 0, 0};
 };
 
+// Model landmark l as a point of the template (its vertex, or its triangle's corners with the
+// barycentric weights).
+SurfacePoint landmark_point(const format::ModelData& model, uint32_t l);
+
 // The model's linear parts in double precision for the used components: built once, shared by every
 // frame's Kinematics.
 struct LinearModel {

@@ -19,6 +19,7 @@
 // only factorised again when the weights change (block_cholesky.hpp).
 #pragma once
 
+#include "fitting/kinematics.hpp"
 #include "registration/block_cholesky.hpp"
 
 #include <Eigen/Core>
@@ -33,10 +34,7 @@ namespace ssc::registration {
 using Eigen::Vector3d;
 
 // A point of the template: up to three vertices with barycentric weights (a vertex: one weight 1).
-struct TemplatePoint {
-    uint32_t vertex[3] = {0, 0, 0};
-    double weight[3] = {1, 0, 0};
-};
+using TemplatePoint = fitting::SurfacePoint;
 
 struct LandmarkTarget {
     TemplatePoint point;

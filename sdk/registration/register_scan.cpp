@@ -27,20 +27,6 @@ constexpr double kSettled = 0.0005;
 // Scans smaller than this are no body scan.
 constexpr std::size_t kMinPoints = 100;
 
-TemplatePoint template_point(const format::ModelData& d, uint32_t l) {
-    const auto& lm = d.landmarks[l];
-    TemplatePoint p;
-    if (lm.vertex != format::kNone) {
-        p.vertex[0] = lm.vertex;
-        return p;
-    }
-    for (int i = 0; i < 3; ++i) {
-        p.vertex[i] = d.mesh.triangles[3 * std::size_t(lm.triangle) + std::size_t(i)];
-        p.weight[i] = lm.barycentric[i];
-    }
-    return p;
-}
-
 // The stiffness of each round: relaxed by kRelax from `first` until it has fallen by kRelaxedRange,
 // or that many rounds at the last value.
 std::vector<double> round_factors(Schedule schedule) {
@@ -120,7 +106,7 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
             const Eigen::MatrixX3d I = at_rest.identity();
             Eigen::Matrix3Xd src(3, scan.landmarks.size()), dst(3, scan.landmarks.size());
             for (std::size_t l = 0; l < scan.landmarks.size(); ++l) {
-                src.col(Eigen::Index(l)) = at_rest.deformed(I, template_point(d, scan.landmarks[l].landmark));
+                src.col(Eigen::Index(l)) = at_rest.deformed(I, fitting::landmark_point(d, scan.landmarks[l].landmark));
                 dst.col(Eigen::Index(l)) = scan.landmarks[l].position;
             }
             const Similarity T = align_points(src, dst, true);
@@ -150,7 +136,7 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
     std::vector<TemplatePoint> marks;
     std::vector<LandmarkTarget> landmarks;
     for (const auto& l : scan.landmarks) {
-        marks.push_back(template_point(d, l.landmark));
+        marks.push_back(fitting::landmark_point(d, l.landmark));
         landmarks.push_back({marks.back(), l.position});
     }
     NonrigidSystem system(start, edges, edge_stiffness, marks, options.gamma);
