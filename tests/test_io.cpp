@@ -183,7 +183,7 @@ TEST_CASE("pictures carry text and plots: the built-in font and the line plot", 
     CHECK_FALSE(dark(0, 6));  // left of the stem, mid-height
     CHECK(render::text_width("ab", 2) == 22);
 
-    render::LinePlot plot{"compactness", "number of components", "explained", {1, 2, 5, 10}, {0.5, 0.8, 0.95, 0.99}};
+    render::LinePlot plot{"compactness", "number of components", "explained", {1, 2, 5, 10}, {0.5, 0.8, 0.95, 0.99}, {}, {}};
     const std::string path = "io_test_plot.png";
     std::remove(path.c_str());
 #if SSCAPE_WITH_PNG

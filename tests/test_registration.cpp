@@ -2,6 +2,7 @@
 // solve against a dense one on a tiny mesh, the block Cholesky, scan rims.
 #include "registration/block_cholesky.hpp"
 #include "registration/nonrigid.hpp"
+#include "registration/rbf_warp.hpp"
 #include "registration/register_scan.hpp"
 #include "registration/scan_boundary.hpp"
 #include "capi/cpp_access.hpp"
@@ -299,7 +300,7 @@ TEST_CASE("a scan registers onto the template closer than the model fit that sta
     CHECK(r.report.rounds == 6);  // the stiffness relaxed by 4 until it fell by 1000
 }
 
-TEST_CASE("registration starts from landmarks alone, and refuses what it cannot do", "[registration]") {
+TEST_CASE("registration starts from landmarks alone (rigid, rbf), and refuses what it cannot do", "[registration]") {
     const Model& m = default_model();
     const fitting::LinearModel lin(m, m.component_count());
     const BumpyScan s(32);
@@ -322,7 +323,12 @@ TEST_CASE("registration starts from landmarks alone, and refuses what it cannot 
     CHECK(status(no_marks, rigid) == SSC_ERROR_INVALID_ARGUMENT);  // rigid needs landmarks
     registration::RegistrationOptions rbf;
     rbf.initialisation = registration::Initialisation::Rbf;
-    CHECK(status(s.scan, rbf) == SSC_ERROR_INVALID_ARGUMENT);
+    registration::Scan three = s.scan;
+    three.landmarks.resize(3);
+    CHECK(status(three, rbf) == SSC_ERROR_INVALID_ARGUMENT);  // rbf needs 4 landmarks
+    const registration::Registration warped = registration::register_scan(lin, s.scan, rbf);
+    INFO("rbf start: scan to registration mean " << warped.report.quality.scan_to_registration.mean * 1e3 << " mm");
+    CHECK(warped.report.quality.scan_to_registration.mean < 0.006);
     registration::Scan tiny;
     for (int i = 0; i < 50; ++i) tiny.cloud.points.emplace_back(0.01 * i, 1, 0);
     CHECK(status(tiny, {}) == SSC_ERROR_INVALID_ARGUMENT);
@@ -446,4 +452,28 @@ TEST_CASE("the simulator poses other bodies as the model poses its own, and scan
     std::size_t facing_down = 0;
     for (std::size_t i = 0; i < scan.points.size(); ++i) facing_down += scan.points[i].y() < lowest + 0.01 && scan.normals[i].y() < -0.9;
     CHECK(facing_down == 0);
+}
+
+TEST_CASE("the rbf warp passes through its landmarks and keeps affine maps affine", "[registration]") {
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    std::vector<Vector3d> from, to, affine;
+    Eigen::Matrix3d A;
+    A << 1.1, 0.1, 0, -0.05, 0.9, 0.2, 0.0, 0.1, 1.2;
+    const Vector3d b(0.3, -0.1, 0.7);
+    for (int i = 0; i < 12; ++i) {
+        from.emplace_back(u(rng), u(rng) + 1, u(rng));
+        to.push_back(from.back() + 0.05 * Vector3d(u(rng), u(rng), u(rng)));
+        affine.push_back(A * from.back() + b);
+    }
+    for (auto kernel : {registration::RbfKernel::ThinPlate, registration::RbfKernel::Multiquadric, registration::RbfKernel::Gaussian}) {
+        const registration::RbfWarp warp(from, to, kernel, 0.2);
+        for (std::size_t i = 0; i < from.size(); ++i) CHECK((warp(from[i]) - to[i]).norm() < 1e-9);
+        const registration::RbfWarp linear(from, affine, kernel, 0.2);
+        const Vector3d x(0.1, 0.8, -0.2);
+        CHECK((linear(x) - (A * x + b)).norm() < 1e-8);
+    }
+    std::vector<Vector3d> flat = from;
+    for (auto& p : flat) p.z() = 0;
+    CHECK_THROWS_AS(registration::RbfWarp(flat, to, registration::RbfKernel::ThinPlate, 0.2), Error);
 }

@@ -1023,7 +1023,8 @@ typedef struct ssc_registration ssc_registration;
 typedef enum ssc_registration_start {
     SSC_REGISTRATION_START_MODEL = 0,  /**< The model fitted to the scan (and landmarks when given). */
     SSC_REGISTRATION_START_RIGID = 1,  /**< The template at rest, aligned (with scale) to 3 or more landmarks. */
-    SSC_REGISTRATION_START_RBF = 2,    /**< Landmarks and a radial-basis warp (not yet available: refused). */
+    SSC_REGISTRATION_START_RBF = 2,    /**< The template at rest warped through 4 or more landmarks onto the
+                                            scan's by radial basis functions (see ssc_rbf_kernel). */
     SSC_REGISTRATION_START_FORCE32 = 0x7FFFFFFF
 } ssc_registration_start;
 
@@ -1035,6 +1036,14 @@ typedef enum ssc_registration_schedule {
     SSC_REGISTRATION_SCHEDULE_FORCE32 = 0x7FFFFFFF
 } ssc_registration_schedule;
 
+/** Kernels of the SSC_REGISTRATION_START_RBF warp, r the distance to a landmark, s the def's rbf_scale. */
+typedef enum ssc_rbf_kernel {
+    SSC_RBF_THIN_PLATE = 0,    /**< r^2 log r */
+    SSC_RBF_MULTIQUADRIC = 1,  /**< sqrt(r^2 + s^2) */
+    SSC_RBF_GAUSSIAN = 2,      /**< exp(-r^2 / s^2) */
+    SSC_RBF_KERNEL_FORCE32 = 0x7FFFFFFF
+} ssc_rbf_kernel;
+
 /** Options of ssc_registration_create. Fill with ssc_registration_def_init; append-only. */
 typedef struct ssc_registration_def {
     uint32_t struct_size;                /**< sizeof(ssc_registration_def), set by ssc_registration_def_init. */
@@ -1044,6 +1053,8 @@ typedef struct ssc_registration_def {
     float landmark_weight;               /**< First round's landmark weight, [0, 1e6]. Default 10. */
     float gamma;                         /**< Weight of the transforms' translation in the smoothness, (0, 1e3]. Default 1. */
     uint32_t max_iterations;             /**< Solves per round at most, 1..100. Default 4. */
+    ssc_rbf_kernel rbf_kernel;           /**< Kernel of the rbf start. Default SSC_RBF_THIN_PLATE. */
+    float rbf_scale;                     /**< Metres, (0, 10]: s of the multiquadric and Gaussian kernels. Default 0.1. */
 } ssc_registration_def;
 
 /** Fills def with defaults; size = sizeof(*def). Threads: any. */
@@ -1119,7 +1130,8 @@ typedef struct ssc_registration_report {
  *                  result then).
  * @param report    NULL or a report to fill (struct_size set by the caller).
  * @return SSC_ERROR_INVALID_ARGUMENT without a scan, for SSC_REGISTRATION_START_RIGID with fewer than
- *         3 landmarks, for SSC_REGISTRATION_START_RBF, or when the model cannot be fitted to the scan.
+ *         3 landmarks, for SSC_REGISTRATION_START_RBF with fewer than 4 (or all in one plane), or
+ *         when the model cannot be fitted to the scan.
  * Threads: the registration's thread; the model fit and the correspondence searches also use the
  * worker threads of the model's context.
  */

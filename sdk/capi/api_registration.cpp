@@ -30,6 +30,8 @@ void ssc_registration_def_init(ssc_registration_def* def, size_t size) {
     d.landmark_weight = float(o.landmarks);
     d.gamma = float(o.gamma);
     d.max_iterations = o.max_iterations;
+    d.rbf_kernel = SSC_RBF_THIN_PLATE;
+    d.rbf_scale = float(o.rbf_scale);
     std::memcpy(def, &d, d.struct_size);
 }
 
@@ -51,6 +53,12 @@ ssc_status ssc_registration_create(ssc_model* model, const ssc_registration_def*
         o.landmarks = d.landmark_weight;
         o.gamma = d.gamma;
         o.max_iterations = d.max_iterations;  // the registrar checks the values
+        const int32_t kernel = enum_value(d.rbf_kernel);
+        SSC_REQUIRE_ARG_S(kernel >= SSC_RBF_THIN_PLATE && kernel <= SSC_RBF_GAUSSIAN, "def->rbf_kernel " << kernel << " is unknown");
+        o.rbf_kernel = kernel == SSC_RBF_THIN_PLATE     ? registration::RbfKernel::ThinPlate
+                       : kernel == SSC_RBF_MULTIQUADRIC ? registration::RbfKernel::Multiquadric
+                                                        : registration::RbfKernel::Gaussian;
+        o.rbf_scale = d.rbf_scale;
         ssc_registration* r = make<ssc_registration>(allocator_of(model), model, o);
         ssc_model_retain(model);
         *out = r;

@@ -22,7 +22,7 @@ namespace ssc::cli {
 namespace {
 
 struct Options {
-    std::string scan, model, out, landmarks, png, report, units, up, start = "model";
+    std::string scan, model, out, landmarks, png, report, units, up, start = "model", kernel = "thin-plate";
     bool constant = false;
     double stiffness = 0;
 };
@@ -48,6 +48,7 @@ int run_register(const Options& o) {
     def.start = o.start == "rigid" ? SSC_REGISTRATION_START_RIGID : o.start == "rbf" ? SSC_REGISTRATION_START_RBF : SSC_REGISTRATION_START_MODEL;
     def.schedule = o.constant ? SSC_REGISTRATION_CONSTANT : SSC_REGISTRATION_RELAXED;
     if (o.stiffness > 0) def.stiffness = float(o.stiffness);
+    def.rbf_kernel = o.kernel == "gaussian" ? SSC_RBF_GAUSSIAN : o.kernel == "multiquadric" ? SSC_RBF_MULTIQUADRIC : SSC_RBF_THIN_PLATE;
     ssc_registration* reg = nullptr;
     check(ssc_registration_create(model, &def, &reg), "registration");
     std::unique_ptr<ssc_registration, void (*)(ssc_registration*)> owned(reg, ssc_registration_destroy);
@@ -224,9 +225,11 @@ Run add_register(CLI::App& app) {
         ->check(CLI::IsMember({"m", "cm", "mm"}).description(""))->type_name("m|cm|mm");
     c->add_option("--up", o->up, "the scan's up axis (default: found by the model fit, which tries every heading)")
         ->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}).description(""))->type_name("x|y|z|-x|-y|-z");
-    c->add_option("--start", o->start, "where the deformation starts: the model fitted to the scan (default), or the template "
-                                       "aligned to the landmarks (rigid); rbf is not available yet")
+    c->add_option("--start", o->start, "where the deformation starts: the model fitted to the scan (default), the template "
+                                       "aligned to the landmarks (rigid, 3 or more), or warped through them (rbf, 4 or more)")
         ->check(CLI::IsMember({"model", "rigid", "rbf"}).description(""))->type_name("model|rigid|rbf");
+    c->add_option("--rbf-kernel", o->kernel, "the rbf start's kernel (default thin-plate)")
+        ->check(CLI::IsMember({"thin-plate", "multiquadric", "gaussian"}).description(""))->type_name("thin-plate|multiquadric|gaussian");
     c->add_flag("--constant", o->constant, "keep the stiffness at its final value in every round instead of relaxing it");
     c->add_option("--stiffness", o->stiffness, "the first round's stiffness (default 0.1)")->check(finite_in(1e-6, 1e6))->type_name("B");
     c->add_option("--report", o->report, "write the report as JSON: times, quality overall and per body region, the model fit, "

@@ -113,8 +113,21 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
             for (Vector3d& v : start) v = T.scale * T.R * v + T.t;
             break;
         }
-        case Initialisation::Rbf:
-            fail(SSC_ERROR_INVALID_ARGUMENT, "register: the rbf initialisation is not available yet");
+        case Initialisation::Rbf: {
+            // The template at rest warped through its landmarks onto the scan's.
+            SSC_REQUIRE_ARG(scan.landmarks.size() >= 4, "register: the rbf initialisation needs at least 4 landmarks");
+            fitting::posed_surface(body, rest, start);
+            NonrigidSystem at_rest(start, {}, {}, {});
+            const Eigen::MatrixX3d I = at_rest.identity();
+            std::vector<Vector3d> from, to;
+            for (const auto& l : scan.landmarks) {
+                from.push_back(at_rest.deformed(I, fitting::landmark_point(d, l.landmark)));
+                to.push_back(l.position);
+            }
+            const RbfWarp warp(std::move(from), to, options.rbf_kernel, options.rbf_scale);
+            for (Vector3d& v : start) v = warp(v);
+            break;
+        }
     }
 
     // Regions and their rules, per vertex and per edge.

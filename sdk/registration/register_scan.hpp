@@ -3,7 +3,7 @@
 //
 // 1. Initialisation: `model` fits the model's shape and pose to the scan (fitting/solver.hpp) and
 //    starts from the fitted body; `rigid` aligns the template's landmarks to the scan's (with
-//    scale); `rbf` also warps the template through its landmarks (not yet: refused).
+//    scale); `rbf` warps the template through its landmarks onto the scan's (rbf_warp.hpp).
 // 2. Non-rigid deformation (nonrigid.hpp): per-vertex affine transforms, correspondences found
 //    again every iteration, the stiffness relaxed round by round.
 // 3. Quality (registration_quality.hpp).
@@ -13,6 +13,7 @@
 #include "fitting/kinematics.hpp"
 #include "fitting/observations.hpp"
 #include "fitting/solver.hpp"
+#include "registration/rbf_warp.hpp"
 #include "registration/registration_quality.hpp"
 
 #include <cstdint>
@@ -37,6 +38,8 @@ struct RegistrationOptions {
     double landmarks = 10;   // c at the first round, relative to the data term's 1
     double gamma = 1;        // G's weight of the transforms' translation
     uint32_t max_iterations = 4;  // solves per round at most (correspondences found again before each)
+    RbfKernel rbf_kernel = RbfKernel::ThinPlate;  // the rbf start's kernel
+    double rbf_scale = 0.1;                       // metres: its multiquadric or Gaussian scale
     fitting::FitOptions fit;      // the model fit of the `model` initialisation
 };
 
@@ -76,8 +79,8 @@ struct Scan {
 using RegistrationProgress = std::function<bool(const char* stage, uint32_t done, uint32_t total)>;
 
 // Throws ssc::Error: INVALID_ARGUMENT for a scan with fewer than 100 points or bad values, an
-// initialisation the input cannot serve (rigid without 3 landmarks), or a scan the model cannot
-// be fitted to; CANCELLED.
+// initialisation the input cannot serve (rigid without 3 landmarks, rbf without 4 that span
+// space), or a scan the model cannot be fitted to; CANCELLED.
 Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, const RegistrationOptions& options,
                            const RegistrationProgress& progress = {}, ThreadPool* pool = nullptr);
 

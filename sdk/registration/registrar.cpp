@@ -16,6 +16,9 @@ const RegistrationOptions& checked(const RegistrationOptions& o) {
     SSC_REQUIRE_ARG(o.initialisation == Initialisation::Model || o.initialisation == Initialisation::Rigid ||
                         o.initialisation == Initialisation::Rbf,
                     "registration: unknown initialisation");
+    SSC_REQUIRE_ARG(std::isfinite(o.rbf_scale) && o.rbf_scale > 0 && o.rbf_scale <= 10, "registration: rbf_scale must be in (0, 10] metres");
+    SSC_REQUIRE_ARG(o.rbf_kernel == RbfKernel::ThinPlate || o.rbf_kernel == RbfKernel::Multiquadric || o.rbf_kernel == RbfKernel::Gaussian,
+                    "registration: unknown rbf kernel");
     SSC_REQUIRE_ARG(o.schedule == Schedule::Relaxed || o.schedule == Schedule::Constant, "registration: unknown schedule");
     return o;
 }

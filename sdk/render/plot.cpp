@@ -14,7 +14,9 @@ namespace {
 
 constexpr int kWidth = 640, kHeight = 420;
 constexpr int kLeft = 78, kRight = 24, kTop = 58, kBottom = 56;  // plot area margins
-const uint8_t kInk[3] = {30, 30, 30}, kGrid[3] = {222, 222, 222}, kLine[3] = {40, 90, 170};
+const uint8_t kInk[3] = {30, 30, 30}, kGrid[3] = {222, 222, 222};
+// The curves' colours, the first the single curve's.
+const uint8_t kLines[][3] = {{40, 90, 170}, {210, 90, 40}, {60, 150, 70}, {150, 60, 160}, {120, 120, 120}, {200, 160, 20}};
 
 // A round tick step giving about `ticks` intervals over span: 1, 2 or 5 times a power of ten.
 double nice_step(double span, int ticks) {
@@ -49,11 +51,17 @@ void line(Image& img, double x0, double y0, double x1, double y1, int width, con
 }  // namespace
 
 void write_line_plot(const std::string& path, const LinePlot& p) {
-    SSC_REQUIRE_ARG(!p.x.empty() && p.x.size() == p.y.size(), "plot: one y value per x value, at least one");
-    for (std::size_t i = 0; i < p.x.size(); ++i) SSC_REQUIRE_ARG(std::isfinite(p.x[i]) && std::isfinite(p.y[i]), "plot: values must be finite");
-    auto [x_lo, x_hi] = std::minmax_element(p.x.begin(), p.x.end());
-    auto [y_lo, y_hi] = std::minmax_element(p.y.begin(), p.y.end());
-    double x0 = *x_lo, x1 = *x_hi, y0 = *y_lo, y1 = *y_hi;
+    std::vector<LineSeries> curves = {{p.name, p.x, p.y}};
+    curves.insert(curves.end(), p.more.begin(), p.more.end());
+    SSC_REQUIRE_ARG(curves.size() <= std::size(kLines), "plot: at most 6 curves");
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    for (const LineSeries& c : curves) {
+        SSC_REQUIRE_ARG(!c.x.empty() && c.x.size() == c.y.size(), "plot: one y value per x value, at least one");
+        for (std::size_t i = 0; i < c.x.size(); ++i) {
+            SSC_REQUIRE_ARG(std::isfinite(c.x[i]) && std::isfinite(c.y[i]), "plot: values must be finite");
+            x0 = std::min(x0, c.x[i]), x1 = std::max(x1, c.x[i]), y0 = std::min(y0, c.y[i]), y1 = std::max(y1, c.y[i]);
+        }
+    }
     if (x1 - x0 <= 0) x0 -= 1, x1 += 1;
     if (y1 - y0 <= 0) y0 -= std::max(1e-9, std::abs(y0) * 0.1), y1 += std::max(1e-9, std::abs(y1) * 0.1);
     const double xs = nice_step(x1 - x0, 8), ys = nice_step(y1 - y0, 6);
@@ -76,8 +84,17 @@ void write_line_plot(const std::string& path, const LinePlot& p) {
     }
     line(img, kLeft, kTop, kLeft, kTop + h, 1, kInk);
     line(img, kLeft, kTop + h, kLeft + w, kTop + h, 1, kInk);
-    for (std::size_t i = 1; i < p.x.size(); ++i) line(img, px(p.x[i - 1]), py(p.y[i - 1]), px(p.x[i]), py(p.y[i]), 3, kLine);
-    for (std::size_t i = 0; i < p.x.size(); ++i) dot(img, int(std::lround(px(p.x[i]))), int(std::lround(py(p.y[i]))), 4, kLine);
+    for (std::size_t k = 0; k < curves.size(); ++k) {
+        const LineSeries& c = curves[k];
+        for (std::size_t i = 1; i < c.x.size(); ++i) line(img, px(c.x[i - 1]), py(c.y[i - 1]), px(c.x[i]), py(c.y[i]), 3, kLines[k]);
+        for (std::size_t i = 0; i < c.x.size(); ++i) dot(img, int(std::lround(px(c.x[i]))), int(std::lround(py(c.y[i]))), 4, kLines[k]);
+    }
+    if (curves.size() > 1)  // the legend, in the plot's lower right
+        for (std::size_t k = 0; k < curves.size(); ++k) {
+            const int y = kTop + h - 14 * int(curves.size() - k) - 4, x = kLeft + w - 200;
+            line(img, x, y + 3, x + 16, y + 3, 3, kLines[k]);
+            draw_text(img, x + 22, y, curves[k].name, 1, kInk);
+        }
     draw_text(img, (kWidth - text_width(p.title, 2)) / 2, 10, p.title, 2, kInk);
     draw_text(img, kLeft, kTop - 16, p.y_label, 1, kInk);
     draw_text(img, kLeft + (w - text_width(p.x_label, 1)) / 2, kHeight - 20, p.x_label, 1, kInk);

@@ -1,5 +1,6 @@
 // Line plots as PNG, drawn by the project's own rasterizer (raster.hpp, text.hpp): the training
-// report's compactness, generalization and specificity curves.
+// report's compactness, generalization and specificity curves, the registration benchmark's
+// comparison of starts.
 #pragma once
 
 #include <string>
@@ -7,12 +8,21 @@
 
 namespace ssc::render {
 
-struct LinePlot {
-    std::string title, x_label, y_label;
+struct LineSeries {
+    std::string name;          // in the legend
     std::vector<double> x, y;  // one point each, in order; at least one
 };
 
-// Draws the curve with its points marked, a grid at round values, tick labels, the title and the
+struct LinePlot {
+    std::string title, x_label, y_label;
+    std::vector<double> x, y;  // one point each, in order; at least one
+    // Further curves, each in its own colour; with any, a legend names `name` (the first curve's)
+    // and theirs.
+    std::string name;
+    std::vector<LineSeries> more;
+};
+
+// Draws the curves with their points marked, a grid at round values, tick labels, the title and the
 // axis labels, 640 x 420 pixels. Throws ssc::Error (SSC_ERROR_INVALID_ARGUMENT for no points,
 // mismatched or non-finite values; SSC_ERROR_IO when the file cannot be written).
 void write_line_plot(const std::string& path, const LinePlot& plot);

@@ -87,9 +87,9 @@ std::vector<std::string> write_quality_report(const std::string& prefix, const s
     write_file_atomically(csv_path, text.data(), text.size());
     std::vector<std::string> pngs;
     render::LinePlot plots[3];
-    plots[0] = {"compactness", "number of components", "cumulative explained variance", {}, {}};
-    plots[1] = {"generalization", "number of components", "held-out mean vertex error (mm)", {}, {}};
-    plots[2] = {"specificity", "number of components", "distance to nearest training body (mm)", {}, {}};
+    plots[0] = {"compactness", "number of components", "cumulative explained variance", {}, {}, {}, {}};
+    plots[1] = {"generalization", "number of components", "held-out mean vertex error (mm)", {}, {}, {}, {}};
+    plots[2] = {"specificity", "number of components", "distance to nearest training body (mm)", {}, {}, {}, {}};
     for (const auto& point : q) {
         for (auto& plot : plots) plot.x.push_back(point.components);
         plots[0].y.push_back(point.compactness);

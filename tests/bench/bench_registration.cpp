@@ -1,8 +1,11 @@
 // Scan registration accuracy and speed on simulated scans with known correspondence.
 //
-//   sscape_register_bench [--trials N] [--init model|rigid] [--constant] [--stiffness B] [--threads N]
-//                         [--makehuman DIR] [--landmarks] [--png PREFIX]
-// --landmarks: the CAESAR landmarks (but the hands'), exact, join the scan (always with --init rigid).
+//   sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--stiffness B] [--threads N]
+//                         [--makehuman DIR] [--landmarks] [--png PREFIX] [--compare OUT.png]
+// --compare: the papers' comparison on the same scans: the model fit alone, rigid + deformation,
+// rbf + deformation (both from the landmarks), model fit + deformation with relaxed and with
+// constant weights; a table and the share of vertices within each correspondence error as a plot.
+// --landmarks: the CAESAR landmarks (but the hands'), exact, join the scan (always with --init rigid or rbf).
 // --fit-points N, --fit-iterations N: the model fit's FitOptions::max_points and max_iterations.
 //
 // Each trial, by default: a random body and pose of the default model, with smooth bumps and dents
@@ -14,6 +17,7 @@
 // correspondence error (registered vertex to true vertex) catches sliding along the surface that
 // surface distances hide.
 #include "registration/register_scan.hpp"
+#include "render/plot.hpp"
 #include "render/registration_picture.hpp"
 #include "registration/registration_quality.hpp"
 #include "simulation/depth_camera.hpp"
@@ -54,7 +58,7 @@ double mean_distance(const std::vector<Vector3d>& a, const std::vector<Vector3d>
 
 int main(int argc, char** argv) {
     int trials = 5;
-    std::string png, makehuman;
+    std::string png, makehuman, compare;
     bool with_landmarks = false;
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     registration::RegistrationOptions options;
@@ -67,15 +71,18 @@ int main(int argc, char** argv) {
         else if (a == "--iterations" && i + 1 < argc) options.max_iterations = uint32_t(std::atoi(argv[++i]));
         else if (a == "--png" && i + 1 < argc) png = argv[++i];
         else if (a == "--makehuman" && i + 1 < argc) makehuman = argv[++i];
+        else if (a == "--compare" && i + 1 < argc) compare = argv[++i];
         else if (a == "--landmarks") with_landmarks = true;
         else if (a == "--fit-points" && i + 1 < argc) options.fit.max_points = uint32_t(std::atoi(argv[++i]));
         else if (a == "--fit-iterations" && i + 1 < argc) options.fit.max_iterations = uint32_t(std::atoi(argv[++i]));
         else if (a == "--constant") options.schedule = registration::Schedule::Constant;
         else if (a == "--init" && i + 1 < argc) {
             const std::string v = argv[++i];
-            options.initialisation = v == "rigid" ? registration::Initialisation::Rigid : registration::Initialisation::Model;
+            options.initialisation = v == "rigid" ? registration::Initialisation::Rigid
+                                     : v == "rbf" ? registration::Initialisation::Rbf
+                                                  : registration::Initialisation::Model;
         } else {
-            std::fprintf(stderr, "usage: sscape_register_bench [--trials N] [--init model|rigid] [--constant] [--stiffness B] [--threads N] [--makehuman DIR] [--landmarks] [--png PREFIX]\n");
+            std::fprintf(stderr, "usage: sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--stiffness B] [--threads N] [--makehuman DIR] [--landmarks] [--png PREFIX]\n");
             return 2;
         }
     }
@@ -112,6 +119,11 @@ int main(int argc, char** argv) {
 #endif
     std::printf("trial  fit corr  nrd corr  nrd corr (no hands)  hands  scan->reg mean  median  p95   <2mm  <5mm  worst region  time (fit)\n");
     std::vector<double> fit_errors, errors, body_errors, scan_means, times;
+    // --compare: per method, every vertex's correspondence error over the trials, and its scan
+    // distances and times.
+    const char* methods[] = {"model fit alone", "rigid + deformation", "rbf + deformation", "model + deformation",
+                             "model + deformation, constant"};
+    std::vector<double> method_errors[5], method_body[5], method_scan[5], method_time[5];
     for (int t = 0; t < trials; ++t) {
         simulation::TrueBody truth;
         registration::Scan scan;
@@ -143,7 +155,35 @@ int main(int argc, char** argv) {
             scan.cloud = simulation::booth_scan(model, truth, booth, rng);
 #endif
         }
-        if (options.initialisation == registration::Initialisation::Rigid || with_landmarks)
+        if (!compare.empty()) {
+            registration::Scan with_marks = scan;
+            with_marks.landmarks = simulation::simulate_landmarks(model, truth, 0.0, true, rng);
+            for (int m = 1; m < 5; ++m) {
+                registration::RegistrationOptions o = options;
+                o.initialisation = m == 1 ? registration::Initialisation::Rigid : m == 2 ? registration::Initialisation::Rbf
+                                                                                          : registration::Initialisation::Model;
+                o.schedule = m == 4 ? registration::Schedule::Constant : registration::Schedule::Relaxed;
+                const registration::Registration r = registration::register_scan(lin, m <= 2 ? with_marks : scan, o, {}, &pool);
+                auto collect = [&](int k, const std::vector<Vector3d>& x, double scan_mean, double seconds) {
+                    double sum = 0, body = 0;
+                    std::size_t nb = 0;
+                    for (std::size_t v = 0; v < x.size(); ++v) {
+                        const double e = (x[v] - truth.vertices[v]).norm();
+                        method_errors[k].push_back(e);
+                        sum += e;
+                        if (!hand[v]) body += e, ++nb;
+                    }
+                    method_body[k].push_back(body / double(nb));
+                    method_scan[k].push_back(scan_mean);
+                    method_time[k].push_back(seconds);
+                };
+                collect(m, r.vertices, r.report.quality.scan_to_registration.mean, r.report.seconds);
+                if (m == 3) collect(0, simulation::fitted_vertices(model, r.fit.frames[0]), -1, r.report.fit_seconds);
+            }
+            std::printf("trial %d done\n", t);
+            continue;
+        }
+        if (options.initialisation != registration::Initialisation::Model || with_landmarks)
             scan.landmarks = simulation::simulate_landmarks(model, truth, 0.0, true, rng);
         const registration::Registration r = registration::register_scan(lin, scan, options, {}, &pool);
         const double fit_err = r.fit.frames.empty() ? 0 : simulation::mean_vertex_error(simulation::fitted_vertices(model, r.fit.frames[0]), truth.vertices);
@@ -214,6 +254,32 @@ int main(int argc, char** argv) {
         for (double x : v) s += x;
         return v.empty() ? 0 : s / double(v.size());
     };
+    if (!compare.empty()) {
+        std::printf("%-32s %14s %14s %14s %8s\n", "method", "corr. error", "without hands", "scan to reg.", "time");
+        render::LinePlot plot;
+        plot.title = "registration: correspondence error";
+        plot.x_label = "correspondence error (mm)";
+        plot.y_label = "share of vertices within it";
+        for (int k = 0; k < 5; ++k) {
+            std::vector<double> sorted = method_errors[k], times_k = method_time[k];
+            std::sort(sorted.begin(), sorted.end());
+            std::sort(times_k.begin(), times_k.end());
+            std::printf("%-32s %11.2f mm %11.2f mm ", methods[k], mean(method_errors[k]) * 1e3, mean(method_body[k]) * 1e3);
+            if (k == 0) std::printf("%14s", "-");
+            else std::printf("%11.2f mm", mean(method_scan[k]) * 1e3);
+            std::printf(" %6.2f s\n", times_k[times_k.size() / 2]);
+            render::LineSeries curve{methods[k], {}, {}};
+            for (int mm = 0; mm <= 20; ++mm) {
+                curve.x.push_back(mm);
+                curve.y.push_back(double(std::upper_bound(sorted.begin(), sorted.end(), mm * 1e-3) - sorted.begin()) / double(sorted.size()));
+            }
+            if (k == 0) plot.name = curve.name, plot.x = curve.x, plot.y = curve.y;
+            else plot.more.push_back(curve);
+        }
+        render::write_line_plot(compare, plot);
+        std::printf("wrote %s (%d trials)\n", compare.c_str(), trials);
+        return 0;
+    }
     std::sort(times.begin(), times.end());
     std::printf("mean over %d trials: fit alone %.2f mm, registration %.2f mm (%.2f without hands), scan to registration %.2f mm, time median %.2f s\n",
                 trials, mean(fit_errors) * 1e3, mean(errors) * 1e3, mean(body_errors) * 1e3, mean(scan_means) * 1e3, times[times.size() / 2]);
