@@ -259,13 +259,8 @@ double surface_error(const Model& m, const std::vector<Vector3d>& x, const simul
     const std::vector<uint32_t> triangles(m.data().mesh.triangles.begin(), m.data().mesh.triangles.end());
     const fitting::PointIndex index(truth.vertices);
     ThreadPool pool(1);
-    std::vector<int> region(x.size(), -1);
-    std::vector<std::string> names;
-    for (const auto& set : m.data().vertex_sets) {
-        names.push_back(set.name);
-        for (uint32_t v : set.vertices) region[v] = int(names.size() - 1);
-    }
-    const auto q = registration::registration_quality(x, triangles, registration::vertex_normals(x, triangles), region, names,
+    const registration::BodyRegions regions = registration::body_regions(m.data());
+    const auto q = registration::registration_quality(x, triangles, registration::vertex_normals(x, triangles), regions.of_vertex, regions.names,
                                                       truth.vertices, truth.normals, true, index, pool);
     double sum = 0;
     std::size_t n = 0;

@@ -27,6 +27,14 @@ constexpr double kSettled = 0.0005;
 // Scans smaller than this are no body scan.
 constexpr std::size_t kMinPoints = 100;
 
+// A template point on the given vertex positions.
+Vector3d point_on(const std::vector<Vector3d>& vertices, const fitting::SurfacePoint& p) {
+    Vector3d x = Vector3d::Zero();
+    for (int i = 0; i < 3; ++i)
+        if (p.weight[i] != 0) x += p.weight[i] * vertices[p.vertex[i]];
+    return x;
+}
+
 // The stiffness of each round: relaxed by kRelax from `first` until it has fallen by kRelaxedRange,
 // or that many rounds at the last value.
 std::vector<double> round_factors(Schedule schedule) {
@@ -102,11 +110,9 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
         case Initialisation::Rigid: {
             SSC_REQUIRE_ARG(scan.landmarks.size() >= 3, "register: the rigid initialisation needs at least 3 landmarks");
             fitting::posed_surface(body, rest, start);
-            NonrigidSystem at_rest(start, {}, {}, {});
-            const Eigen::MatrixX3d I = at_rest.identity();
             Eigen::Matrix3Xd src(3, scan.landmarks.size()), dst(3, scan.landmarks.size());
             for (std::size_t l = 0; l < scan.landmarks.size(); ++l) {
-                src.col(Eigen::Index(l)) = at_rest.deformed(I, fitting::landmark_point(d, scan.landmarks[l].landmark));
+                src.col(Eigen::Index(l)) = point_on(start, fitting::landmark_point(d, scan.landmarks[l].landmark));
                 dst.col(Eigen::Index(l)) = scan.landmarks[l].position;
             }
             const Similarity T = align_points(src, dst, true);
@@ -117,11 +123,9 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
             // The template at rest warped through its landmarks onto the scan's.
             SSC_REQUIRE_ARG(scan.landmarks.size() >= 4, "register: the rbf initialisation needs at least 4 landmarks");
             fitting::posed_surface(body, rest, start);
-            NonrigidSystem at_rest(start, {}, {}, {});
-            const Eigen::MatrixX3d I = at_rest.identity();
             std::vector<Vector3d> from, to;
             for (const auto& l : scan.landmarks) {
-                from.push_back(at_rest.deformed(I, fitting::landmark_point(d, l.landmark)));
+                from.push_back(point_on(start, fitting::landmark_point(d, l.landmark)));
                 to.push_back(l.position);
             }
             const RbfWarp warp(std::move(from), to, options.rbf_kernel, options.rbf_scale);
@@ -131,13 +135,9 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
     }
 
     // Regions and their rules, per vertex and per edge.
-    std::vector<std::string> region_names;
-    std::vector<int> region(V, -1);
-    for (const auto& set : d.vertex_sets) {
-        region_names.push_back(set.name);
-        for (uint32_t v : set.vertices)
-            if (region[v] < 0) region[v] = int(region_names.size() - 1);
-    }
+    const BodyRegions regions = body_regions(d);
+    const std::vector<std::string>& region_names = regions.names;
+    const std::vector<int>& region = regions.of_vertex;
     std::vector<RegionRule> rules;
     for (const auto& name : region_names) rules.push_back(region_rule(name));
     const RegionRule other = region_rule("");

@@ -33,6 +33,17 @@ DistanceSummary summary(std::vector<double> d) {
 
 }  // namespace
 
+BodyRegions body_regions(const format::ModelData& model) {
+    BodyRegions r;
+    r.of_vertex.assign(model.vertex_count(), -1);
+    for (const auto& set : model.vertex_sets) {
+        r.names.push_back(set.name);
+        for (uint32_t v : set.vertices)
+            if (r.of_vertex[v] < 0) r.of_vertex[v] = int(r.names.size() - 1);
+    }
+    return r;
+}
+
 double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
     // The closest point by the triangle's Voronoi regions (Ericson, Real-Time Collision Detection, 5.1.5).
     const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;

@@ -5,6 +5,7 @@
 
 #include "common/thread_pool.hpp"
 #include "fitting/nearest.hpp"
+#include "sscape_format/model_data.hpp"
 
 #include <Eigen/Core>
 
@@ -37,6 +38,14 @@ struct RegistrationQuality {
     // scan point lies within 5 cm.
     std::vector<double> vertex_distance;
 };
+
+// The body regions a report is broken down by: the model's vertex sets (head, torso, arms, ...),
+// each vertex in the first set that holds it, -1 in none.
+struct BodyRegions {
+    std::vector<std::string> names;
+    std::vector<int> of_vertex;  // index into names, or -1
+};
+BodyRegions body_regions(const format::ModelData& model);
 
 // The registered mesh (vertices, triangles, unit vertex normals, each vertex's region: an index
 // into region_names or -1), and the scan (points, unit or zero normals, a k-d tree over the points).

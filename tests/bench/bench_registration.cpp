@@ -202,15 +202,10 @@ int main(int argc, char** argv) {
             const double n = double(truth.vertices.size());
             {   // the true surface's distance to the registration and the fit, by region
                 const fitting::PointIndex tindex(truth.vertices);
-                std::vector<int> region(model.vertex_count(), -1);
-                std::vector<std::string> names;
-                for (const auto& set : model.data().vertex_sets) {
-                    names.push_back(set.name);
-                    for (uint32_t v : set.vertices) region[v] = int(names.size() - 1);
-                }
+                const registration::BodyRegions regions = registration::body_regions(model.data());
                 for (int which = 0; which < 2; ++which) {
                     const auto& x = which ? fitted : r.vertices;
-                    const auto tq = registration::registration_quality(x, triangles, registration::vertex_normals(x, triangles), region, names,
+                    const auto tq = registration::registration_quality(x, triangles, registration::vertex_normals(x, triangles), regions.of_vertex, regions.names,
                                                                        truth.vertices, truth.normals, true, tindex, pool);
                     std::printf("  true surface to %s: %.2f mm;", which ? "fit" : "registration", tq.scan_to_registration.mean * 1e3);
                     for (const auto& rq : tq.regions) std::printf(" %s %.2f", rq.region.c_str(), rq.scan_to_registration.mean * 1e3);
