@@ -344,7 +344,7 @@ TEST_CASE("the C API registers a scan and refuses misuse with a status and a mes
     CHECK(ssc_registration_create(nullptr, nullptr, &reg) == SSC_ERROR_INVALID_ARGUMENT);
     ssc_registration_def def;
     ssc_registration_def_init(&def, sizeof def);
-    CHECK(def.stiffness == Approx(0.1f));
+    CHECK(def.stiffness == Approx(0.03f));
     def.stiffness = std::nanf("");
     CHECK(ssc_registration_create(model, &def, &reg) == SSC_ERROR_INVALID_ARGUMENT);
     def.stiffness = 0.1f;

@@ -1049,7 +1049,7 @@ typedef struct ssc_registration_def {
     uint32_t struct_size;                /**< sizeof(ssc_registration_def), set by ssc_registration_def_init. */
     ssc_registration_start start;        /**< Default SSC_REGISTRATION_START_MODEL. */
     ssc_registration_schedule schedule;  /**< Default SSC_REGISTRATION_RELAXED. */
-    float stiffness;                     /**< First round's smoothness weight, (0, 1e6]. Default 0.1. */
+    float stiffness;                     /**< First round's smoothness weight, (0, 1e6]. Default 0.03. */
     float landmark_weight;               /**< First round's landmark weight, [0, 1e6]. Default 10. */
     float gamma;                         /**< Weight of the transforms' translation in the smoothness, (0, 1e3]. Default 1. */
     uint32_t max_iterations;             /**< Solves per round at most, 1..100. Default 4. */

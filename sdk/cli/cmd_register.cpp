@@ -231,7 +231,7 @@ Run add_register(CLI::App& app) {
     c->add_option("--rbf-kernel", o->kernel, "the rbf start's kernel (default thin-plate)")
         ->check(CLI::IsMember({"thin-plate", "multiquadric", "gaussian"}).description(""))->type_name("thin-plate|multiquadric|gaussian");
     c->add_flag("--constant", o->constant, "keep the stiffness at its final value in every round instead of relaxing it");
-    c->add_option("--stiffness", o->stiffness, "the first round's stiffness (default 0.1)")->check(finite_in(1e-6, 1e6))->type_name("B");
+    c->add_option("--stiffness", o->stiffness, "the first round's stiffness (default 0.03)")->check(finite_in(1e-6, 1e6))->type_name("B");
     c->add_option("--report", o->report, "write the report as JSON: times, quality overall and per body region, the model fit, "
                                          "and per vertex whether it ended on the scan")
         ->type_name("OUT.json")->check(extension(".json"));

@@ -54,6 +54,27 @@ double mean_distance(const std::vector<Vector3d>& a, const std::vector<Vector3d>
     return n ? sum / double(n) : 0;
 }
 
+// How closely the model can represent a body at all: its least-squares approximation (shape
+// coefficients and a translation, correspondence known, rest pose) of the body's rest vertices, as
+// the mean vertex distance. No registration that starts from the model fit and follows the surface
+// can be expected to get much below it along the surface.
+double best_approximation_error(const Model& model, const fitting::LinearModel& lin, const std::vector<Vector3d>& rest) {
+    const uint32_t V = model.vertex_count();
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(3 * Eigen::Index(V), lin.K + 3);
+    Eigen::VectorXd y(3 * Eigen::Index(V));
+    for (uint32_t v = 0; v < V; ++v)
+        for (uint32_t a = 0; a < 3; ++a) {
+            const Eigen::Index row = 3 * Eigen::Index(v) + a;
+            y[row] = rest[v][a] - double(model.data().shape.mean[3 * std::size_t(v) + a]);
+            for (uint32_t k = 0; k < lin.K; ++k) B(row, k) = lin.basis[(std::size_t(v) * 3 + a) * lin.K + k] * lin.step[k];
+            B(row, lin.K + a) = 1;
+        }
+    const Eigen::VectorXd residual = B * B.colPivHouseholderQr().solve(y) - y;
+    double sum = 0;
+    for (uint32_t v = 0; v < V; ++v) sum += residual.segment<3>(3 * Eigen::Index(v)).norm();
+    return sum / double(V);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -118,7 +139,7 @@ int main(int argc, char** argv) {
     }
 #endif
     std::printf("trial  fit corr  nrd corr  nrd corr (no hands)  hands  scan->reg mean  median  p95   <2mm  <5mm  worst region  time (fit)\n");
-    std::vector<double> fit_errors, errors, body_errors, scan_means, times;
+    std::vector<double> fit_errors, errors, body_errors, scan_means, times, best_errors;
     // --compare: per method, every vertex's correspondence error over the trials, and its scan
     // distances and times.
     const char* methods[] = {"model fit alone", "rigid + deformation", "rbf + deformation", "model + deformation",
@@ -150,6 +171,7 @@ int main(int argc, char** argv) {
             training::mh::generate_body(assets, body.macro, body.modifiers, xyz);
             std::vector<Vector3d> rest(model.vertex_count());
             for (uint32_t v = 0; v < model.vertex_count(); ++v) rest[v] = Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+            best_errors.push_back(best_approximation_error(model, lin, rest));
             truth = simulation::pose_rest_vertices(model, rest, simulation::random_pose(model, rng, 0.15), Vector3d(0, 0, 0));
             simulation::BoothSpec booth;
             scan.cloud = simulation::booth_scan(model, truth, booth, rng);
@@ -200,6 +222,24 @@ int main(int argc, char** argv) {
                 fnormal += std::abs(fn), ftangent += (f - fn * truth.normals[v]).norm();
             }
             const double n = double(truth.vertices.size());
+            {   // correspondence error by region: normal / tangential, fit then registration
+                const registration::BodyRegions regions = registration::body_regions(model.data());
+                std::vector<double> sums(regions.names.size() * 4, 0.0), counts(regions.names.size(), 0.0);
+                for (std::size_t v = 0; v < truth.vertices.size(); ++v) {
+                    const int g = regions.of_vertex[v];
+                    if (g < 0) continue;
+                    const Vector3d e = r.vertices[v] - truth.vertices[v], f = fitted[v] - truth.vertices[v];
+                    const double en = e.dot(truth.normals[v]), fn = f.dot(truth.normals[v]);
+                    sums[4 * g] += std::abs(fn), sums[4 * g + 1] += (f - fn * truth.normals[v]).norm();
+                    sums[4 * g + 2] += std::abs(en), sums[4 * g + 3] += (e - en * truth.normals[v]).norm();
+                    counts[g] += 1;
+                }
+                std::printf("  correspondence by region, normal/tangential, fit -> registration:");
+                for (std::size_t g = 0; g < regions.names.size(); ++g)
+                    std::printf(" %s %.1f/%.1f -> %.1f/%.1f", regions.names[g].c_str(), sums[4 * g] / counts[g] * 1e3, sums[4 * g + 1] / counts[g] * 1e3,
+                                sums[4 * g + 2] / counts[g] * 1e3, sums[4 * g + 3] / counts[g] * 1e3);
+                std::printf("\n");
+            }
             {   // the true surface's distance to the registration and the fit, by region
                 const fitting::PointIndex tindex(truth.vertices);
                 const registration::BodyRegions regions = registration::body_regions(model.data());
@@ -272,11 +312,15 @@ int main(int argc, char** argv) {
             else plot.more.push_back(curve);
         }
         render::write_line_plot(compare, plot);
+        if (!best_errors.empty())
+            std::printf("the model's best approximation of the true bodies (rest pose, correspondence known): %.2f mm mean vertex error\n", mean(best_errors) * 1e3);
         std::printf("wrote %s (%d trials)\n", compare.c_str(), trials);
         return 0;
     }
     std::sort(times.begin(), times.end());
     std::printf("mean over %d trials: fit alone %.2f mm, registration %.2f mm (%.2f without hands), scan to registration %.2f mm, time median %.2f s\n",
                 trials, mean(fit_errors) * 1e3, mean(errors) * 1e3, mean(body_errors) * 1e3, mean(scan_means) * 1e3, times[times.size() / 2]);
+    if (!best_errors.empty())
+        std::printf("the model's best approximation of the true bodies (rest pose, correspondence known): %.2f mm mean vertex error\n", mean(best_errors) * 1e3);
     return 0;
 }
