@@ -15,7 +15,7 @@ expect() {  # expect CODE PATTERN ARGS...: the exit code, and PATTERN in stdout+
 }
 expect 0 "^sscape [0-9]*\.[0-9]*\.[0-9]* (library .*default model sscape-default" --version
 expect 0 "Subcommands:" --help
-for command in info synth measure fit register simulate train make-test-model; do
+for command in info synth measure fit register simulate train learn make-test-model; do
     expect 0 "Usage: sscape $command" "$command" --help
 done
 expect 0 "--units m|cm|mm" fit --help

@@ -1,7 +1,7 @@
 #!/bin/sh
 # The layering of sdk/: each folder may include headers only from the folders below it in the
 # pipeline (format -> synthesis -> anatomy, measure -> semantics, fitting -> registration, export -> runtime -> capi; the
-# offline tools and the command line above). The build links the stages the same way
+# offline tools (training, then learning from registrations) and the command line above). The build links the stages the same way
 # (sdk/CMakeLists.txt); this catches an #include that reaches up before a link error would.
 # The command line reaches the C API's internals only through capi/cpp_access.hpp.
 # usage: layering.sh SDK_DIR
@@ -22,7 +22,8 @@ allowed() {  # allowed FOLDER: the folders its files may include from
         render) echo "common sscape_format synthesis anatomy measure fitting" ;;
         simulation|testing) echo "common sscape_format synthesis anatomy fitting registration" ;;
         training) echo "$runtime render makehuman" ;;
-        cli) echo "$runtime capi render simulation io testing training" ;;
+        learning) echo "$runtime training" ;;
+        cli) echo "$runtime capi render simulation io testing training learning" ;;
         *) echo "?" ;;
     esac
 }

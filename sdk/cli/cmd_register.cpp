@@ -27,17 +27,6 @@ struct Options {
     double stiffness = 0;
 };
 
-// The rotation taking the named scan axis to +Y (the model's up), e.g. "z" or "-y".
-Eigen::Matrix3d up_rotation(const std::string& up) {
-    Eigen::Vector3d axis = Eigen::Vector3d::UnitY();
-    const bool negative = !up.empty() && up[0] == '-';
-    const char a = up.empty() ? 'y' : up.back();
-    if (a == 'x') axis = Eigen::Vector3d::UnitX();
-    if (a == 'z') axis = Eigen::Vector3d::UnitZ();
-    if (negative) axis = -axis;
-    return Eigen::Quaterniond::FromTwoVectors(axis, Eigen::Vector3d::UnitY()).toRotationMatrix();
-}
-
 int run_register(const Options& o) {
     if (o.out.size() < 4 || (o.out.substr(o.out.size() - 4) != ".obj" && o.out.substr(o.out.size() - 4) != ".ply"))
         throw UsageError("-o: the registered mesh is written as .obj or .ply");
@@ -146,6 +135,9 @@ int run_register(const Options& o) {
     if (!o.report.empty()) {
         nlohmann::ordered_json j;
         j["scan"] = o.scan;
+        // How the registered mesh's frame relates to the model's (sscape learn reads it back).
+        j["scan_units_to_metres"] = to_metres;
+        j["scan_up"] = o.up.empty() ? "y" : o.up;
         j["seconds"] = report.seconds;
         j["fit_seconds"] = report.fit_seconds;
         j["rounds"] = report.rounds;

@@ -23,10 +23,8 @@ struct Column {
     bool slider;
 };
 
-// Attributes beyond the measurements: the population's own parameters.
-enum Extra { kSex, kAge, kMuscle, kProportions, kExtraCount };
-
-std::vector<Column> columns() {
+// The measurements the runtime takes, as attribute columns.
+std::vector<Column> measured_columns() {
     std::vector<Column> out;
     const auto& defs = measure::definitions();
     for (const auto& d : defs) {
@@ -35,10 +33,6 @@ std::vector<Column> columns() {
         const char* unit = d.unit == measure::Unit::Metre ? "m" : d.unit == measure::Unit::SquareMetre ? "m2" : "kg";
         out.push_back({name, unit, d.definition, name == "stature" || name == "mass"});
     }
-    out.push_back({"sex", "", "Sex: 0 female, 1 male (values between blend the two).", true});
-    out.push_back({"age", "years", "Age in years.", true});
-    out.push_back({"muscle", "", "Muscularity: the MakeHuman muscle slider, 0 (little muscle tone) to 1 (very muscular).", true});
-    out.push_back({"proportions", "", "Body proportions: the MakeHuman proportions slider, 0 uncommon to 1 idealised.", true});
     return out;
 }
 
@@ -46,13 +40,33 @@ unsigned workers() { return std::max(1u, std::min(8u, std::thread::hardware_conc
 
 }  // namespace
 
+std::vector<KnownAttribute> population_attributes(const std::vector<BodyParams>& people) {
+    std::vector<KnownAttribute> out = {
+        {"sex", "", "Sex: 0 female, 1 male (values between blend the two).", true, {}},
+        {"age", "years", "Age in years.", true, {}},
+        {"muscle", "", "Muscularity: the MakeHuman muscle slider, 0 (little muscle tone) to 1 (very muscular).", true, {}},
+        {"proportions", "", "Body proportions: the MakeHuman proportions slider, 0 uncommon to 1 idealised.", true, {}},
+    };
+    for (const BodyParams& b : people) {
+        out[0].values.push_back(b.male ? 1 : 0);
+        out[1].values.push_back(b.age_years);
+        out[2].values.push_back(b.macro.muscle);
+        out[3].values.push_back(b.macro.proportions);
+    }
+    return out;
+}
+
 format::AttributeModel learn_attribute_model(const format::ModelData& data, const SampleMatrix& X, const Pca& p, uint32_t fit,
-                                             const std::vector<BodyParams>& people) {
+                                             const std::vector<KnownAttribute>& known) {
     const Model model(data, nullptr);
     const measure::Measurer measurer(model);
     const uint32_t K = model.component_count();
-    const std::vector<Column> cols = columns();
-    const std::size_t A = cols.size(), E = A - kExtraCount;
+    std::vector<Column> cols = measured_columns();
+    const std::size_t E = cols.size(), A = E + known.size();
+    for (const KnownAttribute& k : known) {
+        SSC_REQUIRE_ARG_S(k.values.size() >= fit, "attribute " << k.name << ": " << k.values.size() << " values for " << fit << " bodies");
+        cols.push_back({k.name, k.unit, k.description, k.slider});
+    }
     // Coefficients in standard deviations: projections on the principal directions.
     Eigen::MatrixXd coeff = (X.topRows(fit).cast<double>() * p.basis.cast<double>());
     for (uint32_t k = 0; k < K; ++k) coeff.col(k) /= p.stddev(k);
@@ -72,11 +86,7 @@ format::AttributeModel learn_attribute_model(const format::ModelData& data, cons
             Eigen::Index col = 0;
             for (std::size_t d = 0; d < m.size(); ++d)
                 if (std::string(measure::definitions()[d].name) != "volume") values(Eigen::Index(i), col++) = m[d];
-            const BodyParams& b = people[i];
-            values(Eigen::Index(i), Eigen::Index(E + kSex)) = b.male ? 1 : 0;
-            values(Eigen::Index(i), Eigen::Index(E + kAge)) = b.age_years;
-            values(Eigen::Index(i), Eigen::Index(E + kMuscle)) = b.macro.muscle;
-            values(Eigen::Index(i), Eigen::Index(E + kProportions)) = b.macro.proportions;
+            for (std::size_t a = 0; a < known.size(); ++a) values(Eigen::Index(i), Eigen::Index(E + a)) = known[a].values[i];
         } catch (const std::exception& e) {
             const std::lock_guard<std::mutex> lock(error_mutex);
             error = e.what();  // the last one is enough to report

@@ -12,11 +12,23 @@
 
 namespace ssc::training {
 
+// An attribute that is not measured on the body but known per training body (sex, age, anything
+// numeric a scan collection records): values[i] belongs to row i of the samples.
+struct KnownAttribute {
+    std::string name, unit, description;
+    bool slider = true;
+    std::vector<double> values;
+};
+
+// The MakeHuman population's own parameters as known attributes: sex, age, muscle, proportions.
+std::vector<KnownAttribute> population_attributes(const std::vector<BodyParams>& people);
+
 // `model` is complete but for its attributes; rows [0, fit) of X are the PCA's centred training
-// bodies, people[i] their parameters. Measures every body's reconstruction in the model (so the
-// statistics describe what the runtime measures), in parallel.
+// bodies, `known` their attributes beyond the measurements. Measures every body's reconstruction
+// in the model (so the statistics describe what the runtime measures), in parallel. The attributes
+// are the measurements (but volume), then `known` in order.
 format::AttributeModel learn_attribute_model(const format::ModelData& model, const SampleMatrix& X, const Pca& p, uint32_t fit,
-                                             const std::vector<BodyParams>& people);
+                                             const std::vector<KnownAttribute>& known);
 
 // Made-to-measure accuracy on held-out bodies: each body's own mesh (not a model reconstruction)
 // is measured, stature, chest, waist and hip girth are requested together with its sex and age,

@@ -173,7 +173,7 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     format::validate_model(m);
 
     say("measuring every training body for the attribute model (sliders, made to measure)");
-    m.attributes = learn_attribute_model(m, X, p, fit, people);
+    m.attributes = learn_attribute_model(m, X, p, fit, population_attributes(people));
     const uint32_t mtm = std::min(spec.made_to_measure_bodies, spec.heldout);
     if (mtm > 0) {
         say("making " + std::to_string(mtm) + " held-out bodies to measure");

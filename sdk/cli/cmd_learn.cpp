@@ -1,0 +1,200 @@
+// `sscape learn`: a model from registered scans (what `sscape register` writes: the mesh, and its
+// --report JSON beside it with the same name), through learning::learn_model. An offline tool like
+// `sscape train`: it links the C++ learning library.
+#include "cli.hpp"
+
+#include "capi/cpp_access.hpp"
+#include "common/error.hpp"
+#include "io/readers.hpp"
+#include "learning/learn_model.hpp"
+#include "sscape_format/model_io.hpp"
+#include "synthesis/model.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace ssc::cli {
+namespace {
+
+struct Options {
+    std::vector<std::string> registrations;
+    std::string model, out, posture = "skeleton", attributes, name = "sscape-learned", license;
+    uint32_t components = 20;
+};
+
+std::string stem_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+// The registration's report: the mesh's path with .json. Gives the scan's units and up axis (the
+// mesh is written in the scan's frame) and the model fit.
+nlohmann::json read_report(const std::string& mesh) {
+    const std::string path = std::filesystem::path(mesh).replace_extension(".json").string();
+    std::ifstream f(path);
+    if (!f) throw std::runtime_error(mesh + ": no registration report " + path + " (sscape register --report writes it)");
+    try {
+        return nlohmann::json::parse(f);
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(path + ": not a registration report: " + e.what());
+    }
+}
+
+learning::RegisteredScan read_registration(const std::string& path, const Model& model, bool need_fit) {
+    const nlohmann::json report = read_report(path);
+    learning::RegisteredScan s;
+    s.name = path;
+    const std::string up = report.value("scan_up", "y");
+    const double to_metres = report.value("scan_units_to_metres", 1.0);
+    if (!std::isfinite(to_metres) || to_metres <= 0 || to_metres > 1)
+        throw std::runtime_error(path + ": the report's scan_units_to_metres " + std::to_string(to_metres) + " is not a unit");
+    static const std::vector<std::string> axes = {"x", "y", "z", "-x", "-y", "-z"};
+    if (std::find(axes.begin(), axes.end(), up) == axes.end()) throw std::runtime_error(path + ": the report's scan_up '" + up + "' is no axis");
+    const Eigen::Matrix3d R = up_rotation(up);
+    for (const auto& p : io::read_points(path).points) s.vertices.push_back(R * (p * to_metres));
+    if (s.vertices.size() != model.vertex_count())
+        throw std::runtime_error(path + ": " + std::to_string(s.vertices.size()) + " vertices; the model has " + std::to_string(model.vertex_count()) +
+                                 " (was it registered with this model?)");
+    if (!report.contains("fit")) {
+        if (need_fit) throw std::runtime_error(path + ": the report has no model fit (registered with --start rigid or rbf); use --posture none");
+        return s;
+    }
+    try {
+        const auto& fit = report.at("fit");
+        const std::vector<double> shape = fit.at("shape"), rotations = fit.at("rotations_xyzw"), translation = fit.at("translation_m");
+        const uint32_t J = model.joint_count();
+        if (rotations.size() != 4 * std::size_t(J) || translation.size() != 3 || shape.size() > model.component_count())
+            throw std::runtime_error("the fit's sizes do not match the model");
+        s.fit.shape = shape;
+        for (uint32_t j = 0; j < J; ++j) s.fit.pose.emplace_back(rotations[4 * j + 3], rotations[4 * j], rotations[4 * j + 1], rotations[4 * j + 2]);
+        s.fit.translation = Eigen::Vector3d(translation[0], translation[1], translation[2]);
+        s.fit.scale = fit.at("scale").get<double>();
+        s.has_fit = true;
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(path + ": the report's fit is malformed: " + e.what());
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    }
+    return s;
+}
+
+// A CSV of known attributes: a header "scan,NAME,...", then one row per registration, named by the
+// registration's file name without its extension, numbers only (no quoting: a table of numbers).
+std::vector<training::KnownAttribute> read_attributes(const std::string& path, const std::vector<learning::RegisteredScan>& scans) {
+    std::ifstream f(path);
+    if (!f) throw std::runtime_error("cannot read " + path);
+    auto split = [](const std::string& line) {
+        std::vector<std::string> cells;
+        std::stringstream ss(line);
+        std::string cell;
+        while (std::getline(ss, cell, ',')) {
+            while (!cell.empty() && (cell.back() == '\r' || cell.back() == ' ')) cell.pop_back();
+            while (!cell.empty() && cell.front() == ' ') cell.erase(cell.begin());
+            cells.push_back(cell);
+        }
+        return cells;
+    };
+    std::string line;
+    if (!std::getline(f, line)) throw std::runtime_error(path + ": empty; the first line names the columns: scan,NAME,...");
+    const std::vector<std::string> header = split(line);
+    if (header.size() < 2 || header[0] != "scan") throw std::runtime_error(path + ": the first line must be scan,NAME,... (the attributes' names)");
+    std::vector<training::KnownAttribute> out;
+    for (std::size_t c = 1; c < header.size(); ++c) {
+        if (header[c].empty()) throw std::runtime_error(path + ": column " + std::to_string(c + 1) + " has no name");
+        out.push_back({header[c], "", "Given with the scans (" + std::filesystem::path(path).filename().string() + ").", true, {}});
+    }
+    std::map<std::string, std::vector<double>> rows;
+    for (std::size_t number = 2; std::getline(f, line); ++number) {
+        if (line.empty() || line == "\r") continue;
+        const std::vector<std::string> cells = split(line);
+        const std::string where = path + ":" + std::to_string(number);
+        if (cells.size() != header.size()) throw std::runtime_error(where + ": " + std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
+        std::vector<double> values;
+        for (std::size_t c = 1; c < cells.size(); ++c) {
+            char* end = nullptr;
+            const double x = std::strtod(cells[c].c_str(), &end);
+            if (cells[c].empty() || *end != '\0' || !std::isfinite(x)) throw std::runtime_error(where + ": '" + cells[c] + "' is not a finite number");
+            values.push_back(x);
+        }
+        if (!rows.emplace(cells[0], values).second) throw std::runtime_error(where + ": scan " + cells[0] + " is listed twice");
+    }
+    for (const auto& s : scans) {
+        const auto it = rows.find(stem_of(s.name));
+        if (it == rows.end()) throw std::runtime_error(path + ": no row for " + stem_of(s.name) + " (" + s.name + ")");
+        for (std::size_t a = 0; a < out.size(); ++a) out[a].values.push_back(it->second[a]);
+    }
+    return out;
+}
+
+int run_learn(const Options& o) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    ssc_model* handle = load_model(o.model);
+    Handles guard(handle);
+    const Model& model = model_of(handle);
+    learning::LearnSpec spec;
+    spec.components = o.components;
+    spec.posture = learning::posture_from_name(o.posture);
+    spec.name = o.name;
+    if (!o.license.empty()) spec.license = o.license;
+    if (o.registrations.size() <= o.components)
+        throw UsageError("--components " + std::to_string(o.components) + " needs more than that many registrations (" +
+                         std::to_string(o.registrations.size()) + " given)");
+    std::vector<learning::RegisteredScan> scans;
+    for (const auto& path : o.registrations) scans.push_back(read_registration(path, model, spec.posture == learning::Posture::Skeleton));
+    if (!o.attributes.empty()) spec.attributes = read_attributes(o.attributes, scans);
+    std::ostringstream prov;
+    prov << "registrations:";
+    for (const auto& path : o.registrations) prov << " " << std::filesystem::path(path).filename().string();
+    if (!o.attributes.empty()) prov << "\nattributes: " << std::filesystem::path(o.attributes).filename().string();
+    spec.provenance = prov.str();
+    learning::LearnReport report;
+    const format::ModelData learned = learning::learn_model(model.data(), scans, spec, &report, [&](const std::string& stage) {
+        std::printf("[%6.1f s] %s\n", elapsed(), stage.c_str());
+        std::fflush(stdout);
+    });
+    const std::vector<unsigned char> bytes = format::write_model(learned);
+    format::write_file(o.out, bytes);
+    std::printf("wrote %s: %zu bytes, %u components from %u registrations (posture normalization %s), in %.1f s\n", o.out.c_str(), bytes.size(),
+                report.components, report.bodies, learning::posture_name(spec.posture), elapsed());
+    std::printf("the components hold %.1f %% of the registrations' variance; 1 SD moves a vertex by (RMS, mm):", 100 * report.explained);
+    for (std::size_t k = 0; k < std::min<std::size_t>(8, report.stddev.size()); ++k)
+        std::printf(" %.1f", report.stddev[k] / std::sqrt(double(model.vertex_count())) * 1e3);
+    std::printf("%s\n", report.stddev.size() > 8 ? " ..." : "");
+    std::printf("basis quantization: worst vertex error %.4f mm with every component at +-3 SD\n", report.quantization_error * 1e3);
+    std::printf("attributes: %zu measured, %zu given; sliders:", learned.attributes.attributes.size() - spec.attributes.size(), spec.attributes.size());
+    for (const auto& name : report.sliders) std::printf(" %s", name.c_str());
+    if (!report.not_sliders.empty()) {
+        std::printf("; attributes only (dependent on the sliders before them in this collection):");
+        for (const auto& name : report.not_sliders) std::printf(" %s", name.c_str());
+    }
+    std::printf("\n");
+    return 0;
+}
+
+}  // namespace
+
+Run add_learn(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    CLI::App* c = app.add_subcommand("learn", "learn a model from registered scans (sscape register's meshes, each with its --report JSON beside it)");
+    c->add_option("registrations", o->registrations, "registered meshes (.ply or .obj) in the model's topology; REG.json beside each")
+        ->required()
+        ->check(CLI::ExistingFile);
+    c->add_option("--model", o->model, "the model the scans were registered with (default: the built-in model)")->check(CLI::ExistingFile);
+    c->add_option("-o,--output", o->out, "the learned model (.sscape)")->required()->check(extension(".sscape"));
+    c->add_option("--components", o->components, "shape components to keep (default 20; fewer than the registrations)")
+        ->check(CLI::Range(1u, 1000u));
+    c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default: each scan's fitted skinning undone) or none")
+        ->check(CLI::IsMember({"none", "skeleton"}));
+    c->add_option("--attributes", o->attributes, "CSV of known attributes: a header scan,NAME,..., one row per registration named by its file stem")
+        ->check(CLI::ExistingFile);
+    c->add_option("--name", o->name, "the model's name in its metadata (default sscape-learned)");
+    c->add_option("--license", o->license, "the learned model's licence, the scans' owner's to give (default: unspecified)");
+    return [o] { return run_learn(*o); };
+}
+
+}  // namespace ssc::cli

@@ -1,0 +1,150 @@
+#include "learning/learn_model.hpp"
+
+#include "common/error.hpp"
+#include "common/rigid.hpp"
+#include "semantics/attribute_model.hpp"
+#include "sscape_format/basis_codec.hpp"
+#include "sscape_format/model_io.hpp"
+#include "synthesis/model.hpp"
+#include "training/pca.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace ssc::learning {
+
+namespace {
+
+void check_inputs(const format::ModelData& t, const std::vector<RegisteredScan>& scans, const LearnSpec& spec) {
+    const uint32_t V = t.mesh.vertex_count;
+    SSC_REQUIRE_ARG_S(scans.size() >= 3, "learn: " << scans.size() << " registrations; a shape space needs at least 3");
+    SSC_REQUIRE_ARG_S(spec.components >= 1 && spec.components < scans.size(),
+                      "learn: " << spec.components << " components from " << scans.size() << " registrations (at most " << scans.size() - 1 << ")");
+    SSC_REQUIRE_ARG(std::isfinite(spec.tolerance) && spec.tolerance > 0 && spec.tolerance <= 1e-2, "learn: tolerance must be in (0, 0.01] m");
+    SSC_REQUIRE_ARG(!spec.name.empty() && !spec.license.empty(), "learn: the model needs a name and a licence");
+    for (const RegisteredScan& s : scans) {
+        SSC_REQUIRE_ARG_S(s.vertices.size() == V, "learn: " << s.name << " has " << s.vertices.size() << " vertices; the template has " << V
+                                                            << " (was it registered with this model?)");
+        for (const auto& x : s.vertices) SSC_REQUIRE_ARG_S(x.allFinite(), "learn: " << s.name << " has a vertex that is not finite");
+        SSC_REQUIRE_ARG_S(spec.posture != Posture::Skeleton || s.has_fit,
+                          "learn: " << s.name << " has no model fit, which the skeleton posture normalization needs");
+    }
+    for (const auto& a : spec.attributes) {
+        SSC_REQUIRE_ARG_S(!a.name.empty(), "learn: an attribute has no name");
+        SSC_REQUIRE_ARG_S(a.values.size() == scans.size(), "learn: attribute " << a.name << " has " << a.values.size() << " values for "
+                                                                             << scans.size() << " registrations");
+        for (double x : a.values) SSC_REQUIRE_ARG_S(std::isfinite(x), "learn: attribute " << a.name << " has a value that is not finite");
+    }
+}
+
+// Turns and moves every body (rows of X) by the one rigid motion that best takes their mean onto
+// the template's mean, then lifts them so that the mean's lowest point is the template mean's: the
+// learned model keeps the template's frame (facing +Z, standing on its ground), which its
+// skeleton's rest orientations and users' scenes assume. (Matching centroids alone would float a
+// population shorter than the template above the ground.)
+void align_to_template(training::SampleMatrix& X, const format::ModelData& t) {
+    const Eigen::Index V = Eigen::Index(t.mesh.vertex_count);
+    Eigen::Matrix3Xd src(3, V), dst(3, V);
+    const Eigen::RowVectorXd mean = X.cast<double>().colwise().mean();
+    for (Eigen::Index v = 0; v < V; ++v) {
+        src.col(v) = mean.segment<3>(3 * v).transpose();
+        dst.col(v) = Eigen::Vector3d(t.shape.mean[std::size_t(3 * v)], t.shape.mean[std::size_t(3 * v + 1)], t.shape.mean[std::size_t(3 * v + 2)]);
+    }
+    Similarity T = align_points(src, dst, false);
+    const Eigen::Matrix3Xd moved = (T.R * src).colwise() + T.t;
+    T.t.y() += dst.row(1).minCoeff() - moved.row(1).minCoeff();
+    for (Eigen::Index i = 0; i < X.rows(); ++i)
+        for (Eigen::Index v = 0; v < V; ++v) {
+            const Eigen::Vector3d x = T.R * Eigen::Vector3d(X(i, 3 * v), X(i, 3 * v + 1), X(i, 3 * v + 2)) + T.t;
+            for (int a = 0; a < 3; ++a) X(i, 3 * v + a) = float(x[a]);
+        }
+}
+
+}  // namespace
+
+format::ModelData learn_model(const format::ModelData& template_model, const std::vector<RegisteredScan>& scans, const LearnSpec& spec,
+                              LearnReport* report, const LearnProgress& progress) {
+    auto say = [&](const std::string& stage) {
+        if (progress) progress(stage);
+    };
+    check_inputs(template_model, scans, spec);
+    const Model model(template_model, nullptr);
+    const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
+
+    say(std::string("posture normalization: ") + posture_name(spec.posture));
+    training::SampleMatrix X(N, 3 * Eigen::Index(V));
+    for (uint32_t i = 0; i < N; ++i) {
+        const std::vector<Eigen::Vector3d> rest =
+            spec.posture == Posture::Skeleton ? unpose_skeleton(model, scans[i].fit, scans[i].vertices) : scans[i].vertices;
+        for (uint32_t v = 0; v < V; ++v)
+            for (int a = 0; a < 3; ++a) X(i, 3 * Eigen::Index(v) + a) = float(rest[v][a]);
+    }
+    say("Procrustes alignment");
+    training::procrustes_align(X);
+    align_to_template(X, template_model);
+
+    say("PCA of " + std::to_string(N) + " registrations");
+    const training::Pca p = training::pca(X, N, spec.components, spec.seed);
+    const uint32_t K = uint32_t(p.basis.cols());
+
+    format::ModelData m = template_model;
+    m.metadata.name = spec.name;
+    m.metadata.model_version = "0.1";
+    m.metadata.license = spec.license;
+    m.metadata.description = "Body shape space (S-SCAPE) learned from " + std::to_string(N) + " registered scans.";
+    std::ostringstream prov;
+    prov << "Learned by sscape learn from " << N << " registrations of model '" << template_model.metadata.name
+         << "'; posture normalization " << posture_name(spec.posture) << "; " << K << " components";
+    if (!spec.provenance.empty()) prov << "\n" << spec.provenance;
+    m.metadata.provenance = prov.str();
+    m.shape.mean.assign(p.mean.data(), p.mean.data() + p.mean.size());
+    m.shape.stddev.resize(K);
+    std::vector<float> scaled(std::size_t(K) * 3 * V);  // planar, metres per standard deviation
+    for (uint32_t k = 0; k < K; ++k) {
+        m.shape.stddev[k] = float(p.stddev(k));
+        for (uint32_t v = 0; v < V; ++v)
+            for (int c = 0; c < 3; ++c) scaled[std::size_t(k) * 3 * V + std::size_t(c) * V + v] = float(p.stddev(k)) * p.basis(3 * v + c, k);
+    }
+    say("quantizing the basis");
+    format::QuantizeReport quantization;
+    m.shape.basis = format::quantize_basis(scaled.data(), V, K, spec.tolerance, &quantization);
+    m.attributes = {};
+    say("measuring every registration for the attribute model");
+    m.attributes = training::learn_attribute_model(m, X, p, N, spec.attributes);
+    // Sliders must be independent of each other, in the data and in the shape space (at most K of
+    // them), or the runtime refuses the model. A small or correlated collection does not guarantee
+    // that, so each slider is kept, in order (measurements first), only while the set stays usable;
+    // the others stay attributes (they still condition made to measure).
+    std::vector<std::string> sliders, not_sliders;
+    std::vector<std::size_t> wanted;
+    for (std::size_t a = 0; a < m.attributes.attributes.size(); ++a)
+        if (m.attributes.attributes[a].slider) wanted.push_back(a), m.attributes.attributes[a].slider = false;
+    for (std::size_t a : wanted) {
+        format::Attribute& at = m.attributes.attributes[a];
+        at.slider = true;
+        try {
+            const semantics::AttributeModel check(m);
+            sliders.push_back(at.name);
+        } catch (const Error&) {
+            at.slider = false;
+            not_sliders.push_back(at.name);
+        }
+    }
+    format::validate_model(m);
+
+    if (report) {
+        report->bodies = N;
+        report->components = K;
+        report->stddev.assign(p.stddev.data(), p.stddev.data() + p.stddev.size());
+        report->total_variance = p.total_variance;
+        double kept = 0;
+        for (double s : report->stddev) kept += s * s;
+        report->explained = p.total_variance > 0 ? kept / p.total_variance : 0;
+        report->quantization_error = quantization.max_error;
+        report->sliders = sliders;
+        report->not_sliders = not_sliders;
+    }
+    return m;
+}
+
+}  // namespace ssc::learning

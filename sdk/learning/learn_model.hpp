@@ -1,0 +1,58 @@
+// Learning a model from registered scans: the registrations (the template's topology, from
+// `sscape register`) brought to one posture, aligned, and summarised by PCA; everything else
+// (mesh, skeleton, skinning, landmarks, vertex sets, joint limits and roles) carried over from the
+// model they were registered with; the attribute model learned again from the new bodies.
+#pragma once
+
+#include "learning/posture_normalization.hpp"
+#include "sscape_format/model_data.hpp"
+#include "training/attributes.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ssc::learning {
+
+// One registered scan: the template's vertices on the scan (model frame: metres, +Y up) and the
+// model fit that started the registration (needed by Posture::Skeleton).
+struct RegisteredScan {
+    std::string name;
+    std::vector<Eigen::Vector3d> vertices;
+    bool has_fit = false;
+    fitting::FitState fit;
+};
+
+struct LearnSpec {
+    uint32_t components = 20;        // at most bodies - 1
+    Posture posture = Posture::Skeleton;
+    // Known per-scan attributes (sex, age, ...), each with one value per scan in input order.
+    std::vector<training::KnownAttribute> attributes;
+    std::string name = "sscape-learned";
+    std::string provenance;           // what the caller knows of the inputs (files, settings)
+    // The learned model's licence is its scans' owner's to give, not the template's.
+    std::string license = "unspecified (set by the owner of the scans)";
+    double tolerance = 1e-4;          // basis quantization bound, metres
+    uint32_t seed = 1;                // randomized SVD
+};
+
+struct LearnReport {
+    uint32_t bodies = 0, components = 0;
+    std::vector<double> stddev;      // per component: the body's 3V coordinates' displacement at 1 SD, metres (norm)
+    double total_variance = 0;       // m^2 per body
+    double explained = 0;            // share of the variance the kept components hold
+    double quantization_error = 0;   // metres
+    // Attributes that are sliders, and those that could not be (dependent on the ones before them,
+    // or more sliders than components): attributes only.
+    std::vector<std::string> sliders, not_sliders;
+};
+
+using LearnProgress = std::function<void(const std::string& stage)>;
+
+// Throws ssc::Error (INVALID_ARGUMENT) for fewer than 3 scans, a scan of another vertex count,
+// non-finite vertices, Posture::Skeleton with a scan lacking its fit, components outside
+// [1, bodies - 1], or attributes without one finite value per scan.
+format::ModelData learn_model(const format::ModelData& template_model, const std::vector<RegisteredScan>& scans, const LearnSpec& spec,
+                              LearnReport* report = nullptr, const LearnProgress& progress = {});
+
+}  // namespace ssc::learning

@@ -1,0 +1,51 @@
+#!/bin/sh
+# `sscape learn` from a fresh set of registrations: simulate scans, register each (mesh and report
+# beside it), learn a model with given attributes, read it back; and the refusals, which write
+# nothing.
+# usage: cli_learn.sh SSCAPE OUT_DIR
+set -u
+sscape=$1 out=$2/learn
+rm -rf "$out" && mkdir -p "$out"
+fail() { echo "FAIL: $*"; exit 1; }
+echo "scan,age,weight_kg" > "$out/attributes.csv"
+for i in 1 2 3 4 5; do
+    "$sscape" simulate -o "$out/s$i" --seed "$i" --points 8000 --pose-amount 0.4 > /dev/null || fail "simulate $i"
+    "$sscape" register "$out/s${i}_scan.ply" -o "$out/reg$i.ply" --report "$out/reg$i.json" > "$out/register$i.txt" 2>&1 ||
+        { cat "$out/register$i.txt"; fail "register $i"; }
+    echo "reg$i,$((20 + 7 * i)),$((55 + 4 * i))" >> "$out/attributes.csv"
+done
+"$sscape" learn "$out"/reg?.ply --components 3 --attributes "$out/attributes.csv" --license "CC-BY-4.0 (test scans)" -o "$out/learned.sscape" > "$out/learn.txt" 2>&1 ||
+    { cat "$out/learn.txt"; fail "learn"; }
+cat "$out/learn.txt"
+grep -q "3 components from 5 registrations (posture normalization skeleton)" "$out/learn.txt" || fail "learn's summary"
+grep -q "attributes: [0-9]* measured, 2 given" "$out/learn.txt" || fail "the given attributes"
+"$sscape" info "$out/learned.sscape" > "$out/info.txt" 2>&1 || { cat "$out/info.txt"; fail "info on the learned model"; }
+grep -q "3 shape components\|components: 3\|3 components" "$out/info.txt" || { cat "$out/info.txt"; fail "info's component count"; }
+grep -qi "age" "$out/info.txt" || { cat "$out/info.txt"; fail "info lists the given attribute"; }
+grep -q "CC-BY-4.0 (test scans)" "$out/info.txt" || { cat "$out/info.txt"; fail "the given licence"; }
+"$sscape" synth "$out/learned.sscape" --random 1 -o "$out/body.obj" > /dev/null 2>&1 || fail "a body of the learned model"
+"$sscape" learn "$out"/reg?.ply --posture none --components 2 -o "$out/none.sscape" > /dev/null 2>&1 || fail "posture none"
+
+# Refusals: a message, a non-zero exit, no file.
+expect() {  # expect CODE PATTERN ARGS...
+    code=$1 pattern=$2; shift 2
+    rm -f "$out/bad.sscape"
+    "$sscape" learn "$@" -o "$out/bad.sscape" > "$out/bad.txt" 2>&1
+    got=$?
+    if [ "$got" -ne "$code" ] || ! grep -q -e "$pattern" "$out/bad.txt"; then cat "$out/bad.txt"; fail "learn $* exited $got (expected $code) or lacks '$pattern'"; fi
+    [ ! -e "$out/bad.sscape" ] || fail "learn $* wrote a model"
+}
+expect 2 "needs more than that many registrations" "$out"/reg?.ply --components 5
+cp "$out/reg1.ply" "$out/lonely.ply"
+expect 1 "no registration report" "$out/reg1.ply" "$out/reg2.ply" "$out/lonely.ply" --components 2
+echo "scan,age" > "$out/short.csv" && echo "reg1,30" >> "$out/short.csv"
+expect 1 "no row for reg2" "$out"/reg?.ply --components 2 --attributes "$out/short.csv"
+printf 'scan,age\nreg1,abc\n' > "$out/text.csv"
+expect 1 "'abc' is not a finite number" "$out"/reg?.ply --components 2 --attributes "$out/text.csv"
+echo '{"scan": "x"' > "$out/broken.json" && cp "$out/reg1.ply" "$out/broken.ply"
+expect 1 "not a registration report" "$out/reg1.ply" "$out/reg2.ply" "$out/broken.ply" --components 2
+"$sscape" synth --random 1 -o "$out/other.obj" > /dev/null 2>&1
+sed -n '1,/^f /p' "$out/other.obj" | grep '^v ' | head -100 > "$out/few.obj"
+cp "$out/reg1.json" "$out/few.json"
+expect 1 "100 vertices; the model has" "$out/reg1.ply" "$out/reg2.ply" "$out/few.obj" --components 2
+echo "learn: model written and read back; refusals clear"

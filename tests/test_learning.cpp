@@ -1,0 +1,218 @@
+// Learning models from registered scans: posture normalization, the learned shape space, bad input.
+#include "learning/learn_model.hpp"
+#include "learning/posture_normalization.hpp"
+
+#include "capi/cpp_access.hpp"
+#include "common/error.hpp"
+#include "common/rigid.hpp"
+#include "fitting/kinematics.hpp"
+#include "semantics/attribute_model.hpp"
+#include "simulation/simulate.hpp"
+#include "sscape_format/model_io.hpp"
+#include "synthesis/model.hpp"
+
+#include <catch2/catch.hpp>
+#include <Eigen/QR>
+
+#include <cmath>
+#include <random>
+
+using namespace ssc;
+using Eigen::Vector3d;
+
+namespace {
+
+const Model& default_model() {
+    static const Model model = [] {
+        ssc_model* handle = nullptr;
+        REQUIRE(ssc_model_load_default(nullptr, &handle) == SSC_OK);
+        Model copy(format::ModelData(model_of(handle).data()), nullptr);
+        ssc_model_release(handle);
+        return copy;
+    }();
+    return model;
+}
+
+std::vector<float> identity_pose(const Model& m) {
+    std::vector<float> q(4 * std::size_t(m.joint_count()), 0.f);
+    for (uint32_t j = 0; j < m.joint_count(); ++j) q[4 * j + 3] = 1.f;
+    return q;
+}
+
+// A body of the model's first `components` shape directions, posed and placed at random, as a
+// perfect registration with the fit that found it.
+struct Sample {
+    learning::RegisteredScan scan;
+    std::vector<Vector3d> rest;  // the same body at rest, at the origin
+};
+
+Sample sample(const Model& m, std::mt19937& rng, uint32_t components, double pose_amount) {
+    std::vector<float> shape = simulation::random_shape(m, rng);
+    for (std::size_t k = components; k < shape.size(); ++k) shape[k] = 0;
+    const std::vector<float> pose = simulation::random_pose(m, rng, pose_amount);
+    std::uniform_real_distribution<double> offset(-0.5, 0.5);
+    const Vector3d t(offset(rng), offset(rng) * 0.1, offset(rng));
+    const simulation::TrueBody posed = simulation::make_body(m, shape, pose, t);
+    Sample s;
+    s.scan.name = "body";
+    s.scan.vertices = posed.vertices;
+    s.scan.has_fit = true;
+    s.scan.fit.shape.assign(shape.begin(), shape.end());
+    for (uint32_t j = 0; j < m.joint_count(); ++j)
+        s.scan.fit.pose.emplace_back(pose[4 * j + 3], pose[4 * j], pose[4 * j + 1], pose[4 * j + 2]);
+    s.scan.fit.translation = t;
+    s.rest = simulation::make_body(m, shape, identity_pose(m), Vector3d::Zero()).vertices;
+    return s;
+}
+
+// Mean vertex distance of `body` to its least-squares approximation in `model` (shape and
+// translation, correspondence known), after the rigid alignment onto the model's mean that
+// learning gives its training bodies.
+double approximation_error(const Model& model, std::vector<Vector3d> body) {
+    const fitting::LinearModel lin(model, model.component_count());
+    const uint32_t V = model.vertex_count();
+    Eigen::Matrix3Xd src(3, V), dst(3, V);
+    for (uint32_t v = 0; v < V; ++v) {
+        src.col(v) = body[v];
+        dst.col(v) = Vector3d(model.data().shape.mean[3 * std::size_t(v)], model.data().shape.mean[3 * std::size_t(v) + 1],
+                              model.data().shape.mean[3 * std::size_t(v) + 2]);
+    }
+    const Similarity T = align_points(src, dst, false);
+    for (auto& x : body) x = T.R * x + T.t;
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(3 * Eigen::Index(V), lin.K + 3);
+    Eigen::VectorXd y(3 * Eigen::Index(V));
+    for (uint32_t v = 0; v < V; ++v)
+        for (uint32_t a = 0; a < 3; ++a) {
+            const Eigen::Index row = 3 * Eigen::Index(v) + a;
+            y[row] = body[v][a] - double(model.data().shape.mean[3 * std::size_t(v) + a]);
+            for (uint32_t k = 0; k < lin.K; ++k) B(row, k) = lin.basis[(std::size_t(v) * 3 + a) * lin.K + k] * lin.step[k];
+            B(row, lin.K + a) = 1;
+        }
+    const Eigen::VectorXd r = B * B.colPivHouseholderQr().solve(y) - y;
+    double sum = 0;
+    for (uint32_t v = 0; v < V; ++v) sum += r.segment<3>(3 * Eigen::Index(v)).norm();
+    return sum / V;
+}
+
+}  // namespace
+
+TEST_CASE("skeleton posture normalization undoes the fitted skinning", "[learning]") {
+    const Model& m = default_model();
+    std::mt19937 rng(5);
+    const Sample s = sample(m, rng, m.component_count(), 0.8);
+    const std::vector<Vector3d> rest = learning::unpose_skeleton(m, s.scan.fit, s.scan.vertices);
+    double worst = 0, moved = 0;
+    for (std::size_t v = 0; v < rest.size(); ++v) {
+        worst = std::max(worst, (rest[v] - s.rest[v]).norm());
+        moved = std::max(moved, (s.scan.vertices[v] - s.rest[v]).norm());
+    }
+    CHECK(moved > 0.1);     // the pose moved the body
+    CHECK(worst < 2e-5);    // and unposing brings it back (float synthesis)
+    // With a scale, as a fit in unknown units reports it.
+    learning::RegisteredScan scaled = s.scan;
+    scaled.fit.scale = 1.7;
+    for (auto& x : scaled.vertices) x = 1.7 * (x - s.scan.fit.translation) + s.scan.fit.translation;
+    const std::vector<Vector3d> again = learning::unpose_skeleton(m, scaled.fit, scaled.vertices);
+    worst = 0;
+    for (std::size_t v = 0; v < rest.size(); ++v) worst = std::max(worst, (again[v] - s.rest[v]).norm());
+    CHECK(worst < 2e-5);
+    // Bad input.
+    std::vector<Vector3d> short_list(s.scan.vertices.begin(), s.scan.vertices.end() - 1);
+    CHECK_THROWS_AS(learning::unpose_skeleton(m, s.scan.fit, short_list), Error);
+    fitting::FitState bad = s.scan.fit;
+    bad.pose[3] = Eigen::Quaterniond(std::nan(""), 0, 0, 0);
+    CHECK_THROWS_AS(learning::unpose_skeleton(m, bad, s.scan.vertices), Error);
+    bad = s.scan.fit;
+    bad.scale = 0;
+    CHECK_THROWS_AS(learning::unpose_skeleton(m, bad, s.scan.vertices), Error);
+    CHECK(learning::posture_from_name("none") == learning::Posture::None);
+    CHECK_THROWS_AS(learning::posture_from_name("laplace"), Error);
+}
+
+TEST_CASE("a model learned from posed registrations: skeleton normalization keeps shape and drops posture", "[learning]") {
+    const Model& m = default_model();
+    std::mt19937 rng(11);
+    constexpr uint32_t kShapes = 6, kTrain = 24, kTest = 6;
+    std::vector<learning::RegisteredScan> train;
+    std::vector<Sample> test;
+    for (uint32_t i = 0; i < kTrain; ++i) train.push_back(sample(m, rng, kShapes, 0.6).scan);
+    for (uint32_t i = 0; i < kTest; ++i) test.push_back(sample(m, rng, kShapes, 0.6));
+    learning::LearnSpec spec;
+    spec.components = 8;
+    training::KnownAttribute age{"age", "years", "given", true, {}};
+    for (uint32_t i = 0; i < kTrain; ++i) age.values.push_back(20 + i);
+    spec.attributes = {age};
+    learning::LearnReport report;
+    const format::ModelData skeleton = learning::learn_model(m.data(), train, spec, &report);
+    CHECK(report.bodies == kTrain);
+    CHECK(report.components == 8);
+    CHECK(report.explained > 0.999);  // six directions of shape explain it all
+    spec.posture = learning::Posture::None;
+    learning::LearnReport none_report;
+    const format::ModelData none = learning::learn_model(m.data(), train, spec, &none_report);
+    CHECK(none_report.explained < 0.99);  // posture needs more directions than eight
+    // Held-out bodies at rest: the skeleton model represents them; the posture-laden one does not.
+    const Model skeleton_model(skeleton, nullptr), none_model(none, nullptr);
+    double skeleton_error = 0, none_error = 0;
+    for (const Sample& s : test) {
+        skeleton_error += approximation_error(skeleton_model, s.rest) / kTest;
+        none_error += approximation_error(none_model, s.rest) / kTest;
+    }
+    INFO("held-out rest bodies: skeleton " << skeleton_error * 1e3 << " mm, none " << none_error * 1e3 << " mm");
+    CHECK(skeleton_error < 0.5e-3);
+    CHECK(none_error > 5 * skeleton_error);
+    // The file round trip, the template's frame (feet on the ground), and the attributes.
+    const std::vector<unsigned char> bytes = format::write_model(skeleton);
+    ssc_model* loaded = nullptr;
+    REQUIRE(ssc_model_load_memory(nullptr, bytes.data(), bytes.size(), &loaded) == SSC_OK);
+    CHECK(ssc_model_shape_count(loaded) == 8);
+    CHECK(ssc_model_vertex_count(loaded) == m.vertex_count());
+    ssc_model_release(loaded);
+    double lowest = 1e9, template_lowest = 1e9;
+    for (uint32_t v = 0; v < m.vertex_count(); ++v) {
+        lowest = std::min(lowest, double(skeleton.shape.mean[3 * std::size_t(v) + 1]));
+        template_lowest = std::min(template_lowest, double(m.data().shape.mean[3 * std::size_t(v) + 1]));
+    }
+    INFO("lowest point of the mean: learned " << lowest << " m, template " << template_lowest << " m");
+    CHECK(std::abs(lowest - template_lowest) < 0.02);
+    const semantics::AttributeModel attributes(skeleton);
+    CHECK(attributes.find("age") >= 0);
+    CHECK(attributes.find("stature") >= 0);
+    CHECK(skeleton.metadata.provenance.find("24 registrations") != std::string::npos);
+}
+
+TEST_CASE("learning refuses bad registrations with a clear message", "[learning]") {
+    const Model& m = default_model();
+    std::mt19937 rng(3);
+    std::vector<learning::RegisteredScan> scans;
+    for (int i = 0; i < 4; ++i) scans.push_back(sample(m, rng, 4, 0.3).scan);
+    learning::LearnSpec spec;
+    spec.components = 3;
+    auto refuses = [&](const std::vector<learning::RegisteredScan>& s, const learning::LearnSpec& sp, const std::string& words) {
+        try {
+            learning::learn_model(m.data(), s, sp);
+            FAIL("accepted: " << words);
+        } catch (const Error& e) {
+            CHECK(e.status() == SSC_ERROR_INVALID_ARGUMENT);
+            CHECK(std::string(e.what()).find(words) != std::string::npos);
+        }
+    };
+    refuses({scans[0], scans[1]}, spec, "at least 3");
+    learning::LearnSpec many = spec;
+    many.components = 4;
+    refuses(scans, many, "at most 3");
+    auto broken = scans;
+    broken[1].vertices.pop_back();
+    refuses(broken, spec, "vertices");
+    broken = scans;
+    broken[2].vertices[7].x() = std::nan("");
+    refuses(broken, spec, "not finite");
+    broken = scans;
+    broken[0].has_fit = false;
+    refuses(broken, spec, "no model fit");
+    learning::LearnSpec attrs = spec;
+    attrs.attributes = {{"age", "years", "", true, {30, 40}}};
+    refuses(scans, attrs, "2 values for 4");
+    attrs.attributes = {{"age", "years", "", true, {30, 40, std::nan(""), 20}}};
+    refuses(scans, attrs, "not finite");
+}
