@@ -1,6 +1,7 @@
 // Shared helpers for the tests: small models built in code, loading through the C API.
 #pragma once
 
+#include "capi/cpp_access.hpp"
 #include "sscape_format/model_io.hpp"
 #include "testing/synthetic_model.hpp"
 
@@ -45,6 +46,12 @@ inline ModelPtr default_model() {
     ssc_model* m = nullptr;
     if (ssc_model_load_default(nullptr, &m) != SSC_OK) return nullptr;
     return ModelPtr(m);
+}
+
+// The default model as the C++ library sees it, loaded once for the test run.
+inline const ssc::Model& default_cpp_model() {
+    static const ModelPtr handle = default_model();
+    return ssc::model_of(handle.get());
 }
 
 inline BodyPtr body(ssc_model* m) {

@@ -1,18 +1,16 @@
 // Learning models from registered scans: posture normalization, the learned shape space, bad input.
 #include "learning/learn_model.hpp"
 #include "learning/posture_normalization.hpp"
+#include "support.hpp"
 
 #include "capi/cpp_access.hpp"
 #include "common/error.hpp"
-#include "common/rigid.hpp"
-#include "fitting/kinematics.hpp"
 #include "semantics/attribute_model.hpp"
 #include "simulation/simulate.hpp"
 #include "sscape_format/model_io.hpp"
 #include "synthesis/model.hpp"
 
 #include <catch2/catch.hpp>
-#include <Eigen/QR>
 
 #include <cmath>
 #include <random>
@@ -21,17 +19,6 @@ using namespace ssc;
 using Eigen::Vector3d;
 
 namespace {
-
-const Model& default_model() {
-    static const Model model = [] {
-        ssc_model* handle = nullptr;
-        REQUIRE(ssc_model_load_default(nullptr, &handle) == SSC_OK);
-        Model copy(format::ModelData(model_of(handle).data()), nullptr);
-        ssc_model_release(handle);
-        return copy;
-    }();
-    return model;
-}
 
 std::vector<float> identity_pose(const Model& m) {
     std::vector<float> q(4 * std::size_t(m.joint_count()), 0.f);
@@ -65,39 +52,10 @@ Sample sample(const Model& m, std::mt19937& rng, uint32_t components, double pos
     return s;
 }
 
-// Mean vertex distance of `body` to its least-squares approximation in `model` (shape and
-// translation, correspondence known), after the rigid alignment onto the model's mean that
-// learning gives its training bodies.
-double approximation_error(const Model& model, std::vector<Vector3d> body) {
-    const fitting::LinearModel lin(model, model.component_count());
-    const uint32_t V = model.vertex_count();
-    Eigen::Matrix3Xd src(3, V), dst(3, V);
-    for (uint32_t v = 0; v < V; ++v) {
-        src.col(v) = body[v];
-        dst.col(v) = Vector3d(model.data().shape.mean[3 * std::size_t(v)], model.data().shape.mean[3 * std::size_t(v) + 1],
-                              model.data().shape.mean[3 * std::size_t(v) + 2]);
-    }
-    const Similarity T = align_points(src, dst, false);
-    for (auto& x : body) x = T.R * x + T.t;
-    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(3 * Eigen::Index(V), lin.K + 3);
-    Eigen::VectorXd y(3 * Eigen::Index(V));
-    for (uint32_t v = 0; v < V; ++v)
-        for (uint32_t a = 0; a < 3; ++a) {
-            const Eigen::Index row = 3 * Eigen::Index(v) + a;
-            y[row] = body[v][a] - double(model.data().shape.mean[3 * std::size_t(v) + a]);
-            for (uint32_t k = 0; k < lin.K; ++k) B(row, k) = lin.basis[(std::size_t(v) * 3 + a) * lin.K + k] * lin.step[k];
-            B(row, lin.K + a) = 1;
-        }
-    const Eigen::VectorXd r = B * B.colPivHouseholderQr().solve(y) - y;
-    double sum = 0;
-    for (uint32_t v = 0; v < V; ++v) sum += r.segment<3>(3 * Eigen::Index(v)).norm();
-    return sum / V;
-}
-
 }  // namespace
 
 TEST_CASE("skeleton posture normalization undoes the fitted skinning", "[learning]") {
-    const Model& m = default_model();
+    const Model& m = test::default_cpp_model();
     std::mt19937 rng(5);
     const Sample s = sample(m, rng, m.component_count(), 0.8);
     const std::vector<Vector3d> rest = learning::unpose_skeleton(m, s.scan.fit, s.scan.vertices);
@@ -130,7 +88,7 @@ TEST_CASE("skeleton posture normalization undoes the fitted skinning", "[learnin
 }
 
 TEST_CASE("a model learned from posed registrations: skeleton normalization keeps shape and drops posture", "[learning]") {
-    const Model& m = default_model();
+    const Model& m = test::default_cpp_model();
     std::mt19937 rng(11);
     constexpr uint32_t kShapes = 6, kTrain = 24, kTest = 6;
     std::vector<learning::RegisteredScan> train;
@@ -155,8 +113,8 @@ TEST_CASE("a model learned from posed registrations: skeleton normalization keep
     const Model skeleton_model(skeleton, nullptr), none_model(none, nullptr);
     double skeleton_error = 0, none_error = 0;
     for (const Sample& s : test) {
-        skeleton_error += approximation_error(skeleton_model, s.rest) / kTest;
-        none_error += approximation_error(none_model, s.rest) / kTest;
+        skeleton_error += simulation::best_approximation_error(skeleton_model, s.rest, true) / kTest;
+        none_error += simulation::best_approximation_error(none_model, s.rest, true) / kTest;
     }
     INFO("held-out rest bodies: skeleton " << skeleton_error * 1e3 << " mm, none " << none_error * 1e3 << " mm");
     CHECK(skeleton_error < 0.5e-3);
@@ -182,7 +140,7 @@ TEST_CASE("a model learned from posed registrations: skeleton normalization keep
 }
 
 TEST_CASE("learning refuses bad registrations with a clear message", "[learning]") {
-    const Model& m = default_model();
+    const Model& m = test::default_cpp_model();
     std::mt19937 rng(3);
     std::vector<learning::RegisteredScan> scans;
     for (int i = 0; i < 4; ++i) scans.push_back(sample(m, rng, 4, 0.3).scan);

@@ -1,6 +1,7 @@
 // Scan registration: the non-rigid deformation's energy against finite differences and its exact
 // solve against a dense one on a tiny mesh, the block Cholesky, scan rims.
 #include "registration/block_cholesky.hpp"
+#include "support.hpp"
 #include "registration/nonrigid.hpp"
 #include "registration/rbf_warp.hpp"
 #include "registration/register_scan.hpp"
@@ -221,16 +222,6 @@ TEST_CASE("scan boundaries are the rims of holes and of the scan, not its inside
 
 namespace {
 
-const Model& default_model() {
-    static const Model model = [] {
-        ssc_model* handle = nullptr;
-        REQUIRE(ssc_model_load_default(nullptr, &handle) == SSC_OK);
-        Model copy(format::ModelData(model_of(handle).data()), nullptr);
-        ssc_model_release(handle);
-        return copy;
-    }();
-    return model;
-}
 
 // A body the model cannot represent (bumps and dents), mildly posed, scanned: 40,000 points, 1 mm
 // noise, a tenth of the surface in holes.
@@ -238,7 +229,7 @@ struct BumpyScan {
     simulation::TrueBody truth;
     registration::Scan scan;
     explicit BumpyScan(uint32_t seed) {
-        const Model& m = default_model();
+        const Model& m = test::default_cpp_model();
         std::mt19937 rng(seed);
         truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, 0.3), Vector3d(0.1, 0, 0.4));
         simulation::add_bumps(truth, m, 8, rng);
@@ -273,7 +264,7 @@ double surface_error(const Model& m, const std::vector<Vector3d>& x, const simul
 }  // namespace
 
 TEST_CASE("a scan registers onto the template closer than the model fit that starts it", "[registration]") {
-    const Model& m = default_model();
+    const Model& m = test::default_cpp_model();
     const fitting::LinearModel lin(m, m.component_count());
     const BumpyScan s(31);
     registration::Scan without_landmarks = s.scan;
@@ -296,7 +287,7 @@ TEST_CASE("a scan registers onto the template closer than the model fit that sta
 }
 
 TEST_CASE("registration starts from landmarks alone (rigid, rbf), and refuses what it cannot do", "[registration]") {
-    const Model& m = default_model();
+    const Model& m = test::default_cpp_model();
     const fitting::LinearModel lin(m, m.component_count());
     const BumpyScan s(32);
     registration::RegistrationOptions rigid;
@@ -401,7 +392,7 @@ TEST_CASE("the C API registers a scan and refuses misuse with a status and a mes
     CHECK(ssc_registration_get_region(reg, 6, &region, &q) == SSC_ERROR_INVALID_ARGUMENT);
     // The same as the C++ registration of the same scan.
     ThreadPool pool(1);
-    const fitting::LinearModel lin(default_model(), default_model().component_count());
+    const fitting::LinearModel lin(test::default_cpp_model(), test::default_cpp_model().component_count());
     registration::Scan cloud_only;
     for (uint32_t i = 0; i < n; ++i) cloud_only.cloud.points.emplace_back(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
     const auto direct = registration::register_scan(lin, cloud_only, {});
@@ -418,7 +409,7 @@ TEST_CASE("the C API registers a scan and refuses misuse with a status and a mes
 }
 
 TEST_CASE("the simulator poses other bodies as the model poses its own, and scans them in a booth", "[registration][simulation]") {
-    const Model& m = default_model();
+    const Model& m = test::default_cpp_model();
     std::mt19937 rng(8);
     const std::vector<float> shape = simulation::random_shape(m, rng), pose = simulation::random_pose(m, rng, 0.5);
     std::vector<float> identity(4 * std::size_t(m.joint_count()), 0.f);

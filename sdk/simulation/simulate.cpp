@@ -2,8 +2,11 @@
 
 #include "anatomy/joint_limits.hpp"
 #include "common/error.hpp"
+#include "common/rigid.hpp"
 #include "fitting/posed_surface.hpp"
 #include "registration/registration_quality.hpp"
+
+#include <Eigen/QR>
 
 #include <algorithm>
 #include <cmath>
@@ -277,6 +280,32 @@ void add_bumps(TrueBody& b, const Model& m, int count, std::mt19937& rng) {
     b.vertices = moved;
     const std::vector<uint32_t> triangles(m.data().mesh.triangles.begin(), m.data().mesh.triangles.end());
     b.normals = registration::vertex_normals(b.vertices, triangles);
+}
+
+double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> rest, bool align) {
+    const fitting::LinearModel lin(m, m.component_count());
+    const uint32_t V = m.vertex_count();
+    SSC_REQUIRE_ARG(rest.size() == V, "best_approximation_error: one vertex per model vertex");
+    const float* mean = m.data().shape.mean.data();
+    if (align) {
+        Eigen::Matrix3Xd src(3, V), dst(3, V);
+        for (uint32_t v = 0; v < V; ++v) src.col(v) = rest[v], dst.col(v) = Eigen::Vector3d(mean[3 * v], mean[3 * v + 1], mean[3 * v + 2]);
+        const Similarity T = align_points(src, dst, false);
+        for (auto& x : rest) x = T.R * x + T.t;
+    }
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(3 * Eigen::Index(V), lin.K + 3);
+    Eigen::VectorXd y(3 * Eigen::Index(V));
+    for (uint32_t v = 0; v < V; ++v)
+        for (uint32_t a = 0; a < 3; ++a) {
+            const Eigen::Index row = 3 * Eigen::Index(v) + a;
+            y[row] = rest[v][a] - double(mean[3 * std::size_t(v) + a]);
+            for (uint32_t k = 0; k < lin.K; ++k) B(row, k) = lin.basis[(std::size_t(v) * 3 + a) * lin.K + k] * lin.step[k];
+            B(row, lin.K + a) = 1;
+        }
+    const Eigen::VectorXd residual = B * B.colPivHouseholderQr().solve(y) - y;
+    double sum = 0;
+    for (uint32_t v = 0; v < V; ++v) sum += residual.segment<3>(3 * Eigen::Index(v)).norm();
+    return sum / double(V);
 }
 
 }  // namespace ssc::simulation

@@ -65,4 +65,11 @@ double mean_vertex_error(const std::vector<Eigen::Vector3d>& a, const std::vecto
 // The posed vertices of a fit result (through Body, independent of the fitter's own kinematics).
 std::vector<Eigen::Vector3d> fitted_vertices(const Model& m, const fitting::FitState& s);
 
+// How closely the model can represent a body at all: the mean vertex distance of `rest` (the
+// model's vertex order, rest pose) to its least-squares approximation by the model's shape space
+// and a translation, correspondence known; first rigidly aligned onto the model's mean when
+// `align` (as learning aligns its bodies). A registration that follows the surface from the model
+// fit cannot be expected to get much below it along the surface.
+double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> rest, bool align);
+
 }  // namespace ssc::simulation

@@ -54,27 +54,6 @@ double mean_distance(const std::vector<Vector3d>& a, const std::vector<Vector3d>
     return n ? sum / double(n) : 0;
 }
 
-// How closely the model can represent a body at all: its least-squares approximation (shape
-// coefficients and a translation, correspondence known, rest pose) of the body's rest vertices, as
-// the mean vertex distance. No registration that starts from the model fit and follows the surface
-// can be expected to get much below it along the surface.
-double best_approximation_error(const Model& model, const fitting::LinearModel& lin, const std::vector<Vector3d>& rest) {
-    const uint32_t V = model.vertex_count();
-    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(3 * Eigen::Index(V), lin.K + 3);
-    Eigen::VectorXd y(3 * Eigen::Index(V));
-    for (uint32_t v = 0; v < V; ++v)
-        for (uint32_t a = 0; a < 3; ++a) {
-            const Eigen::Index row = 3 * Eigen::Index(v) + a;
-            y[row] = rest[v][a] - double(model.data().shape.mean[3 * std::size_t(v) + a]);
-            for (uint32_t k = 0; k < lin.K; ++k) B(row, k) = lin.basis[(std::size_t(v) * 3 + a) * lin.K + k] * lin.step[k];
-            B(row, lin.K + a) = 1;
-        }
-    const Eigen::VectorXd residual = B * B.colPivHouseholderQr().solve(y) - y;
-    double sum = 0;
-    for (uint32_t v = 0; v < V; ++v) sum += residual.segment<3>(3 * Eigen::Index(v)).norm();
-    return sum / double(V);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -171,7 +150,7 @@ int main(int argc, char** argv) {
             training::mh::generate_body(assets, body.macro, body.modifiers, xyz);
             std::vector<Vector3d> rest(model.vertex_count());
             for (uint32_t v = 0; v < model.vertex_count(); ++v) rest[v] = Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-            best_errors.push_back(best_approximation_error(model, lin, rest));
+            best_errors.push_back(simulation::best_approximation_error(model, rest, false));
             truth = simulation::pose_rest_vertices(model, rest, simulation::random_pose(model, rng, 0.15), Vector3d(0, 0, 0));
             simulation::BoothSpec booth;
             scan.cloud = simulation::booth_scan(model, truth, booth, rng);
