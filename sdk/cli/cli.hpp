@@ -32,7 +32,8 @@ Run add_info(CLI::App& app);
 Run add_synth(CLI::App& app);
 Run add_make_test_model(CLI::App& app);
 Run add_train(CLI::App& app);
-Run add_learn(CLI::App& app);  // with training (SSCAPE_BUILD_TRAINING)
+Run add_learn(CLI::App& app);      // with training (SSCAPE_BUILD_TRAINING)
+Run add_bootstrap(CLI::App& app);  // with training
 Run add_fit(CLI::App& app);
 Run add_simulate(CLI::App& app);
 Run add_measure(CLI::App& app);
@@ -82,9 +83,6 @@ double units_to_metres(const std::string& units);
 // millimetres spans millimetres. Says which units were assumed (given: by --units) and which would
 // give a body's size. Returns the span, metres.
 double check_body_size(const std::string& path, const std::vector<Eigen::Vector3d>& metres, const std::string& units, bool given);
-
-// The rotation taking the named scan axis (--up: x, y, z, -x, ...) to +Y, the model's up.
-Eigen::Matrix3d up_rotation(const std::string& up);
 
 // path with suffix inserted before its extension: ("out/fit.obj", "_frame1") -> "out/fit_frame1.obj".
 std::string with_suffix(const std::string& path, const std::string& suffix);

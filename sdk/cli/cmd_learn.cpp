@@ -7,10 +7,9 @@
 #include "common/error.hpp"
 #include "io/readers.hpp"
 #include "learning/learn_model.hpp"
+#include "learning/registration_record.hpp"
 #include "sscape_format/model_io.hpp"
 #include "synthesis/model.hpp"
-
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -31,57 +30,6 @@ struct Options {
 };
 
 std::string stem_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
-
-// The registration's report: the mesh's path with .json. Gives the scan's units and up axis (the
-// mesh is written in the scan's frame) and the model fit.
-nlohmann::json read_report(const std::string& mesh) {
-    const std::string path = std::filesystem::path(mesh).replace_extension(".json").string();
-    std::ifstream f(path);
-    if (!f) throw std::runtime_error(mesh + ": no registration report " + path + " (sscape register --report writes it)");
-    try {
-        return nlohmann::json::parse(f);
-    } catch (const nlohmann::json::exception& e) {
-        throw std::runtime_error(path + ": not a registration report: " + e.what());
-    }
-}
-
-learning::RegisteredScan read_registration(const std::string& path, const Model& model, bool need_fit) {
-    const nlohmann::json report = read_report(path);
-    learning::RegisteredScan s;
-    s.name = path;
-    const std::string up = report.value("scan_up", "y");
-    const double to_metres = report.value("scan_units_to_metres", 1.0);
-    if (!std::isfinite(to_metres) || to_metres <= 0 || to_metres > 1)
-        throw std::runtime_error(path + ": the report's scan_units_to_metres " + std::to_string(to_metres) + " is not a unit");
-    static const std::vector<std::string> axes = {"x", "y", "z", "-x", "-y", "-z"};
-    if (std::find(axes.begin(), axes.end(), up) == axes.end()) throw std::runtime_error(path + ": the report's scan_up '" + up + "' is no axis");
-    const Eigen::Matrix3d R = up_rotation(up);
-    for (const auto& p : io::read_points(path).points) s.vertices.push_back(R * (p * to_metres));
-    if (s.vertices.size() != model.vertex_count())
-        throw std::runtime_error(path + ": " + std::to_string(s.vertices.size()) + " vertices; the model has " + std::to_string(model.vertex_count()) +
-                                 " (was it registered with this model?)");
-    if (!report.contains("fit")) {
-        if (need_fit) throw std::runtime_error(path + ": the report has no model fit (registered with --start rigid or rbf); use --posture none");
-        return s;
-    }
-    try {
-        const auto& fit = report.at("fit");
-        const std::vector<double> shape = fit.at("shape"), rotations = fit.at("rotations_xyzw"), translation = fit.at("translation_m");
-        const uint32_t J = model.joint_count();
-        if (rotations.size() != 4 * std::size_t(J) || translation.size() != 3 || shape.size() > model.component_count())
-            throw std::runtime_error("the fit's sizes do not match the model");
-        s.fit.shape = shape;
-        for (uint32_t j = 0; j < J; ++j) s.fit.pose.emplace_back(rotations[4 * j + 3], rotations[4 * j], rotations[4 * j + 1], rotations[4 * j + 2]);
-        s.fit.translation = Eigen::Vector3d(translation[0], translation[1], translation[2]);
-        s.fit.scale = fit.at("scale").get<double>();
-        s.has_fit = true;
-    } catch (const nlohmann::json::exception& e) {
-        throw std::runtime_error(path + ": the report's fit is malformed: " + e.what());
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error(path + ": " + e.what());
-    }
-    return s;
-}
 
 // A CSV of known attributes: a header "scan,NAME,...", then one row per registration, named by the
 // registration's file name without its extension, numbers only (no quoting: a table of numbers).
@@ -146,7 +94,7 @@ int run_learn(const Options& o) {
         throw UsageError("--components " + std::to_string(o.components) + " needs more than that many registrations (" +
                          std::to_string(o.registrations.size()) + " given)");
     std::vector<learning::RegisteredScan> scans;
-    for (const auto& path : o.registrations) scans.push_back(read_registration(path, model, spec.posture == learning::Posture::Skeleton));
+    for (const auto& path : o.registrations) scans.push_back(learning::read_registration_record(path, model, spec.posture == learning::Posture::Skeleton).registered);
     if (!o.attributes.empty()) spec.attributes = read_attributes(o.attributes, scans);
     std::ostringstream prov;
     prov << "registrations:";

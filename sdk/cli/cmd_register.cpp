@@ -5,6 +5,7 @@
 #include "progress.hpp"
 
 #include "capi/cpp_access.hpp"
+#include "common/rigid.hpp"
 #include "export/mesh_writers.hpp"
 #include "io/readers.hpp"
 #include "render/registration_picture.hpp"
@@ -44,7 +45,7 @@ int run_register(const Options& o) {
 
     // The scan, in metres and turned so that its up axis is +Y (undone on the result).
     const double to_metres = o.units.empty() ? 1.0 : units_to_metres(o.units);
-    const Eigen::Matrix3d R = up_rotation(o.up);
+    const Eigen::Matrix3d R = up_axis_rotation(o.up);
     const io::PointFile pf = io::read_points(o.scan);
     std::vector<Eigen::Vector3d> metres;
     for (const auto& p : pf.points) metres.push_back(R * (p * to_metres));
@@ -175,23 +176,17 @@ int run_register(const Options& o) {
         std::vector<double> error(V);
         for (uint32_t v = 0; v < V; ++v) error[v] = distance[v];
         // Drawn upright, facing the viewer when the fit found the body's heading (else as scanned).
-        Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
-        Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+        render::PictureFrame frame;
         if (def.start == SSC_REGISTRATION_START_MODEL) {
             const uint32_t J = ssc_model_joint_count(model);
             std::vector<float> rotations(4ull * J), translation(3);
             check(ssc_registration_get_fit(reg, nullptr, 0, rotations.data(), J, translation.data(), nullptr), "fit");
-            // The root's pose rotation acts in its rest frame (R0): the body turned by R0 P R0^T.
-            const float* r0 = model_of(model).data().skeleton.rest_orientations.data();
-            const Eigen::Matrix3d R0 = Eigen::Quaterniond(r0[3], r0[0], r0[1], r0[2]).normalized().toRotationMatrix();
-            const Eigen::Quaterniond root(rotations[3], rotations[0], rotations[1], rotations[2]);
-            // Keep only the turn about the vertical: a person stands upright in a scan.
-            const Eigen::Vector3d forward = R0 * root.normalized().toRotationMatrix() * R0.transpose() * Eigen::Vector3d::UnitZ();
-            const double heading = std::atan2(forward.x(), forward.z());
-            frame = Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY()).toRotationMatrix();
-            origin = Eigen::Vector3d(translation[0], translation[1], translation[2]);
+            fitting::FitState fit;
+            for (uint32_t j = 0; j < J; ++j) fit.pose.emplace_back(rotations[4 * j + 3], rotations[4 * j], rotations[4 * j + 1], rotations[4 * j + 2]);
+            fit.translation = Eigen::Vector3d(translation[0], translation[1], translation[2]);
+            frame = render::fit_picture_frame(model_of(model), fit);
         }
-        render::write_registration_picture(o.png, model_of(model), frame, origin, metres, registered, error);
+        render::write_registration_picture(o.png, model_of(model), frame, metres, registered, error);
         std::printf("wrote %s\n", o.png.c_str());
     }
     return 0;

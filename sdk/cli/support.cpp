@@ -132,15 +132,4 @@ double check_body_size(const std::string& path, const std::vector<Eigen::Vector3
     throw std::runtime_error(message + hint);
 }
 
-// The rotation taking the named scan axis to +Y (the model's up), e.g. "z" or "-y".
-Eigen::Matrix3d up_rotation(const std::string& up) {
-    Eigen::Vector3d axis = Eigen::Vector3d::UnitY();
-    const bool negative = !up.empty() && up[0] == '-';
-    const char a = up.empty() ? 'y' : up.back();
-    if (a == 'x') axis = Eigen::Vector3d::UnitX();
-    if (a == 'z') axis = Eigen::Vector3d::UnitZ();
-    if (negative) axis = -axis;
-    return Eigen::Quaterniond::FromTwoVectors(axis, Eigen::Vector3d::UnitY()).toRotationMatrix();
-}
-
 }  // namespace ssc::cli

@@ -1,5 +1,6 @@
 #include "common/rigid.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
@@ -19,6 +20,15 @@ Similarity align_points(const Eigen::Matrix3Xd& src, const Eigen::Matrix3Xd& dst
     if (with_scale && var > 0) out.scale = svd.singularValues().dot(sign) / var;
     out.t = md - out.scale * out.R * ms;
     return out;
+}
+
+Eigen::Matrix3d up_axis_rotation(const std::string& up) {
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitY();
+    const char a = up.empty() ? 'y' : up.back();
+    if (a == 'x') axis = Eigen::Vector3d::UnitX();
+    if (a == 'z') axis = Eigen::Vector3d::UnitZ();
+    if (!up.empty() && up[0] == '-') axis = -axis;
+    return Eigen::Quaterniond::FromTwoVectors(axis, Eigen::Vector3d::UnitY()).toRotationMatrix();
 }
 
 }  // namespace ssc

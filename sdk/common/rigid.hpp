@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include <string>
+
 namespace ssc {
 
 struct Similarity {
@@ -15,5 +17,9 @@ struct Similarity {
 // src and dst: one point per column, same count (>= 3 for a unique answer). with_scale false
 // fixes the scale at 1 (rigid).
 Similarity align_points(const Eigen::Matrix3Xd& src, const Eigen::Matrix3Xd& dst, bool with_scale);
+
+// The rotation taking a scan's named up axis ("x", "y", "z", "-x", "-y", "-z"; empty: "y") to +Y,
+// the model's up. Anything else is treated as "y"; callers validate the name.
+Eigen::Matrix3d up_axis_rotation(const std::string& up);
 
 }  // namespace ssc

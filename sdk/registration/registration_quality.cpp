@@ -19,7 +19,7 @@ DistanceSummary summary(std::vector<double> d) {
     s.count = d.size();
     if (d.empty()) return s;
     double sum = 0;
-    for (double x : d) sum += x;
+    for (double x : d) sum += x, s.beyond_20mm += x > 0.020;
     s.mean = sum / double(d.size());
     const auto at = [&](double q) {
         const std::size_t k = std::min(d.size() - 1, std::size_t(q * double(d.size())));

@@ -21,6 +21,7 @@ constexpr std::array<double, 4> kBelow = {0.002, 0.005, 0.010, 0.020};
 struct DistanceSummary {
     double mean = 0, median = 0, p95 = 0;  // metres
     std::size_t count = 0;
+    std::size_t beyond_20mm = 0;  // of them farther than 20 mm: scan the registration does not follow (or clutter)
 };
 
 struct RegionQuality {

@@ -1,9 +1,11 @@
 #include "render/registration_picture.hpp"
 
-#include "render/raster.hpp"
 #include "render/text.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
+#include <cmath>
 
 namespace ssc::render {
 
@@ -21,16 +23,30 @@ void error_colour(double e, uint8_t out[3]) {
     out[2] = 60;
 }
 
+const uint8_t kInk[3] = {40, 40, 40};
+
 }  // namespace
 
-void write_registration_picture(const std::string& path, const Model& model, const Eigen::Matrix3d& frame_R,
-                                const Eigen::Vector3d& frame_t, const std::vector<Eigen::Vector3d>& points,
-                                const std::vector<Eigen::Vector3d>& registered, const std::vector<double>& error) {
+PictureFrame fit_picture_frame(const Model& model, const fitting::FitState& fit) {
+    PictureFrame f;
+    if (fit.pose.empty()) return f;
+    // The root's pose rotation acts in its rest frame (R0): the body turned by R0 P R0^T.
+    const float* r0 = model.data().skeleton.rest_orientations.data();
+    const Eigen::Matrix3d R0 = Eigen::Quaterniond(r0[3], r0[0], r0[1], r0[2]).normalized().toRotationMatrix();
+    const Eigen::Vector3d forward = R0 * fit.pose[0].normalized().toRotationMatrix() * R0.transpose() * Eigen::Vector3d::UnitZ();
+    f.R = Eigen::AngleAxisd(std::atan2(forward.x(), forward.z()), Eigen::Vector3d::UnitY()).toRotationMatrix();
+    f.t = fit.translation;
+    return f;
+}
+
+void draw_registration(Image& img, int x0, int y0, int width, int height, bool side, const Model& model, const PictureFrame& frame,
+                       const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& registered,
+                       const std::vector<double>& error) {
     auto packed = [&](const std::vector<Eigen::Vector3d>& v) {
         std::vector<float> out;
         out.reserve(3 * v.size());
         for (const auto& p : v) {
-            const Eigen::Vector3d c = frame_R.transpose() * (p - frame_t);
+            const Eigen::Vector3d c = frame.R.transpose() * (p - frame.t);
             out.insert(out.end(), {float(c.x()), float(c.y()), float(c.z())});
         }
         return out;
@@ -51,18 +67,18 @@ void write_registration_picture(const std::string& path, const Model& model, con
         }
         error_colour(none ? -1 : e, &colours[3 * std::size_t(t)]);
     }
-    const int cell_h = 640, cell_w = 360;
-    Image img(4 * cell_w, cell_h + 24);
+    const int views = side ? 2 : 1, cell_w = width / (2 * views);
     std::vector<float> depth;
-    const uint8_t dot[3] = {200, 40, 40}, ink[3] = {40, 40, 40};
-    const float scale = 0.92f * cell_h / std::max(hi[1] - lo[1], 1e-3f);
+    const uint8_t dot[3] = {200, 40, 40}, skin[3] = {225, 190, 160};
+    const float wide = std::max(hi[0] - lo[0], side ? hi[2] - lo[2] : 0.0f);
+    const float scale = 0.92f * std::min(float(height) / std::max(hi[1] - lo[1], 1e-3f), float(cell_w) / std::max(wide, 1e-3f));
     for (int col = 0; col < 2; ++col)
-        for (int view = 0; view < 2; ++view) {
+        for (int view = 0; view < views; ++view) {
             Viewport vp;
-            vp.x0 = (2 * col + view) * cell_w;
-            vp.y0 = 24;
+            vp.x0 = x0 + (views * col + view) * cell_w;
+            vp.y0 = y0;
             vp.width = cell_w;
-            vp.height = cell_h;
+            vp.height = height;
             vp.centre_x = view == 0 ? 0.5f * (lo[0] + hi[0]) : -0.5f * (lo[2] + hi[2]);
             vp.centre_y = 0.5f * (lo[1] + hi[1]);
             vp.scale = scale;
@@ -71,12 +87,43 @@ void write_registration_picture(const std::string& path, const Model& model, con
                 const std::size_t n = pv.size() / 3, step = std::max<std::size_t>(1, n / 40000);
                 for (std::size_t i = 0; i < n; i += step) draw_point(img, vp, v, &pv[3 * i], 0, dot);
             } else {
-                const uint8_t skin[3] = {225, 190, 160};
                 draw_mesh(img, depth, vp, v, rv.data(), tris.data(), T, skin, colours.data());
             }
         }
-    draw_text(img, 8, 6, "scan", 2, ink);
-    draw_text(img, 2 * cell_w + 8, 6, "registration: green 0, yellow 5 mm, red 10 mm+, grey none", 2, ink);
+}
+
+void write_registration_picture(const std::string& path, const Model& model, const PictureFrame& frame,
+                                const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& registered,
+                                const std::vector<double>& error) {
+    const int cell_h = 640, cell_w = 360;
+    Image img(4 * cell_w, cell_h + 24);
+    draw_registration(img, 0, 24, 4 * cell_w, cell_h, true, model, frame, points, registered, error);
+    draw_text(img, 8, 6, "scan", 2, kInk);
+    draw_text(img, 2 * cell_w + 8, 6, "registration: green 0, yellow 5 mm, red 10 mm+, grey none", 2, kInk);
+    write_png(path, img);
+}
+
+void write_contact_sheet(const std::string& path, const Model& model, const std::vector<SheetEntry>& entries, const std::string& title) {
+    const int columns = 4, cell_w = 400, picture_h = 420, caption_h = 40, header_h = 30;
+    const int count = int(entries.size()), rows = std::max(1, (count + columns - 1) / columns);
+    Image img(columns * cell_w, header_h + rows * (picture_h + caption_h));
+    draw_text(img, 8, 8, title + " - scan | registration (green 0, yellow 5 mm, red 10 mm+, grey none)", 2, kInk);
+    const uint8_t red[3] = {210, 30, 30}, green[3] = {30, 140, 50};
+    for (int i = 0; i < count; ++i) {
+        const SheetEntry& e = entries[std::size_t(i)];
+        const int x0 = (i % columns) * cell_w, y0 = header_h + (i / columns) * (picture_h + caption_h), y1 = y0 + picture_h + caption_h;
+        if (!e.registered.empty()) draw_registration(img, x0, y0, cell_w, picture_h, false, model, e.frame, e.points, e.registered, e.error);
+        if (!e.accepted)  // a red frame round a rejected registration
+            for (int k = 0; k < 3; ++k) {
+                for (int x = x0; x < x0 + cell_w; ++x) img.set(x, y0 + k, red[0], red[1], red[2]), img.set(x, y1 - 1 - k, red[0], red[1], red[2]);
+                for (int y = y0; y < y1; ++y) img.set(x0 + k, y, red[0], red[1], red[2]), img.set(x0 + cell_w - 1 - k, y, red[0], red[1], red[2]);
+            }
+        draw_text(img, x0 + 8, y0 + picture_h + 4, e.name + (e.accepted ? ": accepted" : ": REJECTED"), 2, e.accepted ? green : red);
+        // The reason, cut to the cell (the decisions file has it whole).
+        std::string why = e.reason;
+        while (!why.empty() && text_width(why, 1) > cell_w - 16) why.pop_back();
+        draw_text(img, x0 + 8, y0 + picture_h + 24, why, 1, kInk);
+    }
     write_png(path, img);
 }
 

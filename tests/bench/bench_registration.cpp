@@ -252,12 +252,12 @@ int main(int argc, char** argv) {
                     std::fprintf(f, "f %u %u %u\n", triangles[i] + 1, triangles[i + 1] + 1, triangles[i + 2] + 1);
                 std::fclose(f);
             }
-            render::write_registration_picture(png + std::to_string(t) + ".png", model, Eigen::Matrix3d::Identity(), Vector3d::Zero(),
+            render::write_registration_picture(png + std::to_string(t) + ".png", model, render::PictureFrame{},
                                                scan.cloud.points, r.vertices, e);
             std::vector<double> ef(truth.vertices.size());
             const auto fitted = simulation::fitted_vertices(model, r.fit.frames[0]);
             for (std::size_t v = 0; v < e.size(); ++v) ef[v] = (fitted[v] - truth.vertices[v]).norm();
-            render::write_registration_picture(png + std::to_string(t) + "_fit.png", model, Eigen::Matrix3d::Identity(), Vector3d::Zero(),
+            render::write_registration_picture(png + std::to_string(t) + "_fit.png", model, render::PictureFrame{},
                                                scan.cloud.points, fitted, ef);
         }
         fit_errors.push_back(fit_err), errors.push_back(err), body_errors.push_back(body), scan_means.push_back(q.scan_to_registration.mean);

@@ -1,0 +1,332 @@
+#include "learning/bootstrap.hpp"
+
+#include "common/error.hpp"
+#include "common/files.hpp"
+#include "common/rigid.hpp"
+#include "io/readers.hpp"
+#include "registration/registrar.hpp"
+#include "render/registration_picture.hpp"
+#include "sscape_format/model_io.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+namespace ssc::learning {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string round_dir(const std::string& out, uint32_t round) { return (fs::path(out) / ("round_" + std::to_string(round))).string(); }
+
+void write_text(const std::string& path, const std::string& text) { write_file_atomically(path, text.data(), text.size()); }
+
+std::vector<unsigned char> read_bytes(const std::string& path) {
+    const std::string s = read_regular_file(path, 1ull << 30);
+    return std::vector<unsigned char>(s.begin(), s.end());
+}
+
+// CSV cells: quoted when they hold a comma, a quote or a line break (reasons quote messages).
+std::string csv_cell(const std::string& s) {
+    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+    std::string out = "\"";
+    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' || c == '\r' ? ' ' : c);
+    return out + "\"";
+}
+
+std::vector<std::string> csv_cells(const std::string& line) {
+    std::vector<std::string> cells(1);
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cells.back() += '"', ++i;
+            else if (c == '"') quoted = false;
+            else cells.back() += c;
+        } else if (c == '"') quoted = true;
+        else if (c == ',') cells.emplace_back();
+        else if (c != '\r') cells.back() += c;
+    }
+    for (auto& cell : cells) {
+        while (!cell.empty() && cell.back() == ' ') cell.pop_back();
+        while (!cell.empty() && cell.front() == ' ') cell.erase(cell.begin());
+    }
+    return cells;
+}
+
+// The scan in the model's frame (metres, +Y up) and its landmarks.
+registration::Scan load_scan(const ScanInput& in, const Model& model, const BootstrapSpec& spec) {
+    registration::Scan scan;
+    const Eigen::Matrix3d R = up_axis_rotation(spec.up);
+    const io::PointFile pf = io::read_points(in.path);
+    for (const auto& p : pf.points) scan.cloud.points.push_back(R * (p * spec.scan_units_to_metres));
+    for (const auto& n : pf.normals) scan.cloud.normals.push_back(R * n);
+    if (!in.landmarks.empty()) {
+        std::unordered_map<std::string, uint32_t> by_name;
+        const auto& marks = model.data().landmarks;
+        for (uint32_t l = 0; l < marks.size(); ++l) by_name[io::normalized_landmark_name(marks[l].name)] = l;
+        for (const auto& r : io::read_lnd(in.landmarks)) {  // read_lnd: the file's numbers / 1000
+            const auto it = by_name.find(io::normalized_landmark_name(r.name));
+            if (it != by_name.end()) scan.landmarks.push_back({it->second, R * (r.position * (spec.lnd_units_to_metres * 1e3)), 1.0});
+        }
+    }
+    return scan;
+}
+
+struct ScanState {
+    bool ok = false;         // registered (now or before)
+    std::string failure;     // why not
+    RegistrationRecord record;
+    Inspection inspection;
+    bool accepted = false, by_person = false;
+    std::string reason;
+};
+
+void check_spec(const BootstrapSpec& spec) {
+    SSC_REQUIRE_ARG_S(spec.scans.size() >= 3, "bootstrap: " << spec.scans.size() << " scans; a model needs at least 3");
+    SSC_REQUIRE_ARG(spec.rounds >= 1 && spec.rounds <= 100, "bootstrap: rounds must be 1 to 100");
+    SSC_REQUIRE_ARG(!spec.out_dir.empty(), "bootstrap: no output folder");
+    SSC_REQUIRE_ARG(std::isfinite(spec.scan_units_to_metres) && spec.scan_units_to_metres > 0 && spec.scan_units_to_metres <= 1,
+                    "bootstrap: the scans' units must be metres or smaller");
+    std::set<std::string> names;
+    for (const auto& s : spec.scans) {
+        SSC_REQUIRE_ARG(!s.name.empty() && s.name.find_first_of("/\\,\"\n") == std::string::npos,
+                        "bootstrap: a scan name must be a file stem (no /, comma or quote): '" + s.name + "'");
+        SSC_REQUIRE_ARG_S(names.insert(s.name).second, "bootstrap: two scans are named " << s.name << " (names come from file stems)");
+    }
+    for (const auto& [name, d] : spec.decisions)
+        SSC_REQUIRE_ARG_S(names.count(name), "bootstrap: the decisions name scan '" << name << "', which is not in the collection");
+}
+
+}  // namespace
+
+std::map<std::string, PersonDecision> read_decisions(const std::string& path) {
+    std::istringstream in(read_regular_file(path, 64ull << 20));
+    std::string line;
+    std::map<std::string, PersonDecision> out;
+    if (!std::getline(in, line) || csv_cells(line).at(0) != "scan")
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, path + ": the first line must be the header scan,decision,reason,by");
+    for (std::size_t number = 2; std::getline(in, line); ++number) {
+        if (line.empty() || line == "\r") continue;
+        const std::vector<std::string> c = csv_cells(line);
+        const std::string where = path + ":" + std::to_string(number) + ": ";
+        if (c.size() < 2 || (c[1] != "accept" && c[1] != "reject"))
+            throw Error(SSC_ERROR_INVALID_ARGUMENT, where + "expected scan,accept|reject[,reason[,by]]");
+        if (c.size() >= 4 && c[3] == "auto") continue;
+        if (!out.emplace(c[0], PersonDecision{c[1] == "accept", c.size() >= 3 ? c[2] : std::string()}).second)
+            throw Error(SSC_ERROR_INVALID_ARGUMENT, where + "scan " + c[0] + " is decided twice");
+    }
+    return out;
+}
+
+std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_model, const BootstrapSpec& spec, const BootstrapProgress& progress) {
+    check_spec(spec);
+    auto say = [&](const std::string& line) {
+        if (progress && !progress(line)) throw Error(SSC_ERROR_CANCELLED, "bootstrap: stopped; run it again to resume");
+    };
+    ThreadPool pool(spec.threads ? spec.threads : std::max(1u, std::thread::hardware_concurrency()));
+    fs::create_directories(round_dir(spec.out_dir, 0));
+    const std::string start_path = round_dir(spec.out_dir, 0) + "/model.sscape";
+    if (!fs::exists(start_path) || read_bytes(start_path) != initial_model) {
+        format::read_model(initial_model.data(), initial_model.size());  // refuses a bad model before anything is written
+        write_file_atomically(start_path, initial_model.data(), initial_model.size());
+    }
+
+    std::vector<RoundReport> reports;
+    std::string rounds_csv = "round,scans,registered,reused,failed,accepted,rejected,register_seconds,learn_seconds,components\n";
+    for (uint32_t round = 1; round <= spec.rounds; ++round) {
+        RoundReport rep;
+        rep.round = round;
+        const std::string dir = round_dir(spec.out_dir, round), previous = round_dir(spec.out_dir, round - 1) + "/model.sscape";
+        fs::create_directories(dir + "/registrations");
+        const std::vector<unsigned char> model_bytes = read_bytes(previous);
+        const std::string digest = model_digest(model_bytes);
+        const Model model(format::read_model(model_bytes.data(), model_bytes.size()), nullptr);
+        registration::Registrar registrar(model, spec.registration);
+
+        // Register (or reuse) and inspect every scan.
+        const auto t_register = Clock::now();
+        std::vector<ScanState> states(spec.scans.size());
+        for (std::size_t i = 0; i < spec.scans.size(); ++i) {
+            const ScanInput& in = spec.scans[i];
+            ScanState& st = states[i];
+            const std::string mesh = dir + "/registrations/" + in.name + ".ply";
+            std::string how = "reused";
+            if (fs::exists(record_report_path(mesh))) {
+                try {
+                    st.record = read_registration_record(mesh, model, false);
+                    st.ok = st.record.model_digest == digest;
+                } catch (const Error&) {
+                    st.ok = false;  // made again below
+                }
+            }
+            if (!st.ok) {
+                how = "registered";
+                try {
+                    registration::Scan scan = load_scan(in, model, spec);
+                    registrar.set_scan(std::move(scan.cloud), std::move(scan.triangles));
+                    registrar.set_landmarks(std::move(scan.landmarks));
+                    const registration::Registration& r = registrar.run({}, &pool);
+                    RegistrationRecord& rec = st.record;
+                    rec = {};
+                    rec.scan = in.path;
+                    rec.scan_units_to_metres = spec.scan_units_to_metres;
+                    rec.scan_up = spec.up;
+                    rec.seconds = r.report.seconds;
+                    rec.fit_seconds = r.report.fit_seconds;
+                    rec.registered.name = mesh;
+                    rec.registered.vertices = r.vertices;
+                    if (!r.fit.frames.empty()) rec.registered.fit = r.fit.frames[0], rec.registered.has_fit = true;
+                    rec.quality = r.report.quality;
+                    rec.model_digest = digest;
+                    write_registration_record(mesh, model, rec);
+                    st.ok = true;
+                    ++rep.registered;
+                } catch (const Error& e) {
+                    if (e.status() != SSC_ERROR_INVALID_ARGUMENT) throw;  // I/O, memory, cancel: stop (resumable)
+                    st.failure = e.what();
+                    ++rep.failed;
+                }
+            } else {
+                ++rep.reused;
+            }
+            if (st.ok) {
+                st.inspection = inspect_registration(model, st.record, spec.rules);
+                st.accepted = st.inspection.accepted;
+                for (const auto& r : st.inspection.reasons) st.reason += (st.reason.empty() ? "" : "; ") + r;
+            } else {
+                st.reason = "registration failed: " + st.failure;
+            }
+            const auto person = spec.decisions.find(in.name);
+            if (person != spec.decisions.end()) {
+                st.by_person = true;
+                st.accepted = person->second.accept && st.ok;  // a failed registration has nothing to learn from
+                st.reason = person->second.reason.empty() ? "decided by a person" : person->second.reason;
+            }
+            st.accepted ? ++rep.accepted : ++rep.rejected;
+            char line[160];
+            std::snprintf(line, sizeof line, "round %u: %s %zu of %zu: %s %s", round, in.name.c_str(), i + 1, spec.scans.size(),
+                          st.ok ? how.c_str() : "failed", st.accepted ? "accepted" : "rejected");
+            say(std::string(line) + (st.accepted || st.reason.empty() ? "" : " (" + st.reason + ")"));
+        }
+        rep.register_seconds = since(t_register);
+
+        // The verdicts, then the figures they were drawn from (for review; read_decisions reads the first four columns).
+        std::string decisions = "scan,decision,reason,by,lowest_region,lowest_within_20mm,most_unexplained_pct,folded_pct,stretched_pct,worst_joint,joint_excess_deg\n";
+        for (std::size_t i = 0; i < states.size(); ++i) {
+            const ScanState& st = states[i];
+            decisions += spec.scans[i].name + "," + (st.accepted ? "accept" : "reject") + "," + csv_cell(st.reason) + "," + (st.by_person ? "person" : "auto");
+            if (st.ok) {
+                const registration::RegionQuality* low = nullptr;
+                double unexplained = 0;
+                const double all = double(std::max<std::size_t>(1, st.record.quality.scan_to_registration.count));
+                for (const auto& q : st.record.quality.regions) {
+                    if (!low || q.below[3] < low->below[3]) low = &q;
+                    unexplained = std::max(unexplained, double(q.scan_to_registration.beyond_20mm) / all);
+                }
+                char figures[200];
+                std::snprintf(figures, sizeof figures, ",%s,%.3f,%.2f,%.3f,%.3f,%s,%.1f", low ? low->region.c_str() : "", low ? low->below[3] : 0.0, 100 * unexplained,
+                              100 * st.inspection.folded, 100 * st.inspection.stretched, st.inspection.worst_joint.c_str(),
+                              st.inspection.joint_excess * 180 / M_PI);
+                decisions += figures;
+            }
+            decisions += "\n";
+        }
+        write_text(dir + "/decisions.csv", decisions);
+
+        // Contact sheets, a page at a time (each page reads its scans again: memory stays flat).
+        if (spec.sheet_entries > 0) {
+            const std::size_t per = std::size_t(spec.sheet_entries), pages = (states.size() + per - 1) / per;
+            for (std::size_t page = 0; page < pages; ++page) {
+                std::vector<render::SheetEntry> entries;
+                for (std::size_t i = page * per; i < std::min(states.size(), (page + 1) * per); ++i) {
+                    render::SheetEntry e;
+                    e.name = spec.scans[i].name;
+                    e.accepted = states[i].accepted;
+                    e.reason = states[i].reason;
+                    if (states[i].ok) {
+                        const RegistrationRecord& rec = states[i].record;
+                        e.frame = render::fit_picture_frame(model, rec.registered.fit);
+                        e.points = load_scan(spec.scans[i], model, spec).cloud.points;
+                        e.registered = rec.registered.vertices;
+                        e.error = rec.quality.vertex_distance;
+                        e.error.resize(e.registered.size(), -1.0);
+                    }
+                    entries.push_back(std::move(e));
+                }
+                char name[40];
+                std::snprintf(name, sizeof name, "/contact_sheet_%02zu.png", page + 1);
+                char title[120];
+                std::snprintf(title, sizeof title, "round %u, page %zu of %zu: %zu accepted, %zu rejected", round, page + 1, pages, rep.accepted,
+                              rep.rejected);
+                render::write_contact_sheet(dir + name, model, entries, title);
+                rep.sheets.push_back(dir + name);
+            }
+        }
+
+        // Learn from the accepted registrations (or reuse the model learned from the same ones).
+        std::vector<RegisteredScan> accepted;
+        std::vector<std::string> accepted_names;
+        for (std::size_t i = 0; i < states.size(); ++i)
+            if (states[i].accepted) accepted.push_back(states[i].record.registered), accepted_names.push_back(spec.scans[i].name);
+        if (accepted.size() < 3)
+            throw Error(SSC_ERROR_INVALID_ARGUMENT, "bootstrap: round " + std::to_string(round) + " accepted " + std::to_string(accepted.size()) + " of " +
+                                                        std::to_string(states.size()) + " registrations; a model needs at least 3 (see " + dir +
+                                                        "/decisions.csv: edit it and pass it with --decisions)");
+        LearnSpec learn = spec.learn;
+        learn.components = std::min<uint32_t>(learn.components, uint32_t(accepted.size() - 1));
+        std::ostringstream prov;
+        prov << "bootstrap round " << round << " of " << spec.rounds << "; " << accepted.size() << " of " << states.size() << " registrations accepted";
+        learn.provenance = prov.str();
+        nlohmann::ordered_json settings{{"start_model_digest", digest}, {"accepted", accepted_names}, {"components", learn.components},
+                                        {"posture", posture_name(learn.posture)}, {"name", learn.name}, {"license", learn.license},
+                                        {"provenance", learn.provenance}};
+        const std::string model_path = dir + "/model.sscape", round_json = dir + "/round.json";
+        const auto t_learn = Clock::now();
+        if (fs::exists(round_json) && fs::exists(model_path)) {
+            try {
+                const nlohmann::json old = nlohmann::json::parse(read_regular_file(round_json, 64ull << 20));
+                rep.model_reused = old.at("settings") == nlohmann::json(settings) && old.at("model_digest") == model_digest(read_bytes(model_path));
+            } catch (const std::exception&) {
+                rep.model_reused = false;
+            }
+        }
+        if (!rep.model_reused) {
+            say("round " + std::to_string(round) + ": learning from " + std::to_string(accepted.size()) + " registrations");
+            LearnReport lr;
+            const std::vector<unsigned char> bytes = format::write_model(learn_model(model.data(), accepted, learn, &lr));
+            write_file_atomically(model_path, bytes.data(), bytes.size());
+            nlohmann::ordered_json j{{"round", round}, {"settings", settings}, {"model_digest", model_digest(bytes)},
+                                     {"explained", lr.explained}, {"components", lr.components}};
+            write_text(round_json, j.dump(1) + "\n");
+        }
+        rep.learn_seconds = since(t_learn);
+        rep.components = learn.components;
+        rep.model_path = model_path;
+        char line[200];
+        std::snprintf(line, sizeof line, "round %u: %zu registered, %zu reused, %zu failed; %zu accepted, %zu rejected; model %s (%u components)%s",
+                      round, rep.registered, rep.reused, rep.failed, rep.accepted, rep.rejected, model_path.c_str(), rep.components,
+                      rep.model_reused ? ", reused" : "");
+        say(line);
+        std::snprintf(line, sizeof line, "%u,%zu,%zu,%zu,%zu,%zu,%zu,%.1f,%.1f,%u\n", round, states.size(), rep.registered, rep.reused, rep.failed,
+                      rep.accepted, rep.rejected, rep.register_seconds, rep.learn_seconds, rep.components);
+        rounds_csv += line;
+        reports.push_back(rep);
+    }
+    const std::vector<unsigned char> last = read_bytes(reports.back().model_path);
+    write_file_atomically((fs::path(spec.out_dir) / "model.sscape").string(), last.data(), last.size());
+    write_text((fs::path(spec.out_dir) / "rounds.csv").string(), rounds_csv);
+    return reports;
+}
+
+}  // namespace ssc::learning

@@ -1,0 +1,83 @@
+// Bootstrapping (the reference paper's passes over a scan collection): register every scan with
+// the current model, inspect each registration (acceptance.hpp), learn a model from the accepted
+// ones (learn_model.hpp), and register again with it. docs/learning.md walks through it.
+//
+// Everything stays on disk under the output folder, one folder per round:
+//   round_0/model.sscape                the starting model
+//   round_N/registrations/NAME.ply|json  each scan registered with round N-1's model (sscape register's format)
+//   round_N/decisions.csv               scan,decision,reason,by: the verdicts (by: auto, or person)
+//   round_N/contact_sheet_NN.png        each scan beside its registration, rejected ones marked
+//   round_N/model.sscape, round.json    the model learned from the accepted registrations
+//   model.sscape, rounds.csv            the last round's model; a line per round
+// A run that stops (interrupted, a full disk, too few accepted scans) resumes where it stopped: a
+// registration is reused when its report names the digest of the model it was made with, a round's
+// model when it was learned from the same registrations and settings. Every file is written
+// atomically, so a stop leaves no partial file.
+#pragma once
+
+#include "learning/acceptance.hpp"
+#include "learning/learn_model.hpp"
+#include "registration/register_scan.hpp"
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ssc::learning {
+
+struct ScanInput {
+    std::string name;       // unique; names its files in every round (the scan file's stem)
+    std::string path;       // PLY or OBJ
+    std::string landmarks;  // a CAESAR .lnd on the scan, or empty
+};
+
+// A person's verdict on a scan (from an edited decisions file): holds in every round.
+struct PersonDecision {
+    bool accept = false;
+    std::string reason;
+};
+
+struct BootstrapSpec {
+    std::vector<ScanInput> scans;
+    std::string out_dir;
+    uint32_t rounds = 3;
+    double scan_units_to_metres = 1;  // the scans' units
+    double lnd_units_to_metres = 1e-3;  // the landmark files' (the .lnd format's millimetres by default)
+    std::string up = "y";             // the scans' axis that is up
+    registration::RegistrationOptions registration;
+    AcceptanceRules rules;
+    LearnSpec learn;                  // components (capped at accepted - 1), posture, name, licence
+    std::map<std::string, PersonDecision> decisions;  // by scan name
+    uint32_t threads = 0;             // 0: every hardware thread
+    int sheet_entries = 12;           // registrations per contact sheet page; 0: no contact sheets
+};
+
+struct RoundReport {
+    uint32_t round = 0;
+    std::size_t registered = 0, reused = 0, failed = 0, accepted = 0, rejected = 0;
+    double register_seconds = 0, learn_seconds = 0;
+    uint32_t components = 0;
+    bool model_reused = false;
+    std::string model_path;
+    std::vector<std::string> sheets;
+};
+
+// Called with each line worth telling (a scan registered, a round's summary); returning false
+// stops the run (ssc::Error, CANCELLED) after the file being written.
+using BootstrapProgress = std::function<bool(const std::string& line)>;
+
+// Runs (or resumes) the rounds from the starting model's file bytes. Throws ssc::Error:
+// INVALID_ARGUMENT for bad settings (fewer than 3 scans, duplicate names, decisions naming no scan)
+// or a round with fewer than 3 accepted registrations (its decisions and sheets are on disk: edit
+// and pass the decisions, then run again); IO; CANCELLED.
+std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_model, const BootstrapSpec& spec,
+                                   const BootstrapProgress& progress = {});
+
+// Reads a decisions file: CSV scan,decision[,reason[,by]] with a header line; decision is accept or
+// reject. Rows whose `by` is "auto" are the tool's own verdicts and are skipped, so a person can
+// edit a round's decisions.csv (changing a row's decision and its by to "person") and pass it back.
+// Throws ssc::Error (IO; INVALID_ARGUMENT for a malformed row or a scan named twice).
+std::map<std::string, PersonDecision> read_decisions(const std::string& path);
+
+}  // namespace ssc::learning

@@ -1,0 +1,171 @@
+#include "learning/registration_record.hpp"
+
+#include "common/error.hpp"
+#include "common/files.hpp"
+#include "common/rigid.hpp"
+#include "export/mesh_writers.hpp"
+#include "io/readers.hpp"
+
+#include <nlohmann/json.hpp>
+
+#define XXH_INLINE_ALL  // header-only use of Debian's xxhash
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace ssc::learning {
+
+namespace {
+
+using nlohmann::ordered_json;
+
+const std::vector<std::string> kAxes = {"x", "y", "z", "-x", "-y", "-z"};
+constexpr uint64_t kMaxReport = 64ull << 20;
+
+ordered_json quality_json(const registration::DistanceSummary& d, const std::array<double, 4>& below) {
+    return ordered_json{{"scan_to_registration_mean_m", d.mean},
+                        {"scan_to_registration_median_m", d.median},
+                        {"scan_to_registration_p95_m", d.p95},
+                        {"scan_points", d.count},
+                        {"scan_points_beyond_20_mm", d.beyond_20mm},
+                        {"vertices_within_2_5_10_20_mm", {below[0], below[1], below[2], below[3]}}};
+}
+
+void quality_from_json(const ordered_json& j, registration::DistanceSummary& d, std::array<double, 4>& below) {
+    d.mean = j.at("scan_to_registration_mean_m").get<double>();
+    d.median = j.at("scan_to_registration_median_m").get<double>();
+    d.p95 = j.at("scan_to_registration_p95_m").get<double>();
+    d.count = j.value("scan_points", std::size_t(0));  // sscape register's reports have no counts
+    d.beyond_20mm = j.value("scan_points_beyond_20_mm", std::size_t(0));
+    const std::vector<double> b = j.at("vertices_within_2_5_10_20_mm");
+    SSC_REQUIRE_ARG(b.size() == 4, "vertices_within_2_5_10_20_mm needs 4 shares");
+    std::copy(b.begin(), b.end(), below.begin());
+}
+
+}  // namespace
+
+std::string record_report_path(const std::string& mesh_path) { return std::filesystem::path(mesh_path).replace_extension(".json").string(); }
+
+std::string model_digest(const std::vector<unsigned char>& model_file) {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(XXH3_64bits(model_file.data(), model_file.size())));
+    return hex;
+}
+
+void write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& r) {
+    const uint32_t V = model.vertex_count();
+    SSC_REQUIRE_ARG(r.registered.vertices.size() == V, "registration record: vertex count differs from the model's");
+    SSC_REQUIRE_ARG(std::find(kAxes.begin(), kAxes.end(), r.scan_up) != kAxes.end(), "registration record: scan_up is no axis");
+    // The mesh in the scan's frame and units, as `sscape register` writes it.
+    const Eigen::Matrix3d R = up_axis_rotation(r.scan_up);
+    std::vector<float> xyz(3ull * V);
+    for (uint32_t v = 0; v < V; ++v) {
+        const Eigen::Vector3d back = R.transpose() * r.registered.vertices[v] / r.scan_units_to_metres;
+        for (int a = 0; a < 3; ++a) xyz[3ull * v + std::size_t(a)] = float(back[a]);
+    }
+    exporters::MeshView mesh;
+    mesh.vertex_count = V;
+    mesh.positions = xyz.data();
+    mesh.triangle_count = uint32_t(model.data().mesh.triangles.size() / 3);
+    mesh.triangles = model.data().mesh.triangles.data();
+    exporters::write_mesh(mesh_path, mesh);
+
+    ordered_json j;
+    j["scan"] = r.scan;
+    j["scan_units_to_metres"] = r.scan_units_to_metres;
+    j["scan_up"] = r.scan_up;
+    j["seconds"] = r.seconds;
+    j["fit_seconds"] = r.fit_seconds;
+    if (!r.model_digest.empty()) j["model_digest"] = r.model_digest;
+    j["quality"] = quality_json(r.quality.scan_to_registration, r.quality.below);
+    ordered_json regions = ordered_json::object();
+    for (const auto& q : r.quality.regions) regions[q.region] = quality_json(q.scan_to_registration, q.below);
+    j["regions"] = regions;
+    if (r.registered.has_fit) {
+        const auto& f = r.registered.fit;
+        std::vector<double> rotations;
+        for (const auto& q : f.pose) rotations.insert(rotations.end(), {q.x(), q.y(), q.z(), q.w()});
+        j["fit"] = {{"shape", f.shape}, {"rotations_xyzw", rotations}, {"translation_m", {f.translation.x(), f.translation.y(), f.translation.z()}},
+                    {"scale", f.scale}, {"frame", "the scan's, turned so that scan_up is +Y, in metres"}};
+    }
+    if (!r.quality.vertex_distance.empty()) {
+        std::vector<double> mm;  // rounded to 0.01 mm: the report stays small
+        for (double d : r.quality.vertex_distance) mm.push_back(d < 0 ? -1.0 : std::round(d * 1e5) / 100);
+        j["vertex_distance_mm"] = mm;
+    }
+    const std::string text = j.dump(1) + "\n";
+    write_file_atomically(record_report_path(mesh_path), text.data(), text.size());
+}
+
+RegistrationRecord read_registration_record(const std::string& mesh_path, const Model& model, bool need_fit) {
+    const std::string path = record_report_path(mesh_path);
+    if (!std::filesystem::exists(path))
+        throw Error(SSC_ERROR_IO, mesh_path + ": no registration report " + path + " (sscape register --report writes it)");
+    ordered_json j;  // keeps the regions in the order they were written
+    try {
+        j = ordered_json::parse(read_regular_file(path, kMaxReport));
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, path + ": not a registration report: " + e.what());
+    }
+    RegistrationRecord r;
+    r.registered.name = mesh_path;
+    const uint32_t V = model.vertex_count(), J = model.joint_count();
+    try {
+        SSC_REQUIRE_ARG(j.is_object(), "not a JSON object");
+        r.scan = j.value("scan", "");
+        r.scan_up = j.value("scan_up", "y");
+        r.scan_units_to_metres = j.value("scan_units_to_metres", 1.0);
+        r.seconds = j.value("seconds", 0.0);
+        r.fit_seconds = j.value("fit_seconds", 0.0);
+        r.model_digest = j.value("model_digest", "");
+        SSC_REQUIRE_ARG_S(std::isfinite(r.scan_units_to_metres) && r.scan_units_to_metres > 0 && r.scan_units_to_metres <= 1,
+                          "the report's scan_units_to_metres " << r.scan_units_to_metres << " is not a unit");
+        SSC_REQUIRE_ARG_S(std::find(kAxes.begin(), kAxes.end(), r.scan_up) != kAxes.end(), "the report's scan_up '" << r.scan_up << "' is no axis");
+        if (j.contains("quality")) quality_from_json(j.at("quality"), r.quality.scan_to_registration, r.quality.below);
+        if (j.contains("regions"))
+            for (const auto& [name, q] : j.at("regions").items()) {
+                registration::RegionQuality rq;
+                rq.region = name;
+                quality_from_json(q, rq.scan_to_registration, rq.below);
+                r.quality.regions.push_back(rq);
+            }
+        if (j.contains("vertex_distance_mm")) {
+            const std::vector<double> mm = j.at("vertex_distance_mm");
+            SSC_REQUIRE_ARG(mm.size() == V, "vertex_distance_mm has a value per vertex of another model");
+            for (double d : mm) r.quality.vertex_distance.push_back(d < 0 ? -1.0 : d * 1e-3);
+        }
+        if (j.contains("fit")) {
+            const auto& fit = j.at("fit");
+            const std::vector<double> shape = fit.at("shape"), rotations = fit.at("rotations_xyzw"), translation = fit.at("translation_m");
+            SSC_REQUIRE_ARG(rotations.size() == 4 * std::size_t(J) && translation.size() == 3 && shape.size() <= model.component_count(),
+                            "the fit's sizes do not match the model");
+            r.registered.fit.shape = shape;
+            for (uint32_t k = 0; k < J; ++k)
+                r.registered.fit.pose.emplace_back(rotations[4 * k + 3], rotations[4 * k], rotations[4 * k + 1], rotations[4 * k + 2]);
+            r.registered.fit.translation = Eigen::Vector3d(translation[0], translation[1], translation[2]);
+            r.registered.fit.scale = fit.at("scale").get<double>();
+            bool finite = std::isfinite(r.registered.fit.scale) && r.registered.fit.scale > 0 && r.registered.fit.translation.allFinite();
+            for (double x : shape) finite &= std::isfinite(x);
+            for (const auto& q : r.registered.fit.pose) finite &= q.coeffs().allFinite() && q.norm() > 0.5;
+            SSC_REQUIRE_ARG(finite, "the fit holds values that are not finite or not rotations");
+            r.registered.has_fit = true;
+        }
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, path + ": the report is malformed: " + e.what());
+    } catch (const Error& e) {
+        throw Error(e.status(), path + ": " + e.what());
+    }
+    if (!r.registered.has_fit && need_fit)
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, path + ": the report has no model fit (registered with --start rigid or rbf); use --posture none");
+    const Eigen::Matrix3d R = up_axis_rotation(r.scan_up);
+    for (const auto& p : io::read_points(mesh_path).points) r.registered.vertices.push_back(R * (p * r.scan_units_to_metres));
+    if (r.registered.vertices.size() != V)
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, mesh_path + ": " + std::to_string(r.registered.vertices.size()) + " vertices; the model has " +
+                                                    std::to_string(V) + " (was it registered with this model?)");
+    return r;
+}
+
+}  // namespace ssc::learning

@@ -1,0 +1,41 @@
+// A registration on disk, as `sscape register` writes it and `sscape learn` and bootstrapping read
+// it: the registered mesh (the template's topology, in the scan's frame and units) and its JSON
+// report beside it (the mesh's path with .json): the scan's units and up axis, times, quality
+// overall and per body region, the model fit that started it, and (bootstrapping) the digest of the
+// model it was registered with and each vertex's distance to the scan.
+#pragma once
+
+#include "learning/learn_model.hpp"
+#include "registration/registration_quality.hpp"
+#include "synthesis/model.hpp"
+
+#include <string>
+
+namespace ssc::learning {
+
+struct RegistrationRecord {
+    std::string scan;                 // the scan's file
+    double scan_units_to_metres = 1;  // the scan's units
+    std::string scan_up = "y";        // the scan's axis that is the model's +Y
+    double seconds = 0, fit_seconds = 0;
+    RegisteredScan registered;        // the model frame (metres, +Y up); name: the mesh's path
+    registration::RegistrationQuality quality;  // vertex_distance may be empty
+    std::string model_digest;         // empty when unknown
+};
+
+// The report's path for a registered mesh.
+std::string record_report_path(const std::string& mesh_path);
+
+// Writes the mesh (.ply or .obj, by extension) then the report, each atomically: a report on disk
+// means its mesh is complete. Throws ssc::Error (IO).
+void write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& record);
+
+// Reads a mesh and its report. Throws ssc::Error (IO for a missing or unreadable file;
+// INVALID_ARGUMENT for a malformed report, a mesh of another vertex count, or a report without
+// the model fit when need_fit).
+RegistrationRecord read_registration_record(const std::string& mesh_path, const Model& model, bool need_fit);
+
+// A short digest of a model file's bytes (hex): which model a registration was made with.
+std::string model_digest(const std::vector<unsigned char>& model_file);
+
+}  // namespace ssc::learning

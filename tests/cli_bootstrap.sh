@@ -1,0 +1,58 @@
+#!/bin/sh
+# `sscape bootstrap` on a small simulated collection: one round from the built-in model, its files
+# (registrations sscape learn can read, decisions, contact sheet, model), a resumed run that redoes
+# nothing, a person's decision that changes the learned model, and the refusals.
+# usage: cli_bootstrap.sh SSCAPE OUT_DIR
+set -u
+sscape=$1 out=$2/bootstrap
+rm -rf "$out" && mkdir -p "$out/scans" "$out/truth"
+fail() { echo "FAIL: $*"; exit 1; }
+for i in 1 2 3 4 5 6; do
+    "$sscape" simulate -o "$out/truth/b$i" --seed "$((40 + i))" --points 8000 --pose-amount 0.3 > /dev/null || fail "simulate $i"
+    mv "$out/truth/b${i}_scan.ply" "$out/scans/b$i.ply" && mv "$out/truth/b$i.lnd" "$out/scans/b$i.lnd"
+done
+"$sscape" bootstrap "$out/scans" --rounds 1 --components 3 -o "$out/run" > "$out/first.txt" 2>&1 || { cat "$out/first.txt"; fail "bootstrap"; }
+cat "$out/first.txt"
+grep -q "round 1: 6 registered, 0 reused, 0 failed" "$out/first.txt" || fail "every scan registered"
+for f in round_0/model.sscape round_1/model.sscape round_1/round.json round_1/decisions.csv round_1/contact_sheet_01.png model.sscape rounds.csv; do
+    [ -s "$out/run/$f" ] || fail "no $f"
+done
+for i in 1 2 3 4 5 6; do
+    [ -s "$out/run/round_1/registrations/b$i.ply" ] && [ -s "$out/run/round_1/registrations/b$i.json" ] || fail "registration $i"
+done
+[ "$(wc -l < "$out/run/round_1/decisions.csv")" -eq 7 ] || fail "a decision per scan"
+accepted=$(grep -c ",accept," "$out/run/round_1/decisions.csv")
+[ "$accepted" -ge 3 ] || fail "only $accepted of 6 accepted"
+"$sscape" info "$out/run/model.sscape" > "$out/info.txt" 2>&1 || { cat "$out/info.txt"; fail "info on the learned model"; }
+grep -q "bootstrap round 1 of 1" "$out/info.txt" || { cat "$out/info.txt"; fail "the model's provenance"; }
+"$sscape" synth "$out/run/model.sscape" --random 1 -o "$out/body.obj" > /dev/null 2>&1 || fail "a body of the learned model"
+"$sscape" learn "$out"/run/round_1/registrations/*.ply --components 2 -o "$out/learned.sscape" > "$out/learn.txt" 2>&1 ||
+    { cat "$out/learn.txt"; fail "sscape learn on bootstrap's registrations"; }
+
+# Resumed: nothing registered or learned again.
+"$sscape" bootstrap "$out/scans" --rounds 1 --components 3 -o "$out/run" > "$out/again.txt" 2>&1 || { cat "$out/again.txt"; fail "resume"; }
+grep -q "round 1: 0 registered, 6 reused, 0 failed.*, reused$" "$out/again.txt" || { cat "$out/again.txt"; fail "the resumed run redid work"; }
+
+# A person rejects an accepted scan: the registrations stay, the model is learned again without it.
+first=$(grep ",accept," "$out/run/round_1/decisions.csv" | head -1 | cut -d, -f1)
+printf 'scan,decision,reason,by\n%s,reject,"arm looks wrong, by eye",person\nb1,accept,,auto\n' "$first" > "$out/decisions.csv"
+"$sscape" bootstrap "$out/scans" --rounds 1 --components 3 --decisions "$out/decisions.csv" -o "$out/run" > "$out/person.txt" 2>&1 ||
+    { cat "$out/person.txt"; fail "bootstrap with decisions"; }
+grep -q "round 1: 0 registered, 6 reused" "$out/person.txt" || { cat "$out/person.txt"; fail "registrations reused"; }
+grep -q "round 1: learning from $((accepted - 1)) registrations" "$out/person.txt" || { cat "$out/person.txt"; fail "the model learned again"; }
+grep -q "^$first,reject,\"arm looks wrong, by eye\",person" "$out/run/round_1/decisions.csv" || fail "the person's decision recorded"
+
+# Refusals: a message, a non-zero exit.
+expect() {  # expect CODE PATTERN ARGS...
+    code=$1 pattern=$2; shift 2
+    "$sscape" bootstrap "$@" > "$out/bad.txt" 2>&1
+    got=$?
+    if [ "$got" -ne "$code" ] || ! grep -q -e "$pattern" "$out/bad.txt"; then cat "$out/bad.txt"; fail "bootstrap $* exited $got (expected $code) or lacks '$pattern'"; fi
+}
+printf 'scan,decision\nnobody,reject\n' > "$out/unknown.csv"
+expect 1 "the decisions name scan 'nobody', which is not in the collection" "$out/scans" --decisions "$out/unknown.csv" -o "$out/bad"
+printf 'scan,decision\nb1,maybe\n' > "$out/maybe.csv"
+expect 1 "maybe.csv:2: expected scan,accept|reject" "$out/scans" --decisions "$out/maybe.csv" -o "$out/bad"
+mkdir -p "$out/two" && cp "$out/scans/b1.ply" "$out/scans/b2.ply" "$out/two/"
+expect 2 "holds 2 scans (.ply or .obj); bootstrapping needs at least 3" "$out/two" -o "$out/bad"
+echo "bootstrap: one round learned, resumed, decided by a person; refusals clear"

@@ -1,0 +1,210 @@
+// Bootstrapping's parts: the automatic inspection of registrations (a limb gone astray, folded
+// triangles and impossible joints rejected; a good registration accepted), registration records
+// on disk, and a person's decisions file.
+#include "learning/acceptance.hpp"
+#include "learning/bootstrap.hpp"
+#include "learning/registration_record.hpp"
+#include "support.hpp"
+
+#include "anatomy/joint_limits.hpp"
+#include "common/error.hpp"
+#include "common/files.hpp"
+#include "io/readers.hpp"
+#include "simulation/simulate.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <random>
+#include <set>
+
+using namespace ssc;
+using Eigen::Vector3d;
+
+namespace {
+
+// A body of the model posed a little, scanned (noise, holes, clutter), and a registration record
+// of it: the true body as the registered mesh with the true pose as its fit.
+struct Scanned {
+    simulation::TrueBody truth;
+    fitting::PointCloud cloud;
+    learning::RegistrationRecord record;
+};
+
+registration::RegistrationQuality quality_of(const Model& m, const std::vector<Vector3d>& x, const fitting::PointCloud& cloud) {
+    const std::vector<uint32_t> triangles(m.data().mesh.triangles.begin(), m.data().mesh.triangles.end());
+    const fitting::PointIndex index(cloud.points);
+    ThreadPool pool(2);
+    const registration::BodyRegions regions = registration::body_regions(m.data());
+    return registration::registration_quality(x, triangles, registration::vertex_normals(x, triangles), regions.of_vertex, regions.names,
+                                              cloud.points, cloud.normals, false, index, pool);
+}
+
+Scanned scanned(const Model& m, uint32_t seed) {
+    std::mt19937 rng(seed);
+    Scanned s;
+    const std::vector<float> shape = simulation::random_shape(m, rng), pose = simulation::random_pose(m, rng, 0.3);
+    s.truth = simulation::make_body(m, shape, pose, Vector3d(0.1, 0, -0.2));
+    simulation::CloudSpec spec;
+    spec.missing = 0.1;
+    s.cloud = simulation::simulate_cloud(m, s.truth, spec, rng);
+    auto& r = s.record.registered;
+    r.name = "body";
+    r.vertices = s.truth.vertices;
+    r.has_fit = true;
+    r.fit.shape.assign(shape.begin(), shape.end());
+    for (uint32_t j = 0; j < m.joint_count(); ++j) r.fit.pose.emplace_back(pose[4 * j + 3], pose[4 * j], pose[4 * j + 1], pose[4 * j + 2]);
+    r.fit.translation = Vector3d(0.1, 0, -0.2);
+    s.record.quality = quality_of(m, r.vertices, s.cloud);
+    return s;
+}
+
+bool mentions(const learning::Inspection& i, const std::string& text) {
+    for (const auto& r : i.reasons)
+        if (r.find(text) != std::string::npos) return true;
+    return false;
+}
+
+std::string joined(const learning::Inspection& i) {
+    std::string s;
+    for (const auto& r : i.reasons) s += r + "; ";
+    return s;
+}
+
+// The vertices that the left arm's joints (below the clavicle) move most.
+std::vector<uint32_t> left_arm(const Model& m) {
+    const auto& sk = m.data().skeleton;
+    std::set<int> arm;
+    for (uint32_t j = 0; j < m.joint_count(); ++j)
+        for (int a = int(j); a >= 0; a = sk.parents[std::size_t(a)])
+            if (sk.joint_names[std::size_t(a)] == "upperarm_l") arm.insert(int(j));
+    std::vector<uint32_t> out;
+    const auto& skin = m.data().skin;
+    for (uint32_t v = 0; v < m.vertex_count(); ++v) {
+        int best = 0;
+        for (int k = 1; k < 4; ++k)
+            if (skin.weights[4 * v + std::size_t(k)] > skin.weights[4 * v + std::size_t(best)]) best = k;
+        if (arm.count(skin.joints[4 * v + std::size_t(best)])) out.push_back(v);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("inspection accepts a good registration and rejects a limb gone astray, folds and impossible joints", "[bootstrap]") {
+    const Model& m = test::default_cpp_model();
+    const learning::AcceptanceRules rules;
+    const Scanned good = scanned(m, 5);
+    const learning::Inspection ok = learning::inspect_registration(m, good.record, rules);
+    INFO(joined(ok));
+    CHECK(ok.accepted);
+    CHECK(ok.folded < 1e-4);
+    CHECK(ok.stretched < 1e-4);
+    CHECK(ok.joint_excess < 0.05);
+
+    SECTION("the left arm moved 20 cm forward: its region uncovered, the scan's arm unexplained, the shoulder stretched") {
+        learning::RegistrationRecord astray = good.record;
+        const std::vector<uint32_t> arm = left_arm(m);
+        REQUIRE(arm.size() > 100);
+        for (uint32_t v : arm) astray.registered.vertices[v] += Vector3d(0, 0, 0.2);
+        astray.quality = quality_of(m, astray.registered.vertices, good.cloud);
+        const learning::Inspection i = learning::inspect_registration(m, astray, rules);
+        INFO(joined(i));
+        CHECK_FALSE(i.accepted);
+        CHECK(mentions(i, "arms: "));
+        CHECK(mentions(i, "of the scan's points nearest to it lie over 20 mm"));
+        CHECK(mentions(i, "stretched"));
+    }
+    SECTION("the torso turned inside out") {
+        learning::RegistrationRecord folded = good.record;
+        const auto regions = registration::body_regions(m.data());
+        const int torso = int(std::find(regions.names.begin(), regions.names.end(), "torso") - regions.names.begin());
+        Vector3d c = Vector3d::Zero();
+        std::size_t n = 0;
+        for (uint32_t v = 0; v < m.vertex_count(); ++v)
+            if (regions.of_vertex[v] == torso) c += folded.registered.vertices[v], ++n;
+        c /= double(n);
+        for (uint32_t v = 0; v < m.vertex_count(); ++v)
+            if (regions.of_vertex[v] == torso) folded.registered.vertices[v].z() = 2 * c.z() - folded.registered.vertices[v].z();
+        const learning::Inspection i = learning::inspect_registration(m, folded, rules);
+        INFO(joined(i));
+        CHECK_FALSE(i.accepted);
+        CHECK(i.folded > 0.02);
+        CHECK(mentions(i, "folded over"));
+    }
+    SECTION("a knee bent the wrong way in the fit") {
+        learning::RegistrationRecord knee = good.record;
+        const std::vector<anatomy::JointLimit> limits = anatomy::joint_limits(m);
+        const auto& names = m.data().skeleton.joint_names;
+        const std::size_t j = std::size_t(std::find(names.begin(), names.end(), "calf_l") - names.begin());
+        REQUIRE(j < names.size());
+        REQUIRE(limits[j].limited);
+        const double beyond = limits[j].lo.x() - 0.6;  // 34 degrees past its range
+        knee.registered.fit.pose[j] = anatomy::rotation_from_angles(limits[j], Vector3d(beyond, 0, 0));
+        const learning::Inspection i = learning::inspect_registration(m, knee, rules);
+        INFO(joined(i));
+        CHECK_FALSE(i.accepted);
+        CHECK(i.worst_joint == "calf_l");
+        CHECK(i.joint_excess == Approx(0.6).margin(0.02));
+        CHECK(mentions(i, "calf_l bent 34 degrees beyond its range of motion"));
+    }
+}
+
+TEST_CASE("a registration record reads back as written, in the scan's units and frame", "[bootstrap]") {
+    const Model& m = test::default_cpp_model();
+    Scanned s = scanned(m, 9);
+    s.record.scan = "scans/b9.ply";
+    s.record.scan_units_to_metres = 0.001;
+    s.record.scan_up = "z";
+    s.record.model_digest = "0123456789abcdef";
+    const std::string mesh = "record_test.ply";
+    learning::write_registration_record(mesh, m, s.record);
+    const learning::RegistrationRecord back = learning::read_registration_record(mesh, m, true);
+    CHECK(back.scan == "scans/b9.ply");
+    CHECK(back.scan_up == "z");
+    CHECK(back.model_digest == "0123456789abcdef");
+    REQUIRE(back.registered.vertices.size() == m.vertex_count());
+    double worst = 0;
+    for (uint32_t v = 0; v < m.vertex_count(); ++v) worst = std::max(worst, (back.registered.vertices[v] - s.record.registered.vertices[v]).norm());
+    CHECK(worst < 1e-6);  // float millimetres
+    // The mesh on disk is in the scan's frame: z up, millimetres.
+    const io::PointFile raw = io::read_points(mesh);
+    CHECK(raw.points[0].z() == Approx(s.record.registered.vertices[0].y() * 1e3).margin(1e-3));
+    REQUIRE(back.registered.has_fit);
+    CHECK(back.registered.fit.translation.isApprox(s.record.registered.fit.translation));
+    CHECK(back.registered.fit.pose[7].isApprox(s.record.registered.fit.pose[7]));
+    REQUIRE(back.quality.regions.size() == s.record.quality.regions.size());
+    CHECK(back.quality.regions[1].below[3] == s.record.quality.regions[1].below[3]);
+    CHECK(back.quality.scan_to_registration.count == s.record.quality.scan_to_registration.count);
+    CHECK(back.quality.vertex_distance.size() == m.vertex_count());
+    // The inspection of the record read back is the one of the record written.
+    CHECK(learning::inspect_registration(m, back, {}).accepted == learning::inspect_registration(m, s.record, {}).accepted);
+
+    const std::string report = learning::record_report_path(mesh);
+    const std::string broken = "{\"scan\": \"x\", \"fit\": {\"shape\": [1], \"rotations_xyzw\": [0, 0, 0, 1]";
+    write_file_atomically(report, broken.data(), broken.size());
+    CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, false), Catch::Contains("not a registration report"));
+    const std::string short_fit = "{\"scan\": \"x\", \"fit\": {\"shape\": [1], \"rotations_xyzw\": [0, 0, 0, 1], \"translation_m\": [0, 0, 0], \"scale\": 1}}";
+    write_file_atomically(report, short_fit.data(), short_fit.size());
+    CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, false), Catch::Contains("the fit's sizes do not match the model"));
+    std::filesystem::remove(report);
+    CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, false), Catch::Contains("no registration report"));
+    std::filesystem::remove(mesh);
+}
+
+TEST_CASE("a person's decisions file: their rows, not the tool's, with quoted reasons", "[bootstrap]") {
+    auto decisions = [](const std::string& text) {
+        const std::string path = "decisions_test.csv";
+        write_file_atomically(path, text.data(), text.size());
+        return learning::read_decisions(path);
+    };
+    const auto d = decisions("scan,decision,reason,by\r\nb1,reject,\"left hand fused, \"\"fingers\"\" lost\",person\nb2,accept,,auto\nb3,accept\n");
+    REQUIRE(d.size() == 2);
+    CHECK_FALSE(d.at("b1").accept);
+    CHECK(d.at("b1").reason == "left hand fused, \"fingers\" lost");
+    CHECK(d.at("b3").accept);
+    CHECK(d.count("b2") == 0);  // the tool's own verdict is not a person's
+    CHECK_THROWS_WITH(decisions("b1,reject\n"), Catch::Contains("the first line must be the header"));
+    CHECK_THROWS_WITH(decisions("scan,decision\nb1,perhaps\n"), Catch::Contains("decisions_test.csv:2: expected scan,accept|reject"));
+    CHECK_THROWS_WITH(decisions("scan,decision\nb1,accept\nb1,reject\n"), Catch::Contains("scan b1 is decided twice"));
+}
