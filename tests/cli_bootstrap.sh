@@ -11,16 +11,18 @@ for i in 1 2 3 4 5 6; do
     "$sscape" simulate -o "$out/truth/b$i" --seed "$((40 + i))" --points 8000 --pose-amount 0.3 > /dev/null || fail "simulate $i"
     mv "$out/truth/b${i}_scan.ply" "$out/scans/b$i.ply" && mv "$out/truth/b$i.lnd" "$out/scans/b$i.lnd"
 done
+printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nend_header\n1\n' > "$out/scans/broken.ply"  # fails alone
 "$sscape" bootstrap "$out/scans" --rounds 1 --components 3 -o "$out/run" > "$out/first.txt" 2>&1 || { cat "$out/first.txt"; fail "bootstrap"; }
 cat "$out/first.txt"
-grep -q "round 1: 6 registered, 0 reused, 0 failed" "$out/first.txt" || fail "every scan registered"
+grep -q "round 1: 6 registered, 0 reused, 1 failed" "$out/first.txt" || fail "every scan registered, the broken one failed"
+grep -q "^broken,reject,\"*registration failed: " "$out/run/round_1/decisions.csv" || fail "the broken scan's reason"
 for f in round_0/model.sscape round_1/model.sscape round_1/round.json round_1/decisions.csv round_1/contact_sheet_01.png model.sscape rounds.csv; do
     [ -s "$out/run/$f" ] || fail "no $f"
 done
 for i in 1 2 3 4 5 6; do
     [ -s "$out/run/round_1/registrations/b$i.ply" ] && [ -s "$out/run/round_1/registrations/b$i.json" ] || fail "registration $i"
 done
-[ "$(wc -l < "$out/run/round_1/decisions.csv")" -eq 7 ] || fail "a decision per scan"
+[ "$(wc -l < "$out/run/round_1/decisions.csv")" -eq 8 ] || fail "a decision per scan"
 accepted=$(grep -c ",accept," "$out/run/round_1/decisions.csv")
 [ "$accepted" -ge 3 ] || fail "only $accepted of 6 accepted"
 "$sscape" info "$out/run/model.sscape" > "$out/info.txt" 2>&1 || { cat "$out/info.txt"; fail "info on the learned model"; }
@@ -31,7 +33,7 @@ grep -q "bootstrap round 1 of 1" "$out/info.txt" || { cat "$out/info.txt"; fail 
 
 # Resumed: nothing registered or learned again.
 "$sscape" bootstrap "$out/scans" --rounds 1 --components 3 -o "$out/run" > "$out/again.txt" 2>&1 || { cat "$out/again.txt"; fail "resume"; }
-grep -q "round 1: 0 registered, 6 reused, 0 failed.*, reused$" "$out/again.txt" || { cat "$out/again.txt"; fail "the resumed run redid work"; }
+grep -q "round 1: 0 registered, 6 reused, 1 failed.*, reused$" "$out/again.txt" || { cat "$out/again.txt"; fail "the resumed run redid work"; }
 
 # A person rejects an accepted scan: the registrations stay, the model is learned again without it.
 first=$(grep ",accept," "$out/run/round_1/decisions.csv" | head -1 | cut -d, -f1)

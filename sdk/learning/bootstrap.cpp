@@ -173,7 +173,12 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
             if (!st.ok) {
                 how = "registered";
                 try {
-                    registration::Scan scan = load_scan(in, model, spec);
+                    registration::Scan scan;
+                    try {
+                        scan = load_scan(in, model, spec);
+                    } catch (const Error& e) {  // an unreadable or hostile scan fails alone
+                        throw Error(SSC_ERROR_INVALID_ARGUMENT, e.what());
+                    }
                     registrar.set_scan(std::move(scan.cloud), std::move(scan.triangles));
                     registrar.set_landmarks(std::move(scan.landmarks));
                     const registration::Registration& r = registrar.run({}, &pool);
