@@ -44,6 +44,18 @@ grep -q "round 1: 0 registered, 6 reused" "$out/person.txt" || { cat "$out/perso
 grep -q "round 1: learning from $((accepted - 1)) registrations" "$out/person.txt" || { cat "$out/person.txt"; fail "the model learned again"; }
 grep -q "^$first,reject,\"arm looks wrong, by eye\",person" "$out/run/round_1/decisions.csv" || fail "the person's decision recorded"
 
+# Evaluation of the round's registrations: learning with both posture normalizations, and the
+# two rounds' models against them.
+"$sscape" evaluate "$out"/run/round_1/registrations/*.ply --posture none,skeleton --components 1,2,3 --samples 200 -o "$out/eval" > "$out/eval.txt" 2>&1 ||
+    { cat "$out/eval.txt"; fail "evaluate"; }
+[ "$(grep -c '^posture ' "$out/eval.csv")" -eq 6 ] || { cat "$out/eval.csv"; fail "a row per posture and number of components"; }
+for plot in compactness generalization specificity; do [ -s "$out/eval_$plot.png" ] || fail "no $plot plot"; done
+"$sscape" evaluate "$out"/run/round_1/registrations/*.ply --models "$out/run/round_0/model.sscape,$out/run/round_1/model.sscape" --components 1,3 \
+    --samples 200 -o "$out/rounds" > "$out/rounds.txt" 2>&1 || { cat "$out/rounds.txt"; fail "evaluate --models"; }
+grep -q "^round_1/model,3," "$out/rounds.csv" || { cat "$out/rounds.csv"; fail "the rounds' models by folder"; }
+"$sscape" evaluate "$out"/run/round_1/registrations/b1.ply "$out"/run/round_1/registrations/b2.ply -o "$out/few" > "$out/few.txt" 2>&1
+[ $? -eq 2 ] && grep -q "needs at least 3 registrations" "$out/few.txt" || { cat "$out/few.txt"; fail "evaluate with 2 registrations"; }
+
 # Refusals: a message, a non-zero exit.
 expect() {  # expect CODE PATTERN ARGS...
     code=$1 pattern=$2; shift 2

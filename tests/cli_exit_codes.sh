@@ -15,12 +15,12 @@ expect() {  # expect CODE PATTERN ARGS...: the exit code, and PATTERN in stdout+
 }
 expect 0 "^sscape [0-9]*\.[0-9]*\.[0-9]* (library .*default model sscape-default" --version
 expect 0 "Subcommands:" --help
-for command in info synth measure fit register simulate train learn bootstrap make-test-model; do
+for command in info synth measure fit register simulate train learn bootstrap evaluate make-test-model; do
     expect 0 "Usage: sscape $command" "$command" --help
 done
 expect 0 "--units m|cm|mm" fit --help
 expect 2 "A subcommand is required"
-expect 2 "unknown command 'frobnicate'; the commands: bootstrap, fit, info" frobnicate
+expect 2 "unknown command 'frobnicate'; the commands: bootstrap, evaluate, fit, info" frobnicate
 expect 2 "sscape synth: The following argument was not expected: --bogus" synth --bogus -o "$out/x.obj"
 expect 2 "sscape fit: --units: furlong not in {m,cm,mm}" fit --landmarks "$out/exit.txt" --units furlong -o "$out/x.obj"
 expect 2 "sscape synth: --random: Value 0 not in range 1 to 10000" synth --random 0 -o "$out/x.obj"

@@ -1,4 +1,5 @@
 // Learning models from registered scans: posture normalization, the learned shape space, bad input.
+#include "learning/evaluate_learning.hpp"
 #include "learning/learn_model.hpp"
 #include "learning/posture_normalization.hpp"
 #include "support.hpp"
@@ -137,6 +138,48 @@ TEST_CASE("a model learned from posed registrations: skeleton normalization keep
     CHECK(attributes.find("age") >= 0);
     CHECK(attributes.find("stature") >= 0);
     CHECK(skeleton.metadata.provenance.find("24 registrations") != std::string::npos);
+}
+
+TEST_CASE("evaluation: six shape directions generalize fully at six components, posture does not", "[learning]") {
+    const Model& m = test::default_cpp_model();
+    std::mt19937 rng(17);
+    constexpr uint32_t kShapes = 6;
+    std::vector<learning::RegisteredScan> scans;
+    for (uint32_t i = 0; i < 16; ++i) scans.push_back(sample(m, rng, kShapes, 0.6).scan);
+    learning::EvaluationSpec spec;
+    spec.components = {1, 3, 6, 9};
+    spec.samples = 200;
+    spec.folds = 4;
+    const auto skeleton = learning::evaluate_learning(learning::normalized_bodies(m, scans, learning::Posture::Skeleton), spec);
+    const auto none = learning::evaluate_learning(learning::normalized_bodies(m, scans, learning::Posture::None), spec);
+    REQUIRE(skeleton.size() == 4);
+    REQUIRE(none.size() == 4);
+    for (std::size_t k = 0; k < 4; ++k) {
+        INFO("k " << skeleton[k].components << ": skeleton " << skeleton[k].compactness << " / " << skeleton[k].generalization * 1e3 << " mm / "
+                  << skeleton[k].specificity * 1e3 << " mm; none " << none[k].compactness << " / " << none[k].generalization * 1e3 << " mm / "
+                  << none[k].specificity * 1e3 << " mm");
+        if (k > 0) {
+            CHECK(skeleton[k].compactness >= skeleton[k - 1].compactness);
+            CHECK(skeleton[k].generalization <= skeleton[k - 1].generalization + 1e-6);
+        }
+        CHECK(skeleton[k].compactness <= 1.0 + 1e-9);
+        CHECK(skeleton[k].specificity > 0);
+        CHECK(none[k].generalization > skeleton[k].generalization);
+    }
+    CHECK(skeleton[2].compactness > 0.999);      // six directions hold all the variance
+    CHECK(skeleton[2].generalization < 0.5e-3);  // and reconstruct unseen bodies of them
+    CHECK(none[2].generalization > 5e-3);        // posture needs more than six
+
+    // A given model against the same bodies: the default model holds these shapes in its first
+    // six components, so six reconstruct them.
+    const auto given = learning::evaluate_model(m.data(), learning::normalized_bodies(m, scans, learning::Posture::Skeleton), spec);
+    REQUIRE(given.size() == 4);
+    CHECK(given[2].generalization < 0.5e-3);
+    CHECK(given[0].generalization > 10 * given[2].generalization);
+    CHECK_THROWS_WITH(learning::evaluate_learning(training::SampleMatrix(2, 3 * m.vertex_count()), spec), Catch::Contains("at least 3"));
+    spec.folds = 40;
+    CHECK_THROWS_WITH(learning::evaluate_learning(learning::normalized_bodies(m, scans, learning::Posture::None), spec),
+                      Catch::Contains("40 folds for 16 registrations"));
 }
 
 TEST_CASE("learning refuses bad registrations with a clear message", "[learning]") {

@@ -34,6 +34,7 @@ Run add_make_test_model(CLI::App& app);
 Run add_train(CLI::App& app);
 Run add_learn(CLI::App& app);      // with training (SSCAPE_BUILD_TRAINING)
 Run add_bootstrap(CLI::App& app);  // with training
+Run add_evaluate(CLI::App& app);   // with training
 Run add_fit(CLI::App& app);
 Run add_simulate(CLI::App& app);
 Run add_measure(CLI::App& app);

@@ -45,6 +45,11 @@ Run add_bootstrap(CLI::App& app) {
     c->allow_extras();
     return [] () -> int { throw std::runtime_error("this sscape was built without the learning tools (SSCAPE_BUILD_TRAINING=OFF)"); };
 }
+Run add_evaluate(CLI::App& app) {
+    CLI::App* c = app.add_subcommand("evaluate", "measure shape spaces learned from registrations (not in this build)");
+    c->allow_extras();
+    return [] () -> int { throw std::runtime_error("this sscape was built without the learning tools (SSCAPE_BUILD_TRAINING=OFF)"); };
+}
 }  // namespace ssc::cli
 #endif
 
@@ -63,7 +68,7 @@ int main(int argc, char** argv) {
     });
     std::map<std::string, ssc::cli::Run> commands;
     for (const auto add : {ssc::cli::add_info, ssc::cli::add_synth, ssc::cli::add_measure, ssc::cli::add_fit, ssc::cli::add_register, ssc::cli::add_simulate,
-                           ssc::cli::add_train, ssc::cli::add_learn, ssc::cli::add_bootstrap, ssc::cli::add_make_test_model}) {
+                           ssc::cli::add_train, ssc::cli::add_learn, ssc::cli::add_bootstrap, ssc::cli::add_evaluate, ssc::cli::add_make_test_model}) {
         ssc::cli::Run run = add(app);
         commands[app.get_subcommands({}).back()->get_name()] = std::move(run);
     }

@@ -62,6 +62,21 @@ void align_to_template(training::SampleMatrix& X, const format::ModelData& t) {
 
 }  // namespace
 
+training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture) {
+    const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
+    training::SampleMatrix X(N, 3 * Eigen::Index(V));
+    for (uint32_t i = 0; i < N; ++i) {
+        SSC_REQUIRE_ARG_S(scans[i].vertices.size() == V, "learn: " << scans[i].name << " has " << scans[i].vertices.size() << " vertices; the model has " << V);
+        SSC_REQUIRE_ARG_S(posture != Posture::Skeleton || scans[i].has_fit, "learn: " << scans[i].name << " has no model fit");
+        const std::vector<Eigen::Vector3d> rest = posture == Posture::Skeleton ? unpose_skeleton(model, scans[i].fit, scans[i].vertices) : scans[i].vertices;
+        for (uint32_t v = 0; v < V; ++v)
+            for (int a = 0; a < 3; ++a) X(i, 3 * Eigen::Index(v) + a) = float(rest[v][a]);
+    }
+    training::procrustes_align(X);
+    align_to_template(X, model.data());
+    return X;
+}
+
 format::ModelData learn_model(const format::ModelData& template_model, const std::vector<RegisteredScan>& scans, const LearnSpec& spec,
                               LearnReport* report, const LearnProgress& progress) {
     auto say = [&](const std::string& stage) {
@@ -71,17 +86,8 @@ format::ModelData learn_model(const format::ModelData& template_model, const std
     const Model model(template_model, nullptr);
     const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
 
-    say(std::string("posture normalization: ") + posture_name(spec.posture));
-    training::SampleMatrix X(N, 3 * Eigen::Index(V));
-    for (uint32_t i = 0; i < N; ++i) {
-        const std::vector<Eigen::Vector3d> rest =
-            spec.posture == Posture::Skeleton ? unpose_skeleton(model, scans[i].fit, scans[i].vertices) : scans[i].vertices;
-        for (uint32_t v = 0; v < V; ++v)
-            for (int a = 0; a < 3; ++a) X(i, 3 * Eigen::Index(v) + a) = float(rest[v][a]);
-    }
-    say("Procrustes alignment");
-    training::procrustes_align(X);
-    align_to_template(X, template_model);
+    say(std::string("posture normalization: ") + posture_name(spec.posture) + ", Procrustes alignment");
+    training::SampleMatrix X = normalized_bodies(model, scans, spec.posture);
 
     say("PCA of " + std::to_string(N) + " registrations");
     const training::Pca p = training::pca(X, N, spec.components, spec.seed);

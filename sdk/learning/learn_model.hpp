@@ -7,6 +7,7 @@
 #include "learning/posture_normalization.hpp"
 #include "sscape_format/model_data.hpp"
 #include "training/attributes.hpp"
+#include "training/pca.hpp"
 
 #include <functional>
 #include <string>
@@ -48,6 +49,12 @@ struct LearnReport {
 };
 
 using LearnProgress = std::function<void(const std::string& stage)>;
+
+// The registrations as learning sees them, one body per row (3V: x y z per vertex): brought to the
+// rest posture (posture normalization with the model they were registered with), Procrustes
+// aligned, and moved as one onto the model's mean standing on its ground. Throws ssc::Error
+// (INVALID_ARGUMENT) for a scan of another vertex count, or without its fit for Posture::Skeleton.
+training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture);
 
 // Throws ssc::Error (INVALID_ARGUMENT) for fewer than 3 scans, a scan of another vertex count,
 // non-finite vertices, Posture::Skeleton with a scan lacking its fit, components outside

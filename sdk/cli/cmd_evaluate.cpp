@@ -1,0 +1,144 @@
+// `sscape evaluate`: compactness, generalization and specificity (learning/evaluate_learning.hpp)
+// of learning from registrations, per posture normalization, or of given models (bootstrapping's
+// rounds) against registrations; a CSV and three PNG plots. An offline tool: it links the C++
+// learning library.
+#include "cli.hpp"
+
+#include "capi/cpp_access.hpp"
+#include "common/files.hpp"
+#include "learning/evaluate_learning.hpp"
+#include "learning/registration_record.hpp"
+#include "render/plot.hpp"
+#include "sscape_format/model_io.hpp"
+#include "synthesis/model.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+namespace ssc::cli {
+namespace {
+
+struct Options {
+    std::vector<std::string> registrations, postures = {"skeleton"}, models;
+    std::vector<uint32_t> components;
+    std::string model, out;
+    uint32_t folds = 0, samples = 10000;
+};
+
+struct Series {
+    std::string name;
+    std::vector<training::QualityPoint> points;
+};
+
+void write_report(const std::string& prefix, const std::vector<Series>& series) {
+    std::ostringstream csv;
+    csv << "series,components,compactness,generalization_mm,specificity_mm\n";
+    for (const auto& s : series)
+        for (const auto& q : s.points)
+            csv << s.name << "," << q.components << "," << q.compactness << "," << q.generalization * 1e3 << "," << q.specificity * 1e3 << "\n";
+    const std::string text = csv.str();
+    write_file_atomically(prefix + ".csv", text.data(), text.size());
+    std::printf("wrote %s.csv\n", prefix.c_str());
+    const char* titles[3] = {"compactness", "generalization", "specificity"};
+    const char* labels[3] = {"explained variance (cumulative share)", "mean vertex error on unseen registrations (mm)",
+                             "mean vertex distance to the nearest registration (mm)"};
+    for (int m = 0; m < 3; ++m) {
+        render::LinePlot plot;
+        plot.title = titles[m];
+        plot.x_label = "number of components";
+        plot.y_label = labels[m];
+        for (std::size_t s = 0; s < series.size(); ++s) {
+            render::LineSeries line;
+            line.name = series[s].name;
+            for (const auto& q : series[s].points) {
+                line.x.push_back(q.components);
+                line.y.push_back(m == 0 ? q.compactness : 1e3 * (m == 1 ? q.generalization : q.specificity));
+            }
+            if (s == 0) plot.x = line.x, plot.y = line.y, plot.name = line.name;
+            else plot.more.push_back(line);
+        }
+        const std::string path = prefix + "_" + titles[m] + ".png";
+        render::write_line_plot(path, plot);
+        std::printf("wrote %s\n", path.c_str());
+    }
+}
+
+int run_evaluate(const Options& o) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto say = [&](const std::string& stage) {
+        std::printf("[%6.1f s] %s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), stage.c_str());
+        std::fflush(stdout);
+    };
+    ssc_model* handle = load_model(o.model);
+    Handles guard(handle);
+    const Model& model = model_of(handle);
+    std::vector<learning::Posture> postures;
+    for (const auto& p : o.postures) postures.push_back(learning::posture_from_name(p));
+    bool need_fit = false;
+    for (auto p : postures) need_fit |= p == learning::Posture::Skeleton;
+    std::vector<learning::RegisteredScan> scans;
+    for (const auto& path : o.registrations) scans.push_back(learning::read_registration_record(path, model, need_fit).registered);
+    if (scans.size() < 3) throw UsageError("evaluation needs at least 3 registrations (" + std::to_string(scans.size()) + " given)");
+    learning::EvaluationSpec spec;
+    spec.components = o.components;
+    spec.folds = o.folds;
+    spec.samples = o.samples;
+
+    std::vector<Series> series;
+    if (o.models.empty()) {
+        for (std::size_t i = 0; i < postures.size(); ++i) {
+            say("posture normalization " + o.postures[i] + ": " + std::to_string(scans.size()) + " registrations");
+            const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[i]);
+            series.push_back({"posture " + o.postures[i], learning::evaluate_learning(X, spec, say)});
+        }
+    } else {
+        if (postures.size() != 1) throw UsageError("--models: the registrations are normalized one way; give one --posture");
+        const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[0]);
+        for (const auto& path : o.models) {
+            say("model " + path + " against " + std::to_string(scans.size()) + " registrations");
+            // Named by file stem, or folder/stem where stems repeat (bootstrapping's round_N/model).
+            const std::filesystem::path p(path);
+            std::size_t same = 0;
+            for (const auto& other : o.models) same += std::filesystem::path(other).stem() == p.stem();
+            const std::string name = same > 1 ? p.parent_path().filename().string() + "/" + p.stem().string() : p.stem().string();
+            series.push_back({name, learning::evaluate_model(format::read_model_file(path), X, spec)});
+        }
+    }
+    std::printf("%-24s  %10s  %11s  %14s  %14s\n", "series", "components", "compactness", "generalization", "specificity");
+    for (const auto& s : series)
+        for (const auto& q : s.points)
+            std::printf("%-24s  %10u  %11.4f  %11.2f mm  %11.2f mm\n", s.name.c_str(), q.components, q.compactness, q.generalization * 1e3,
+                        q.specificity * 1e3);
+    write_report(o.out, series);
+    return 0;
+}
+
+}  // namespace
+
+Run add_evaluate(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    CLI::App* c = app.add_subcommand(
+        "evaluate", "measure shape spaces learned from registrations (or given models) by compactness, generalization (cross-validated "
+                    "reconstruction of unseen registrations) and specificity (random bodies against the nearest registration); "
+                    "writes PREFIX.csv and PREFIX_compactness|generalization|specificity.png");
+    c->add_option("registrations", o->registrations, "registered meshes (.ply or .obj) with their reports beside them, as sscape register "
+                                                     "and sscape bootstrap write them")
+        ->required()->check(CLI::ExistingFile.description(""));
+    c->add_option("--model", o->model, "the model the scans were registered with (default: the built-in model)")
+        ->type_name("MODEL.sscape")->check(CLI::ExistingFile.description(""));
+    c->add_option("-o,--output", o->out, "the prefix of the CSV and the plots")->required()->type_name("PREFIX");
+    c->add_option("--posture", o->postures, "posture normalizations to compare, each a curve (default skeleton)")
+        ->delimiter(',')->check(CLI::IsMember({"none", "skeleton"}))->type_name("none,skeleton");
+    c->add_option("--models", o->models, "instead of learning, measure these models (bootstrapping's rounds, say) against the registrations")
+        ->delimiter(',')->check(CLI::ExistingFile.description(""))->type_name("A.sscape,B.sscape");
+    c->add_option("--components", o->components, "the numbers of components measured (default 1 to 10, then every 5th to 50, within reach)")
+        ->delimiter(',')->check(CLI::Range(1u, 1000u))->type_name("K,...");
+    c->add_option("--folds", o->folds, "cross-validation folds (default: leave-one-out up to 100 registrations, 10 above)")
+        ->check(CLI::Range(2u, 100000u));
+    c->add_option("--samples", o->samples, "random bodies per number of components for specificity (default 10000)")->check(CLI::Range(1u, 1000000u));
+    return [o] { return run_evaluate(*o); };
+}
+
+}  // namespace ssc::cli
