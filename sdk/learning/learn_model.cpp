@@ -99,7 +99,7 @@ format::ModelData learn_model(const format::ModelData& template_model, const std
     m.metadata.license = spec.license;
     m.metadata.description = "Body shape space (S-SCAPE) learned from " + std::to_string(N) + " registered scans.";
     std::ostringstream prov;
-    prov << "Learned by sscape learn from " << N << " registrations of model '" << template_model.metadata.name
+    prov << "Learned from " << N << " registrations of model '" << template_model.metadata.name
          << "'; posture normalization " << posture_name(spec.posture) << "; " << K << " components";
     if (!spec.provenance.empty()) prov << "\n" << spec.provenance;
     m.metadata.provenance = prov.str();

@@ -56,6 +56,32 @@ const JointRange kRanges[] = {
 
 }  // namespace
 
+std::vector<float> scanning_pose(const Model& m, std::mt19937& rng, double spread) {
+    const uint32_t J = m.joint_count();
+    std::vector<float> q(4 * std::size_t(J), 0.f);
+    for (uint32_t j = 0; j < J; ++j) q[4 * j + 3] = 1.f;
+    const auto limits = anatomy::joint_limits(m);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const double rad = spread * M_PI / 180;
+    struct Part {
+        const char* joint;
+        Vector3d amount;  // flexion, axial, abduction: the share of `spread` each may reach
+        bool one_sided;   // abduction only outwards (feet apart)
+    };
+    const Part parts[] = {{"upperarm_l", {0, 0, 1}, false}, {"upperarm_r", {0, 0, 1}, false}, {"lowerarm_l", {1, 0, 0}, false},
+                          {"lowerarm_r", {1, 0, 0}, false}, {"head", {0.5, 0.5, 0}, false},   {"thigh_l", {0, 0, 0.5}, true},
+                          {"thigh_r", {0, 0, 0.5}, true}};
+    for (const Part& part : parts) {
+        const int64_t j = m.find_joint(part.joint);
+        if (j < 0 || !limits[std::size_t(j)].limited) continue;
+        Vector3d angles(rad * part.amount.x() * u(rng), rad * part.amount.y() * u(rng), rad * part.amount.z() * u(rng));
+        if (part.one_sided) angles.z() = std::abs(angles.z());
+        const Quaterniond P = anatomy::rotation_from_angles(limits[std::size_t(j)], angles);
+        q[4 * j] = float(P.x()), q[4 * j + 1] = float(P.y()), q[4 * j + 2] = float(P.z()), q[4 * j + 3] = float(P.w());
+    }
+    return q;
+}
+
 std::vector<float> random_pose(const Model& m, std::mt19937& rng, double amount) {
     const auto& sk = m.data().skeleton;
     const uint32_t J = m.joint_count();

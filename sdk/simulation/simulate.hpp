@@ -27,6 +27,12 @@ std::vector<float> random_shape(const Model& m, std::mt19937& rng);
 // frame (x left, y up, z forward) and converted to each joint's rest frame. amount scales them.
 std::vector<float> random_pose(const Model& m, std::mt19937& rng, double amount = 1.0);
 
+// A person standing in a booth scanner as told, with the variation people bring: the rest posture
+// with each upper arm raised or lowered from it by up to `spread` degrees, each elbow bent or
+// straightened by up to `spread`, the head tilted and turned by up to half of it, and the feet set
+// apart by up to half of it. Angles are anatomical (anatomy/joint_limits.hpp).
+std::vector<float> scanning_pose(const Model& m, std::mt19937& rng, double spread = 10.0);
+
 // Poses the body (Body, the runtime's synthesis) and fills vertices, normals and landmarks.
 TrueBody make_body(const Model& m, std::vector<float> shape, std::vector<float> pose, const Eigen::Vector3d& translation);
 

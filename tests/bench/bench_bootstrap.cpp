@@ -1,0 +1,270 @@
+// The end-to-end benchmark of learning from scans (issue 23), on ground truth that is CC0 only:
+// MakeHuman bodies (with modifiers the default model was not trained on) standing in a booth
+// scanner's pose with people's variation (simulation::scanning_pose), scanned by the simulated booth
+// (noise, unseen parts), then bootstrapped from a deliberately weak start (a model learned from 50
+// other true bodies with 5 components). Measures per round the accepted scans and the
+// registrations' error against the true meshes; then the final model's generalization on held-out
+// true bodies beside a model learned directly from the true rest meshes, and the posture
+// normalizations none and skeleton, with pictures of their first five components at +-3 SD.
+//
+// usage: sscape_bootstrap_bench --makehuman DIR [--scans 200] [--heldout 50] [--rounds 3]
+//                               [--components 20] [--points 30000] [--out DIR] [--threads N]
+#include "common/files.hpp"
+#include "export/mesh_writers.hpp"
+#include "learning/bootstrap.hpp"
+#include "learning/evaluate_learning.hpp"
+#include "learning/registration_record.hpp"
+#include "render/raster.hpp"
+#include "render/text.hpp"
+#include "simulation/depth_camera.hpp"
+#include "simulation/simulate.hpp"
+#include "sscape_format/model_io.hpp"
+#include "training/makehuman/assets.hpp"
+#include "training/population.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <random>
+#include <string>
+
+using namespace ssc;
+using Eigen::Vector3d;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<unsigned char> file_bytes(const std::string& path) {
+    const std::string s = read_regular_file(path, 1ull << 30);
+    return std::vector<unsigned char>(s.begin(), s.end());
+}
+
+training::SampleMatrix rows_of(const std::vector<std::vector<Vector3d>>& bodies) {
+    training::SampleMatrix X(Eigen::Index(bodies.size()), 3 * Eigen::Index(bodies.at(0).size()));
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        for (std::size_t v = 0; v < bodies[i].size(); ++v)
+            for (int a = 0; a < 3; ++a) X(Eigen::Index(i), Eigen::Index(3 * v) + a) = float(bodies[i][v][a]);
+    return X;
+}
+
+// The first five components at -3 and +3 SD (rows), front and side, one picture per model.
+void component_picture(const std::string& path, const format::ModelData& data, const std::string& title) {
+    const Model m(data, nullptr);
+    const uint32_t V = m.vertex_count(), K = std::min<uint32_t>(5, m.component_count());
+    const fitting::LinearModel lin(m, m.component_count());
+    const int cell_w = 150, cell_h = 300, header = 30;
+    render::Image img(int(2 * K) * cell_w, header + 2 * cell_h);
+    const uint8_t ink[3] = {40, 40, 40}, skin[3] = {225, 190, 160};
+    render::draw_text(img, 8, 8, title + ": components 1-5 (front, side) at -3 SD (top) and +3 SD (bottom)", 2, ink);
+    const auto& tris = data.mesh.triangles;
+    for (uint32_t k = 0; k < K; ++k)
+        for (int row = 0; row < 2; ++row) {
+            std::vector<float> xyz(3 * std::size_t(V));
+            for (uint32_t v = 0; v < V; ++v)
+                for (int a = 0; a < 3; ++a)
+                    xyz[3 * v + a] = data.shape.mean[3 * v + a] + float((row ? 3 : -3) * lin.basis[(3 * v + a) * lin.K + k] * lin.step[k]);
+            float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
+            for (std::size_t i = 0; i < xyz.size(); ++i) lo[i % 3] = std::min(lo[i % 3], xyz[i]), hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+            for (int view = 0; view < 2; ++view) {
+                std::vector<float> depth;
+                render::Viewport vp{int(2 * k + view) * cell_w, header + row * cell_h, cell_w, cell_h,
+                                    view == 0 ? 0.5f * (lo[0] + hi[0]) : -0.5f * (lo[2] + hi[2]), 0.5f * (lo[1] + hi[1]), 0.9f * cell_h / 2.0f};
+                render::draw_mesh(img, depth, vp, view == 0 ? render::View::Front : render::View::Side, xyz.data(), tris.data(),
+                                  uint32_t(tris.size() / 3), skin);
+            }
+        }
+    render::write_png(path, img);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string makehuman, out = "bootstrap_bench";
+    uint32_t scans = 200, heldout = 50, rounds = 3, components = 20, points = 30000, threads = 0;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+        if (a == "--makehuman") makehuman = next();
+        else if (a == "--scans") scans = uint32_t(std::stoul(next()));
+        else if (a == "--heldout") heldout = uint32_t(std::stoul(next()));
+        else if (a == "--rounds") rounds = uint32_t(std::stoul(next()));
+        else if (a == "--components") components = uint32_t(std::stoul(next()));
+        else if (a == "--points") points = uint32_t(std::stoul(next()));
+        else if (a == "--threads") threads = uint32_t(std::stoul(next()));
+        else if (a == "--out") out = next();
+        else {
+            std::fprintf(stderr, "usage: sscape_bootstrap_bench --makehuman DIR [--scans N] [--heldout N] [--rounds N] [--components K] [--points N] [--out DIR] [--threads N]\n");
+            return 2;
+        }
+    }
+    if (makehuman.empty() || scans < 10) {
+        std::fprintf(stderr, "sscape_bootstrap_bench: --makehuman DIR is required (../shared/makehuman), and at least 10 scans\n");
+        return 2;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    auto now = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    const format::ModelData default_data = format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH);
+    const Model model(default_data, nullptr);
+    const uint32_t V = model.vertex_count();
+
+    // The people: scanned ones, held-out ones (truth only), and the weak start's 50.
+    training::mh::Assets assets = training::mh::load_assets(makehuman);
+    training::PopulationSpec ps;
+    ps.count = scans + heldout + 50;
+    ps.seed = 2027;
+    const std::vector<training::BodyParams> people = training::sample_population(assets, ps);
+    const std::size_t trained_modifiers = assets.modifiers.size();
+    training::mh::add_modifier_groups(assets, "modeling_modifiers.json", {"neck", "head", "armslegs"});
+    std::mt19937 rng(7);
+    std::vector<std::vector<Vector3d>> rest(people.size());
+    for (std::size_t p = 0; p < people.size(); ++p) {
+        training::BodyParams body = people[p];
+        std::uniform_real_distribution<double> extra(-0.5, 0.5);  // half their range, as the registration bench
+        body.modifiers.resize(assets.modifiers.size(), 0.0);
+        for (std::size_t k = trained_modifiers; k < body.modifiers.size(); ++k)
+            if (assets.modifiers[k].name.find("-trans") == std::string::npos)
+                body.modifiers[k] = assets.modifiers[k].decr >= 0 ? extra(rng) : 0.5 + extra(rng);
+        std::vector<float> xyz;
+        training::mh::generate_body(assets, body.macro, body.modifiers, xyz);
+        for (uint32_t v = 0; v < V; ++v) rest[p].emplace_back(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+    }
+    std::printf("[%5.0f s] %u scanned bodies, %u held out, 50 for the weak start (MakeHuman, %zu modifiers beyond the trained)\n", now(), scans,
+                heldout, assets.modifiers.size() - trained_modifiers);
+
+    // The scans, in the booth, and their truth.
+    fs::create_directories(out + "/scans");
+    std::vector<std::vector<Vector3d>> truth(scans);
+    learning::BootstrapSpec spec;
+    for (uint32_t s = 0; s < scans; ++s) {
+        const simulation::TrueBody body = simulation::pose_rest_vertices(model, rest[s], simulation::scanning_pose(model, rng), Vector3d::Zero());
+        truth[s] = body.vertices;
+        simulation::BoothSpec booth;
+        booth.points = points;
+        const fitting::PointCloud cloud = simulation::booth_scan(model, body, booth, rng);
+        char name[16];
+        std::snprintf(name, sizeof name, "b%03u", s);
+        const std::string path = out + "/scans/" + name + ".ply";
+        std::vector<float> xyz, nrm;
+        for (std::size_t i = 0; i < cloud.points.size(); ++i)
+            for (int a = 0; a < 3; ++a) xyz.push_back(float(cloud.points[i][a])), nrm.push_back(float(cloud.normals[i][a]));
+        exporters::MeshView mv;
+        mv.vertex_count = uint32_t(cloud.points.size());
+        mv.positions = xyz.data();
+        mv.normals = nrm.data();
+        exporters::write_ply(path, mv);
+        spec.scans.push_back({name, path, ""});
+    }
+    std::printf("[%5.0f s] %u booth scans of %u points in %s/scans\n", now(), scans, points, out.c_str());
+
+    // The weak start: 5 components learned from 50 other true bodies at rest.
+    std::vector<learning::RegisteredScan> weak_bodies;
+    for (std::size_t p = scans + heldout; p < people.size(); ++p) weak_bodies.push_back({"weak", rest[p], false, {}});
+    learning::LearnSpec weak_spec;
+    weak_spec.components = 5;
+    weak_spec.posture = learning::Posture::None;
+    weak_spec.name = "weak-start";
+    const std::vector<unsigned char> weak = format::write_model(learning::learn_model(default_data, weak_bodies, weak_spec));
+
+    // Bootstrapping.
+    spec.out_dir = out + "/boot";
+    spec.rounds = rounds;
+    spec.threads = threads;
+    spec.learn.components = components;
+    spec.sheet_entries = 12;
+    const std::vector<learning::RoundReport> reports = learning::bootstrap(weak, spec, [&](const std::string& line) {
+        if (line.find(" of ") == std::string::npos || line.find("learning") != std::string::npos) std::printf("[%5.0f s] %s\n", now(), line.c_str());
+        std::fflush(stdout);
+        return true;
+    });
+
+    // Each round's registrations against the truth (correspondence: vertex i on true vertex i).
+    std::vector<uint8_t> hand(V, 0);
+    for (const auto& set : default_data.vertex_sets)
+        if (set.name == "hands")
+            for (uint32_t v : set.vertices) hand[v] = 1;
+    std::printf("\nround  accepted  rejected  failed  error all (mm)  accepted (mm)  without hands (mm)  registering s/scan\n");
+    std::vector<learning::RegisteredScan> last_accepted;
+    for (const auto& r : reports) {
+        const std::string dir = spec.out_dir + "/round_" + std::to_string(r.round);
+        const std::vector<unsigned char> bytes = file_bytes(spec.out_dir + "/round_" + std::to_string(r.round - 1) + "/model.sscape");
+        const Model used(format::read_model(bytes.data(), bytes.size()), nullptr);
+        std::FILE* dec = std::fopen((dir + "/decisions.csv").c_str(), "r");
+        char line[4096];
+        std::vector<std::string> accepted_names;
+        while (dec && std::fgets(line, sizeof line, dec))
+            if (std::strstr(line, ",accept,")) accepted_names.push_back(std::string(line, std::strchr(line, ',') - line));
+        if (dec) std::fclose(dec);
+        double all = 0, acc = 0, body = 0;
+        std::size_t n_all = 0, n_acc = 0;
+        if (r.round == reports.back().round) last_accepted.clear();
+        for (uint32_t s = 0; s < scans; ++s) {
+            const std::string mesh = dir + "/registrations/" + spec.scans[s].name + ".ply";
+            if (!fs::exists(learning::record_report_path(mesh))) continue;
+            const learning::RegistrationRecord rec = learning::read_registration_record(mesh, used, true);
+            double e = 0, eb = 0;
+            std::size_t nb = 0;
+            for (uint32_t v = 0; v < V; ++v) {
+                const double d = (rec.registered.vertices[v] - truth[s][v]).norm();
+                e += d / V;
+                if (!hand[v]) eb += d, ++nb;
+            }
+            all += e, ++n_all;
+            if (std::find(accepted_names.begin(), accepted_names.end(), spec.scans[s].name) != accepted_names.end()) {
+                acc += e, body += eb / double(nb), ++n_acc;
+                if (r.round == reports.back().round) last_accepted.push_back(rec.registered);
+            }
+        }
+        std::printf("%5u  %8zu  %8zu  %6zu  %14.2f  %13.2f  %18.2f  %18.2f\n", r.round, r.accepted, r.rejected, r.failed, 1e3 * all / double(n_all),
+                    1e3 * acc / double(std::max<std::size_t>(1, n_acc)), 1e3 * body / double(std::max<std::size_t>(1, n_acc)),
+                    r.register_seconds / double(scans));
+    }
+
+    // The learned model against a model learned directly from the true rest meshes, on held-out
+    // true bodies; and the posture normalizations.
+    std::vector<learning::RegisteredScan> true_rest;
+    for (uint32_t s = 0; s < scans; ++s) true_rest.push_back({"true", rest[s], false, {}});
+    learning::LearnSpec direct_spec;
+    direct_spec.components = std::min<uint32_t>(50, scans - 1);
+    direct_spec.posture = learning::Posture::None;
+    const format::ModelData direct = learning::learn_model(default_data, true_rest, direct_spec);
+    const std::vector<unsigned char> final_bytes = file_bytes(spec.out_dir + "/model.sscape");
+    const std::string last_model = spec.out_dir + "/round_" + std::to_string(reports.back().round - 1) + "/model.sscape";
+    const format::ModelData registered_with = format::read_model_file(last_model);
+    learning::LearnSpec wide = spec.learn;
+    wide.components = std::min<uint32_t>(50, uint32_t(last_accepted.size()) - 1);
+    const format::ModelData skeleton = learning::learn_model(registered_with, last_accepted, wide);
+    wide.posture = learning::Posture::None;
+    const format::ModelData none = learning::learn_model(registered_with, last_accepted, wide);
+    std::vector<std::vector<Vector3d>> held(rest.begin() + scans, rest.begin() + scans + heldout);
+    const training::SampleMatrix H = rows_of(held);
+    learning::EvaluationSpec es;
+    es.components = {5, 10, 20, 50};
+    es.samples = 1000;
+    struct Named {
+        const char* name;
+        const format::ModelData* m;
+    };
+    const format::ModelData weak_data = format::read_model(weak.data(), weak.size()), final_data = format::read_model(final_bytes.data(), final_bytes.size());
+    std::printf("\nheld-out true bodies (%u), rest posture: generalization / specificity, mm\n%-34s", heldout, "model");
+    for (uint32_t k : es.components) std::printf("   k=%-2u gen   spec", k);
+    std::printf("\n");
+    for (const Named& n : {Named{"weak start (50 true bodies, 5 comp)", &weak_data}, Named{"bootstrapped (final round)", &final_data},
+                           Named{"from final registrations, skeleton", &skeleton}, Named{"from final registrations, none", &none},
+                           Named{"from the true rest meshes", &direct}}) {
+        const auto q = learning::evaluate_model(*n.m, H, es);
+        std::printf("%-34s", n.name);
+        for (uint32_t k : es.components) {
+            const auto it = std::find_if(q.begin(), q.end(), [&](const training::QualityPoint& p) { return p.components == k; });
+            if (it == q.end()) std::printf("   %14s", "-");
+            else std::printf("   %6.2f %6.2f", it->generalization * 1e3, it->specificity * 1e3);
+        }
+        std::printf("\n");
+    }
+    component_picture(out + "/components_skeleton.png", skeleton, "posture skeleton");
+    component_picture(out + "/components_none.png", none, "posture none");
+    std::printf("\nwrote %s/components_skeleton.png and components_none.png; contact sheets in %s/round_N; %.0f s in all\n", out.c_str(),
+                spec.out_dir.c_str(), now());
+    return 0;
+}
