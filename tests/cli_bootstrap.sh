@@ -44,6 +44,13 @@ grep -q "round 1: 0 registered, 6 reused" "$out/person.txt" || { cat "$out/perso
 grep -q "round 1: learning from $((accepted - 1)) registrations" "$out/person.txt" || { cat "$out/person.txt"; fail "the model learned again"; }
 grep -q "^$first,reject,\"arm looks wrong, by eye\",person" "$out/run/round_1/decisions.csv" || fail "the person's decision recorded"
 
+# Known attributes: the model is learned again with them (the registrations stay).
+printf 'scan,age\nb1,31\nb2,45\nb3,27\nb4,52\nb5,38\nb6,61\nbroken,40\n' > "$out/ages.csv"
+"$sscape" bootstrap "$out/scans" --rounds 1 --components 3 --decisions "$out/decisions.csv" --attributes "$out/ages.csv" -o "$out/run" > "$out/ages.txt" 2>&1 ||
+    { cat "$out/ages.txt"; fail "bootstrap with attributes"; }
+grep -q "round 1: 0 registered, 6 reused" "$out/ages.txt" && grep -q "round 1: learning from" "$out/ages.txt" || { cat "$out/ages.txt"; fail "learned again with the attributes"; }
+"$sscape" info "$out/run/model.sscape" | grep -qi "age" || fail "the learned model has the given attribute"
+
 # Evaluation of the round's registrations: learning with both posture normalizations, and the
 # two rounds' models against them.
 "$sscape" evaluate "$out"/run/round_1/registrations/*.ply --posture none,skeleton --components 1,2,3 --samples 200 -o "$out/eval" > "$out/eval.txt" 2>&1 ||
@@ -67,6 +74,8 @@ printf 'scan,decision\nnobody,reject\n' > "$out/unknown.csv"
 expect 1 "the decisions name scan 'nobody', which is not in the collection" "$out/scans" --decisions "$out/unknown.csv" -o "$out/bad"
 printf 'scan,decision\nb1,maybe\n' > "$out/maybe.csv"
 expect 1 "maybe.csv:2: expected scan,accept|reject" "$out/scans" --decisions "$out/maybe.csv" -o "$out/bad"
+printf 'scan,age\nb1,31\n' > "$out/few_ages.csv"
+expect 1 "few_ages.csv has no row for scan b2" "$out/scans" --attributes "$out/few_ages.csv" -o "$out/bad"
 mkdir -p "$out/two" && cp "$out/scans/b1.ply" "$out/scans/b2.ply" "$out/two/"
 expect 2 "holds 2 scans (.ply or .obj); bootstrapping needs at least 3" "$out/two" -o "$out/bad"
 echo "bootstrap: one round learned, resumed, decided by a person; refusals clear"

@@ -22,7 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Options {
-    std::string scans, init, out, posture = "skeleton", units, up, decisions, name = "sscape-learned", license;
+    std::string scans, init, out, posture = "skeleton", units, up, decisions, attributes, name = "sscape-learned", license;
     uint32_t rounds = 3, components = 20, threads = 0;
 };
 
@@ -66,6 +66,7 @@ int run_bootstrap(const Options& o) {
     spec.learn.name = o.name;
     if (!o.license.empty()) spec.learn.license = o.license;
     if (!o.decisions.empty()) spec.decisions = learning::read_decisions(o.decisions);
+    if (!o.attributes.empty()) spec.attributes = learning::read_attribute_table(o.attributes);
 
     std::vector<unsigned char> start;
     if (o.init.empty()) {
@@ -126,6 +127,9 @@ Run add_bootstrap(CLI::App& app) {
     c->add_option("--up", o->up, "the scans' up axis (default y)")->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}).description(""));
     c->add_option("--decisions", o->decisions, "a person's verdicts that override the automatic ones in every round: a round's decisions.csv "
                                                "with edited rows marked 'person' in the by column (rows marked 'auto' are ignored)")
+        ->type_name("FILE.csv")->check(CLI::ExistingFile.description(""));
+    c->add_option("--attributes", o->attributes, "CSV of known attributes: a header scan,NAME,..., one row per scan named by its file stem; "
+                                                 "each round's model learns them from its accepted scans")
         ->type_name("FILE.csv")->check(CLI::ExistingFile.description(""));
     c->add_option("--name", o->name, "the learned models' name (default sscape-learned)");
     c->add_option("--license", o->license, "the learned models' licence, the scans' owner's to give (default: unspecified)");

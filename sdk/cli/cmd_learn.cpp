@@ -8,6 +8,7 @@
 #include "io/readers.hpp"
 #include "learning/learn_model.hpp"
 #include "learning/registration_record.hpp"
+#include "learning/scan_tables.hpp"
 #include "sscape_format/model_io.hpp"
 #include "synthesis/model.hpp"
 
@@ -16,8 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <map>
 #include <sstream>
 
 namespace ssc::cli {
@@ -30,54 +29,6 @@ struct Options {
 };
 
 std::string stem_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
-
-// A CSV of known attributes: a header "scan,NAME,...", then one row per registration, named by the
-// registration's file name without its extension, numbers only (no quoting: a table of numbers).
-std::vector<training::KnownAttribute> read_attributes(const std::string& path, const std::vector<learning::RegisteredScan>& scans) {
-    std::ifstream f(path);
-    if (!f) throw std::runtime_error("cannot read " + path);
-    auto split = [](const std::string& line) {
-        std::vector<std::string> cells;
-        std::stringstream ss(line);
-        std::string cell;
-        while (std::getline(ss, cell, ',')) {
-            while (!cell.empty() && (cell.back() == '\r' || cell.back() == ' ')) cell.pop_back();
-            while (!cell.empty() && cell.front() == ' ') cell.erase(cell.begin());
-            cells.push_back(cell);
-        }
-        return cells;
-    };
-    std::string line;
-    if (!std::getline(f, line)) throw std::runtime_error(path + ": empty; the first line names the columns: scan,NAME,...");
-    const std::vector<std::string> header = split(line);
-    if (header.size() < 2 || header[0] != "scan") throw std::runtime_error(path + ": the first line must be scan,NAME,... (the attributes' names)");
-    std::vector<training::KnownAttribute> out;
-    for (std::size_t c = 1; c < header.size(); ++c) {
-        if (header[c].empty()) throw std::runtime_error(path + ": column " + std::to_string(c + 1) + " has no name");
-        out.push_back({header[c], "", "Given with the scans (" + std::filesystem::path(path).filename().string() + ").", true, {}});
-    }
-    std::map<std::string, std::vector<double>> rows;
-    for (std::size_t number = 2; std::getline(f, line); ++number) {
-        if (line.empty() || line == "\r") continue;
-        const std::vector<std::string> cells = split(line);
-        const std::string where = path + ":" + std::to_string(number);
-        if (cells.size() != header.size()) throw std::runtime_error(where + ": " + std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
-        std::vector<double> values;
-        for (std::size_t c = 1; c < cells.size(); ++c) {
-            char* end = nullptr;
-            const double x = std::strtod(cells[c].c_str(), &end);
-            if (cells[c].empty() || *end != '\0' || !std::isfinite(x)) throw std::runtime_error(where + ": '" + cells[c] + "' is not a finite number");
-            values.push_back(x);
-        }
-        if (!rows.emplace(cells[0], values).second) throw std::runtime_error(where + ": scan " + cells[0] + " is listed twice");
-    }
-    for (const auto& s : scans) {
-        const auto it = rows.find(stem_of(s.name));
-        if (it == rows.end()) throw std::runtime_error(path + ": no row for " + stem_of(s.name) + " (" + s.name + ")");
-        for (std::size_t a = 0; a < out.size(); ++a) out[a].values.push_back(it->second[a]);
-    }
-    return out;
-}
 
 int run_learn(const Options& o) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -95,7 +46,11 @@ int run_learn(const Options& o) {
                          std::to_string(o.registrations.size()) + " given)");
     std::vector<learning::RegisteredScan> scans;
     for (const auto& path : o.registrations) scans.push_back(learning::read_registration_record(path, model, spec.posture == learning::Posture::Skeleton).registered);
-    if (!o.attributes.empty()) spec.attributes = read_attributes(o.attributes, scans);
+    if (!o.attributes.empty()) {
+        std::vector<std::string> stems;
+        for (const auto& path : o.registrations) stems.push_back(stem_of(path));
+        spec.attributes = learning::attributes_for(learning::read_attribute_table(o.attributes), stems);
+    }
     std::ostringstream prov;
     prov << "registrations:";
     for (const auto& path : o.registrations) prov << " " << std::filesystem::path(path).filename().string();

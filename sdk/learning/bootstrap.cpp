@@ -4,6 +4,7 @@
 #include "common/files.hpp"
 #include "common/rigid.hpp"
 #include "io/readers.hpp"
+#include "learning/scan_tables.hpp"
 #include "registration/registrar.hpp"
 #include "render/registration_picture.hpp"
 #include "sscape_format/model_io.hpp"
@@ -34,34 +35,6 @@ void write_text(const std::string& path, const std::string& text) { write_file_a
 std::vector<unsigned char> read_bytes(const std::string& path) {
     const std::string s = read_regular_file(path, 1ull << 30);
     return std::vector<unsigned char>(s.begin(), s.end());
-}
-
-// CSV cells: quoted when they hold a comma, a quote or a line break (reasons quote messages).
-std::string csv_cell(const std::string& s) {
-    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-    std::string out = "\"";
-    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' || c == '\r' ? ' ' : c);
-    return out + "\"";
-}
-
-std::vector<std::string> csv_cells(const std::string& line) {
-    std::vector<std::string> cells(1);
-    bool quoted = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        const char c = line[i];
-        if (quoted) {
-            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cells.back() += '"', ++i;
-            else if (c == '"') quoted = false;
-            else cells.back() += c;
-        } else if (c == '"') quoted = true;
-        else if (c == ',') cells.emplace_back();
-        else if (c != '\r') cells.back() += c;
-    }
-    for (auto& cell : cells) {
-        while (!cell.empty() && cell.back() == ' ') cell.pop_back();
-        while (!cell.empty() && cell.front() == ' ') cell.erase(cell.begin());
-    }
-    return cells;
 }
 
 // The scan in the model's frame (metres, +Y up) and its landmarks.
@@ -106,6 +79,9 @@ void check_spec(const BootstrapSpec& spec) {
     }
     for (const auto& [name, d] : spec.decisions)
         SSC_REQUIRE_ARG_S(names.count(name), "bootstrap: the decisions name scan '" << name << "', which is not in the collection");
+    if (!spec.attributes.names.empty())
+        for (const auto& s : spec.scans)
+            SSC_REQUIRE_ARG_S(spec.attributes.rows.count(s.name), "bootstrap: " << spec.attributes.source << " has no row for scan " << s.name);
 }
 
 }  // namespace
@@ -290,12 +266,14 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
                                                         "/decisions.csv: edit it and pass it with --decisions)");
         LearnSpec learn = spec.learn;
         learn.components = std::min<uint32_t>(learn.components, uint32_t(accepted.size() - 1));
+        if (!spec.attributes.names.empty()) learn.attributes = attributes_for(spec.attributes, accepted_names);
         std::ostringstream prov;
         prov << "bootstrap round " << round << " of " << spec.rounds << "; " << accepted.size() << " of " << states.size() << " registrations accepted";
         learn.provenance = prov.str();
         nlohmann::ordered_json settings{{"start_model_digest", digest}, {"accepted", accepted_names}, {"components", learn.components},
                                         {"posture", posture_name(learn.posture)}, {"name", learn.name}, {"license", learn.license},
                                         {"provenance", learn.provenance}};
+        for (const auto& a : learn.attributes) settings["attributes"][a.name] = a.values;
         const std::string model_path = dir + "/model.sscape", round_json = dir + "/round.json";
         const auto t_learn = Clock::now();
         if (fs::exists(round_json) && fs::exists(model_path)) {

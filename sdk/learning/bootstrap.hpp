@@ -17,6 +17,7 @@
 
 #include "learning/acceptance.hpp"
 #include "learning/learn_model.hpp"
+#include "learning/scan_tables.hpp"
 #include "registration/register_scan.hpp"
 
 #include <functional>
@@ -48,6 +49,7 @@ struct BootstrapSpec {
     registration::RegistrationOptions registration;
     AcceptanceRules rules;
     LearnSpec learn;                  // components (capped at accepted - 1), posture, name, licence
+    AttributeTable attributes;        // known per-scan attributes (optional; every scan needs a row)
     std::map<std::string, PersonDecision> decisions;  // by scan name
     uint32_t threads = 0;             // 0: every hardware thread
     int sheet_entries = 12;           // registrations per contact sheet page; 0: no contact sheets

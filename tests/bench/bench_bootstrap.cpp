@@ -136,9 +136,11 @@ int main(int argc, char** argv) {
     // The scans, in the booth, and their truth.
     fs::create_directories(out + "/scans");
     std::vector<std::vector<Vector3d>> truth(scans);
+    std::vector<std::vector<float>> true_pose(scans);
     learning::BootstrapSpec spec;
     for (uint32_t s = 0; s < scans; ++s) {
-        const simulation::TrueBody body = simulation::pose_rest_vertices(model, rest[s], simulation::scanning_pose(model, rng), Vector3d::Zero());
+        true_pose[s] = simulation::scanning_pose(model, rng);
+        const simulation::TrueBody body = simulation::pose_rest_vertices(model, rest[s], true_pose[s], Vector3d::Zero());
         truth[s] = body.vertices;
         simulation::BoothSpec booth;
         booth.points = points;
@@ -185,7 +187,7 @@ int main(int argc, char** argv) {
         if (set.name == "hands")
             for (uint32_t v : set.vertices) hand[v] = 1;
     std::printf("\nround  accepted  rejected  failed  error all (mm)  accepted (mm)  without hands (mm)  registering s/scan\n");
-    std::vector<learning::RegisteredScan> last_accepted;
+    std::vector<learning::RegisteredScan> last_accepted, last_true_pose;  // the latter unposed with the pose the truth was given
     for (const auto& r : reports) {
         const std::string dir = spec.out_dir + "/round_" + std::to_string(r.round);
         const std::vector<unsigned char> bytes = file_bytes(spec.out_dir + "/round_" + std::to_string(r.round - 1) + "/model.sscape");
@@ -213,7 +215,15 @@ int main(int argc, char** argv) {
             all += e, ++n_all;
             if (std::find(accepted_names.begin(), accepted_names.end(), spec.scans[s].name) != accepted_names.end()) {
                 acc += e, body += eb / double(nb), ++n_acc;
-                if (r.round == reports.back().round) last_accepted.push_back(rec.registered);
+                if (r.round == reports.back().round) {
+                    last_accepted.push_back(rec.registered);
+                    learning::RegisteredScan known = rec.registered;
+                    for (uint32_t j = 0; j < model.joint_count(); ++j)
+                        known.fit.pose[j] = Eigen::Quaterniond(true_pose[s][4 * j + 3], true_pose[s][4 * j], true_pose[s][4 * j + 1], true_pose[s][4 * j + 2]);
+                    known.fit.translation.setZero();
+                    known.fit.scale = 1;
+                    last_true_pose.push_back(known);
+                }
             }
         }
         std::printf("%5u  %8zu  %8zu  %6zu  %14.2f  %13.2f  %18.2f  %18.2f\n", r.round, r.accepted, r.rejected, r.failed, 1e3 * all / double(n_all),
@@ -235,6 +245,7 @@ int main(int argc, char** argv) {
     learning::LearnSpec wide = spec.learn;
     wide.components = std::min<uint32_t>(50, uint32_t(last_accepted.size()) - 1);
     const format::ModelData skeleton = learning::learn_model(registered_with, last_accepted, wide);
+    const format::ModelData known_pose = learning::learn_model(registered_with, last_true_pose, wide);
     wide.posture = learning::Posture::None;
     const format::ModelData none = learning::learn_model(registered_with, last_accepted, wide);
     std::vector<std::vector<Vector3d>> held(rest.begin() + scans, rest.begin() + scans + heldout);
@@ -251,7 +262,8 @@ int main(int argc, char** argv) {
     for (uint32_t k : es.components) std::printf("   k=%-2u gen   spec", k);
     std::printf("\n");
     for (const Named& n : {Named{"weak start (50 true bodies, 5 comp)", &weak_data}, Named{"bootstrapped (final round)", &final_data},
-                           Named{"from final registrations, skeleton", &skeleton}, Named{"from final registrations, none", &none},
+                           Named{"from final registrations, skeleton", &skeleton}, Named{"  the same, unposed with the true pose", &known_pose},
+                           Named{"from final registrations, none", &none},
                            Named{"from the true rest meshes", &direct}}) {
         const auto q = learning::evaluate_model(*n.m, H, es);
         std::printf("%-34s", n.name);
