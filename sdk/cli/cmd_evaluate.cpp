@@ -32,7 +32,7 @@ struct Series {
     std::vector<training::QualityPoint> points;
 };
 
-void write_report(const std::string& prefix, const std::vector<Series>& series) {
+void write_report(const std::string& prefix, const std::vector<Series>& series, bool given_models) {
     std::ostringstream csv;
     csv << "series,components,compactness,generalization_mm,specificity_mm\n";
     for (const auto& s : series)
@@ -42,7 +42,8 @@ void write_report(const std::string& prefix, const std::vector<Series>& series) 
     write_file_atomically(prefix + ".csv", text.data(), text.size());
     std::printf("wrote %s.csv\n", prefix.c_str());
     const char* titles[3] = {"compactness", "generalization", "specificity"};
-    const char* labels[3] = {"explained variance (cumulative share)", "mean vertex error on unseen registrations (mm)",
+    const char* labels[3] = {given_models ? "share of the model's own variance (cumulative)" : "explained variance (cumulative share)",
+                             given_models ? "mean vertex error reconstructing the registrations (mm)" : "mean vertex error on unseen registrations (mm)",
                              "mean vertex distance to the nearest registration (mm)"};
     for (int m = 0; m < 3; ++m) {
         render::LinePlot plot;
@@ -111,7 +112,7 @@ int run_evaluate(const Options& o) {
         for (const auto& q : s.points)
             std::printf("%-24s  %10u  %11.4f  %11.2f mm  %11.2f mm\n", s.name.c_str(), q.components, q.compactness, q.generalization * 1e3,
                         q.specificity * 1e3);
-    write_report(o.out, series);
+    write_report(o.out, series, !o.models.empty());
     return 0;
 }
 

@@ -220,8 +220,6 @@ int main(int argc, char** argv) {
                     learning::RegisteredScan known = rec.registered;
                     for (uint32_t j = 0; j < model.joint_count(); ++j)
                         known.fit.pose[j] = Eigen::Quaterniond(true_pose[s][4 * j + 3], true_pose[s][4 * j], true_pose[s][4 * j + 1], true_pose[s][4 * j + 2]);
-                    known.fit.translation.setZero();
-                    known.fit.scale = 1;
                     last_true_pose.push_back(known);
                 }
             }
