@@ -22,7 +22,7 @@ allowed() {  # allowed FOLDER: the folders its files may include from
         render) echo "common sscape_format synthesis anatomy measure fitting" ;;
         simulation|testing) echo "common sscape_format synthesis anatomy fitting registration" ;;
         training) echo "$runtime render makehuman" ;;
-        learning) echo "$runtime training render io" ;;
+        learning) echo "$runtime training render io simulation" ;;
         cli) echo "$runtime capi render simulation io testing training learning" ;;
         *) echo "?" ;;
     esac

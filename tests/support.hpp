@@ -7,12 +7,21 @@
 
 #include <sscape/sscape.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace test {
+
+// The MakeHuman assets' folder as CTest passes it (SSCAPE_MAKEHUMAN), or "" when it is not there:
+// tests that need it skip with a visible "SKIPPED:" message.
+inline std::string makehuman_root() {
+    const char* env = std::getenv("SSCAPE_MAKEHUMAN");
+    return env && std::filesystem::is_directory(std::string(env) + "/makehuman") ? env : "";
+}
 
 // A small model: 6 joints, 300 vertices, 4 components; identity rest orientations unless asked.
 inline ssc::testing::SyntheticModel mini_model(bool aligned = false, uint32_t seed = 7) {

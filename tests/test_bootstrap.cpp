@@ -4,6 +4,8 @@
 #include "learning/acceptance.hpp"
 #include "learning/bootstrap.hpp"
 #include "learning/registration_record.hpp"
+#include "learning/evaluate_learning.hpp"
+#include "learning/simulated_collection.hpp"
 #include "support.hpp"
 
 #include "anatomy/joint_limits.hpp"
@@ -11,6 +13,7 @@
 #include "common/files.hpp"
 #include "io/readers.hpp"
 #include "simulation/simulate.hpp"
+#include "sscape_format/model_io.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -207,4 +210,71 @@ TEST_CASE("a person's decisions file: their rows, not the tool's, with quoted re
     CHECK_THROWS_WITH(decisions("b1,reject\n"), Catch::Contains("the first line must be the header"));
     CHECK_THROWS_WITH(decisions("scan,decision\nb1,perhaps\n"), Catch::Contains("decisions_test.csv:2: expected scan,accept|reject"));
     CHECK_THROWS_WITH(decisions("scan,decision\nb1,accept\nb1,reject\n"), Catch::Contains("scan b1 is decided twice"));
+}
+
+TEST_CASE("one round of bootstrapping on 20 MakeHuman booth scans: most accepted, close to the truth, a usable model", "[bootstrap][makehuman]") {
+    const std::string root = test::makehuman_root();
+    if (root.empty()) {
+        WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");
+        return;
+    }
+    const Model& m = test::default_cpp_model();
+    const std::string folder = "bootstrap_makehuman_test";
+    std::filesystem::remove_all(folder);
+    learning::CollectionSpec cs;
+    cs.scans = 20;
+    cs.extra = 10;
+    cs.points = 15000;
+    const learning::SimulatedCollection c = learning::simulate_collection(root, m, cs, folder + "/scans");
+    REQUIRE(c.scans.size() == 20);
+    learning::BootstrapSpec spec;
+    spec.scans = c.scans;
+    spec.out_dir = folder + "/run";
+    spec.rounds = 1;
+    spec.threads = 2;
+    spec.learn.components = 8;
+    spec.sheet_entries = 0;
+    const std::vector<learning::RoundReport> reports = learning::bootstrap(format::write_model(m.data()), spec);
+    REQUIRE(reports.size() == 1);
+    INFO(reports[0].accepted << " accepted, " << reports[0].rejected << " rejected, " << reports[0].failed << " failed");
+    CHECK(reports[0].failed == 0);
+    CHECK(reports[0].accepted >= 14);
+
+    // The accepted registrations against the true meshes, vertex for vertex.
+    double error = 0;
+    std::vector<learning::RegisteredScan> accepted;
+    const std::string decisions = read_regular_file(spec.out_dir + "/round_1/decisions.csv", 1 << 20);
+    for (std::size_t s = 0; s < c.scans.size(); ++s) {
+        if (decisions.find("\n" + c.scans[s].name + ",accept,") == std::string::npos) continue;
+        const learning::RegistrationRecord r = learning::read_registration_record(spec.out_dir + "/round_1/registrations/" + c.scans[s].name + ".ply", m, true);
+        error += simulation::mean_vertex_error(r.registered.vertices, c.truth[s]);
+        accepted.push_back(r.registered);
+    }
+    REQUIRE(accepted.size() == reports[0].accepted);
+    error /= double(accepted.size());
+    INFO("mean correspondence error of the accepted registrations " << error * 1e3 << " mm");
+    CHECK(error < 0.012);
+
+    // The learned model loads, and reconstructs the 10 held-out people at rest about as well as a
+    // model learned from the scanned people's true rest meshes.
+    const format::ModelData learned = format::read_model_file(spec.out_dir + "/model.sscape");
+    std::vector<learning::RegisteredScan> true_rest;
+    for (std::size_t s = 0; s < c.scans.size(); ++s) true_rest.push_back({"true", c.rest[s], false, {}});
+    learning::LearnSpec direct_spec;
+    direct_spec.components = 8;
+    direct_spec.posture = learning::Posture::None;
+    const format::ModelData direct = learning::learn_model(m.data(), true_rest, direct_spec);
+    training::SampleMatrix held(10, 3 * Eigen::Index(m.vertex_count()));
+    for (int i = 0; i < 10; ++i)
+        for (uint32_t v = 0; v < m.vertex_count(); ++v)
+            for (int a = 0; a < 3; ++a) held(i, 3 * Eigen::Index(v) + a) = float(c.rest[20 + std::size_t(i)][v][a]);
+    learning::EvaluationSpec es;
+    es.components = {8};
+    es.samples = 100;
+    const double learned_error = learning::evaluate_model(learned, held, es).at(0).generalization;
+    const double direct_error = learning::evaluate_model(direct, held, es).at(0).generalization;
+    INFO("held-out people at 8 components: learned " << learned_error * 1e3 << " mm, from the true meshes " << direct_error * 1e3 << " mm");
+    CHECK(learned_error < direct_error + 0.005);
+    CHECK(learned_error < 0.015);
+    std::filesystem::remove_all(folder);
 }

@@ -16,15 +16,9 @@
 
 namespace {
 
-// CTest passes the configured path (SSCAPE_MAKEHUMAN); "" when the folder is not there.
-std::string assets_root() {
-    const char* env = std::getenv("SSCAPE_MAKEHUMAN");
-    return env && std::filesystem::is_directory(std::string(env) + "/makehuman") ? env : "";
-}
-
 // A small training run's settings, or false (with a visible skip) where the assets are absent.
 bool small_training(ssc::training::TrainSpec& spec) {
-    const std::string root = assets_root();
+    const std::string root = test::makehuman_root();
     if (root.empty()) {
         WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");
         return false;

@@ -137,11 +137,16 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
             const ScanInput& in = spec.scans[i];
             ScanState& st = states[i];
             const std::string mesh = dir + "/registrations/" + in.name + ".ply";
-            std::string how = "reused";
-            if (fs::exists(record_report_path(mesh))) {
+            std::string how = "reused", scan_digest;
+            try {
+                scan_digest = file_digest(read_regular_file(in.path, 4ull << 30));
+            } catch (const Error&) {
+                scan_digest.clear();  // unreadable: registering it fails below with the reason
+            }
+            if (!scan_digest.empty() && fs::exists(record_report_path(mesh))) {
                 try {
                     st.record = read_registration_record(mesh, model, false);
-                    st.ok = st.record.model_digest == digest;
+                    st.ok = st.record.model_digest == digest && st.record.scan_digest == scan_digest;
                 } catch (const Error&) {
                     st.ok = false;  // made again below
                 }
@@ -170,6 +175,7 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
                     if (!r.fit.frames.empty()) rec.registered.fit = r.fit.frames[0], rec.registered.has_fit = true;
                     rec.quality = r.report.quality;
                     rec.model_digest = digest;
+                    rec.scan_digest = scan_digest;
                     write_registration_record(mesh, model, rec);
                     st.ok = true;
                     ++rep.registered;

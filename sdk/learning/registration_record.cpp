@@ -49,11 +49,18 @@ void quality_from_json(const ordered_json& j, registration::DistanceSummary& d, 
 
 std::string record_report_path(const std::string& mesh_path) { return std::filesystem::path(mesh_path).replace_extension(".json").string(); }
 
-std::string model_digest(const std::vector<unsigned char>& model_file) {
+namespace {
+
+std::string digest_of(const void* data, std::size_t size) {
     char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(XXH3_64bits(model_file.data(), model_file.size())));
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(XXH3_64bits(data, size)));
     return hex;
 }
+
+}  // namespace
+
+std::string model_digest(const std::vector<unsigned char>& model_file) { return digest_of(model_file.data(), model_file.size()); }
+std::string file_digest(const std::string& bytes) { return digest_of(bytes.data(), bytes.size()); }
 
 void write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& r) {
     const uint32_t V = model.vertex_count();
@@ -80,6 +87,7 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
     j["seconds"] = r.seconds;
     j["fit_seconds"] = r.fit_seconds;
     if (!r.model_digest.empty()) j["model_digest"] = r.model_digest;
+    if (!r.scan_digest.empty()) j["scan_digest"] = r.scan_digest;
     j["quality"] = quality_json(r.quality.scan_to_registration, r.quality.below);
     ordered_json regions = ordered_json::object();
     for (const auto& q : r.quality.regions) regions[q.region] = quality_json(q.scan_to_registration, q.below);
@@ -121,6 +129,7 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
         r.seconds = j.value("seconds", 0.0);
         r.fit_seconds = j.value("fit_seconds", 0.0);
         r.model_digest = j.value("model_digest", "");
+        r.scan_digest = j.value("scan_digest", "");
         SSC_REQUIRE_ARG_S(std::isfinite(r.scan_units_to_metres) && r.scan_units_to_metres > 0 && r.scan_units_to_metres <= 1,
                           "the report's scan_units_to_metres " << r.scan_units_to_metres << " is not a unit");
         SSC_REQUIRE_ARG_S(std::find(kAxes.begin(), kAxes.end(), r.scan_up) != kAxes.end(), "the report's scan_up '" << r.scan_up << "' is no axis");

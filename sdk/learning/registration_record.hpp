@@ -21,6 +21,7 @@ struct RegistrationRecord {
     RegisteredScan registered;        // the model frame (metres, +Y up); name: the mesh's path
     registration::RegistrationQuality quality;  // vertex_distance may be empty
     std::string model_digest;         // empty when unknown
+    std::string scan_digest;          // of the scan file's bytes; empty when unknown
 };
 
 // The report's path for a registered mesh.
@@ -35,7 +36,8 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
 // the model fit when need_fit).
 RegistrationRecord read_registration_record(const std::string& mesh_path, const Model& model, bool need_fit);
 
-// A short digest of a model file's bytes (hex): which model a registration was made with.
+// A short digest of a file's bytes (hex): which model and which scan a registration was made from.
 std::string model_digest(const std::vector<unsigned char>& model_file);
+std::string file_digest(const std::string& bytes);
 
 }  // namespace ssc::learning

@@ -7,20 +7,19 @@
 // true bodies beside a model learned directly from the true rest meshes, and the posture
 // normalizations none and skeleton, with pictures of their first five components at +-3 SD.
 //
+// The collection comes from learning::simulate_collection.
+//
 // usage: sscape_bootstrap_bench --makehuman DIR [--scans 200] [--heldout 50] [--rounds 3]
 //                               [--components 20] [--points 30000] [--out DIR] [--threads N]
 #include "common/files.hpp"
-#include "export/mesh_writers.hpp"
 #include "learning/bootstrap.hpp"
 #include "learning/evaluate_learning.hpp"
 #include "learning/registration_record.hpp"
+#include "learning/simulated_collection.hpp"
 #include "render/raster.hpp"
 #include "render/text.hpp"
-#include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
 #include "sscape_format/model_io.hpp"
-#include "training/makehuman/assets.hpp"
-#include "training/population.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -109,60 +108,23 @@ int main(int argc, char** argv) {
     const Model model(default_data, nullptr);
     const uint32_t V = model.vertex_count();
 
-    // The people: scanned ones, held-out ones (truth only), and the weak start's 50.
-    training::mh::Assets assets = training::mh::load_assets(makehuman);
-    training::PopulationSpec ps;
-    ps.count = scans + heldout + 50;
-    ps.seed = 2027;
-    const std::vector<training::BodyParams> people = training::sample_population(assets, ps);
-    const std::size_t trained_modifiers = assets.modifiers.size();
-    training::mh::add_modifier_groups(assets, "modeling_modifiers.json", {"neck", "head", "armslegs"});
-    std::mt19937 rng(7);
-    std::vector<std::vector<Vector3d>> rest(people.size());
-    for (std::size_t p = 0; p < people.size(); ++p) {
-        training::BodyParams body = people[p];
-        std::uniform_real_distribution<double> extra(-0.5, 0.5);  // half their range, as the registration bench
-        body.modifiers.resize(assets.modifiers.size(), 0.0);
-        for (std::size_t k = trained_modifiers; k < body.modifiers.size(); ++k)
-            if (assets.modifiers[k].name.find("-trans") == std::string::npos)
-                body.modifiers[k] = assets.modifiers[k].decr >= 0 ? extra(rng) : 0.5 + extra(rng);
-        std::vector<float> xyz;
-        training::mh::generate_body(assets, body.macro, body.modifiers, xyz);
-        for (uint32_t v = 0; v < V; ++v) rest[p].emplace_back(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-    }
-    std::printf("[%5.0f s] %u scanned bodies, %u held out, 50 for the weak start (MakeHuman, %zu modifiers beyond the trained)\n", now(), scans,
-                heldout, assets.modifiers.size() - trained_modifiers);
-
-    // The scans, in the booth, and their truth.
-    fs::create_directories(out + "/scans");
-    std::vector<std::vector<Vector3d>> truth(scans);
-    std::vector<std::vector<float>> true_pose(scans);
+    // The people: scanned ones (booth scans and truth), held-out ones and the weak start's 50 (rest only).
+    learning::CollectionSpec cs;
+    cs.scans = scans;
+    cs.extra = heldout + 50;
+    cs.points = points;
+    const learning::SimulatedCollection collection = learning::simulate_collection(makehuman, model, cs, out + "/scans");
+    const auto& rest = collection.rest;
+    const auto& truth = collection.truth;
+    const auto& true_pose = collection.poses;
     learning::BootstrapSpec spec;
-    for (uint32_t s = 0; s < scans; ++s) {
-        true_pose[s] = simulation::scanning_pose(model, rng);
-        const simulation::TrueBody body = simulation::pose_rest_vertices(model, rest[s], true_pose[s], Vector3d::Zero());
-        truth[s] = body.vertices;
-        simulation::BoothSpec booth;
-        booth.points = points;
-        const fitting::PointCloud cloud = simulation::booth_scan(model, body, booth, rng);
-        char name[16];
-        std::snprintf(name, sizeof name, "b%03u", s);
-        const std::string path = out + "/scans/" + name + ".ply";
-        std::vector<float> xyz, nrm;
-        for (std::size_t i = 0; i < cloud.points.size(); ++i)
-            for (int a = 0; a < 3; ++a) xyz.push_back(float(cloud.points[i][a])), nrm.push_back(float(cloud.normals[i][a]));
-        exporters::MeshView mv;
-        mv.vertex_count = uint32_t(cloud.points.size());
-        mv.positions = xyz.data();
-        mv.normals = nrm.data();
-        exporters::write_ply(path, mv);
-        spec.scans.push_back({name, path, ""});
-    }
-    std::printf("[%5.0f s] %u booth scans of %u points in %s/scans\n", now(), scans, points, out.c_str());
+    spec.scans = collection.scans;
+    std::printf("[%5.0f s] %u booth scans of %u points in %s/scans (MakeHuman bodies beyond the model), %u more people held out, 50 for the weak start\n",
+                now(), scans, points, out.c_str(), heldout);
 
     // The weak start: 5 components learned from 50 other true bodies at rest.
     std::vector<learning::RegisteredScan> weak_bodies;
-    for (std::size_t p = scans + heldout; p < people.size(); ++p) weak_bodies.push_back({"weak", rest[p], false, {}});
+    for (std::size_t p = scans + heldout; p < rest.size(); ++p) weak_bodies.push_back({"weak", rest[p], false, {}});
     learning::LearnSpec weak_spec;
     weak_spec.components = 5;
     weak_spec.posture = learning::Posture::None;
