@@ -35,6 +35,16 @@ grep -q "bootstrap round 1 of 1" "$out/info.txt" || { cat "$out/info.txt"; fail 
 "$sscape" bootstrap "$out/scans" --rounds 1 --components 3 -o "$out/run" > "$out/again.txt" 2>&1 || { cat "$out/again.txt"; fail "resume"; }
 grep -q "round 1: 0 registered, 6 reused, 1 failed.*, reused$" "$out/again.txt" || { cat "$out/again.txt"; fail "the resumed run redid work"; }
 
+# The same reading of the scans spelled out redoes nothing; another (their up axis) registers and learns again.
+cp -r "$out/run" "$out/run_cm"
+"$sscape" bootstrap "$out/scans" --rounds 1 --components 3 --units m --up y -o "$out/run_cm" > "$out/same_units.txt" 2>&1 ||
+    { cat "$out/same_units.txt"; fail "resume with the same units spelled out"; }
+grep -q "round 1: 0 registered, 6 reused" "$out/same_units.txt" || { cat "$out/same_units.txt"; fail "the same units redid work"; }
+"$sscape" bootstrap "$out/scans" --rounds 1 --components 3 --up z -o "$out/run_cm" > "$out/other_up.txt" 2>&1
+grep -q ", 0 reused, " "$out/other_up.txt" || { cat "$out/other_up.txt"; fail "another up axis reused registrations"; }
+grep -q "round 1: learning from" "$out/other_up.txt" || { cat "$out/other_up.txt"; fail "new registrations reused the model"; }
+rm -rf "$out/run_cm"
+
 # A person rejects an accepted scan: the registrations stay, the model is learned again without it.
 first=$(grep ",accept," "$out/run/round_1/decisions.csv" | head -1 | cut -d, -f1)
 printf 'scan,decision,reason,by\n%s,reject,"arm looks wrong, by eye",person\nb1,accept,,auto\n' "$first" > "$out/decisions.csv"

@@ -138,15 +138,18 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
             ScanState& st = states[i];
             const std::string mesh = dir + "/registrations/" + in.name + ".ply";
             std::string how = "reused", scan_digest;
-            try {
-                scan_digest = file_digest(read_regular_file(in.path, 4ull << 30));
+            try {  // the scan and its landmarks, as read: a changed file is registered again
+                std::string bytes = read_regular_file(in.path, 4ull << 30);
+                if (!in.landmarks.empty()) bytes += read_regular_file(in.landmarks, 64ull << 20);
+                scan_digest = file_digest(bytes);
             } catch (const Error&) {
                 scan_digest.clear();  // unreadable: registering it fails below with the reason
             }
             if (!scan_digest.empty() && fs::exists(record_report_path(mesh))) {
                 try {
                     st.record = read_registration_record(mesh, model, false);
-                    st.ok = st.record.model_digest == digest && st.record.scan_digest == scan_digest;
+                    st.ok = st.record.model_digest == digest && st.record.scan_digest == scan_digest &&
+                            st.record.scan_units_to_metres == spec.scan_units_to_metres && st.record.scan_up == spec.up;
                 } catch (const Error&) {
                     st.ok = false;  // made again below
                 }
@@ -280,6 +283,9 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
                                         {"posture", posture_name(learn.posture)}, {"name", learn.name}, {"license", learn.license},
                                         {"provenance", learn.provenance}};
         for (const auto& a : learn.attributes) settings["attributes"][a.name] = a.values;
+        // The registrations themselves: one made again (another reading of its scan) relearns the model.
+        for (const auto& name : accepted_names)
+            settings["registrations"].push_back(file_digest(read_regular_file(record_report_path(dir + "/registrations/" + name + ".ply"), 64ull << 20)));
         const std::string model_path = dir + "/model.sscape", round_json = dir + "/round.json";
         const auto t_learn = Clock::now();
         if (fs::exists(round_json) && fs::exists(model_path)) {

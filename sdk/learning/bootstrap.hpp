@@ -10,8 +10,9 @@
 //   round_N/model.sscape, round.json    the model learned from the accepted registrations
 //   model.sscape, rounds.csv            the last round's model; a line per round
 // A run that stops (interrupted, a full disk, too few accepted scans) resumes where it stopped: a
-// registration is reused when its report names the digests of the model and the scan it was made
-// from, a round's model when it was learned from the same registrations and settings. Every file
+// registration is reused when its report names the digests of the model and the scan (with its
+// landmarks) it was made from and the same units and up axis, a round's model when it was learned
+// from the same registrations and settings. Every file
 // is written atomically, so a stop leaves no partial file.
 #pragma once
 
