@@ -26,6 +26,24 @@ grep -q "CC-BY-4.0 (test scans)" "$out/info.txt" || { cat "$out/info.txt"; fail 
 "$sscape" synth "$out/learned.sscape" --random 1 -o "$out/body.obj" > /dev/null 2>&1 || fail "a body of the learned model"
 "$sscape" learn "$out"/reg?.ply --posture none --components 2 -o "$out/none.sscape" > /dev/null 2>&1 || fail "posture none"
 
+# Segment shape spaces: learned, listed by info, set per segment by synth.
+"$sscape" learn "$out"/reg?.ply --components 3 --segment-components 2 -o "$out/segments.sscape" > "$out/segments.txt" 2>&1 ||
+    { cat "$out/segments.txt"; fail "learn with segments"; }
+grep -q "segment compactness" "$out/segments.txt" || { cat "$out/segments.txt"; fail "learn reports the segments' compactness"; }
+"$sscape" info "$out/segments.sscape" > "$out/info_segments.txt" 2>&1 || fail "info on the model with segments"
+grep -q "arm_l  *2 components" "$out/info_segments.txt" || { cat "$out/info_segments.txt"; fail "info lists the segments"; }
+"$sscape" info "$out/segments.sscape" --segments-png "$out/segments.png" > /dev/null 2>&1 || fail "info --segments-png"
+[ "$(head -c 4 "$out/segments.png" | od -An -c | tr -d ' ')" = "211PNG" ] || fail "the segments picture is not a PNG"
+"$sscape" info "$out/body.obj" --segments-png "$out/x.png" > /dev/null 2>&1 && fail "info --segments-png on a mesh"
+"$sscape" info --segments-png "$out/none.png" > "$out/none.txt" 2>&1
+[ $? -eq 2 ] && grep -q "no segment shape spaces" "$out/none.txt" && [ ! -e "$out/none.png" ] || { cat "$out/none.txt"; fail "info --segments-png on a model without segments"; }
+"$sscape" synth "$out/segments.sscape" --segment arm_l=1.5,-0.3 --segment head=1 -o "$out/segment_body.obj" > /dev/null 2>&1 || fail "synth --segment"
+cmp -s "$out/segment_body.obj" "$out/body.obj" && fail "synth --segment changed nothing"
+"$sscape" synth "$out/segments.sscape" --segment tail=1 -o "$out/no.obj" > "$out/no.txt" 2>&1
+[ $? -eq 2 ] && grep -q "its segments: head, arm_l" "$out/no.txt" && [ ! -e "$out/no.obj" ] || { cat "$out/no.txt"; fail "synth --segment with an unknown name"; }
+"$sscape" synth "$out/segments.sscape" --segment arm_l=1,2,3 -o "$out/no.obj" > "$out/no.txt" 2>&1
+[ $? -ne 0 ] && grep -q "segment 'arm_l' has 2 components" "$out/no.txt" && [ ! -e "$out/no.obj" ] || { cat "$out/no.txt"; fail "synth --segment with too many values"; }
+
 # Refusals: a message, a non-zero exit, no file.
 expect() {  # expect CODE PATTERN ARGS...
     code=$1 pattern=$2; shift 2
@@ -36,6 +54,7 @@ expect() {  # expect CODE PATTERN ARGS...
     [ ! -e "$out/bad.sscape" ] || fail "learn $* wrote a model"
 }
 expect 2 "needs more than that many registrations" "$out"/reg?.ply --components 5
+expect 1 "components per segment" "$out"/reg?.ply --components 2 --segment-components 5
 cp "$out/reg1.ply" "$out/lonely.ply"
 expect 1 "no registration report" "$out/reg1.ply" "$out/reg2.ply" "$out/lonely.ply" --components 2
 echo "scan,age" > "$out/short.csv" && echo "reg1,30" >> "$out/short.csv"

@@ -708,6 +708,71 @@ SSC_EXPERIMENTAL ssc_status ssc_body_set_slider(ssc_body* body, uint32_t index, 
 SSC_EXPERIMENTAL ssc_status ssc_body_set_sliders(ssc_body* body, const float* values, uint32_t count);
 
 /* ---------------------------------------------------------------------------------------------- */
+/* Segment shape spaces (SSC_EXPERIMENTAL: may change in a minor version)                          */
+
+/**
+ * A model may hold, beside its whole-body shape space, one shape space per body segment (trained
+ * models: head, arm_l, arm_r, torso, leg_l, leg_r), each a PCA over that segment's vertices alone:
+ * an arm's own variation, which the whole-body components mix with the rest of the body. Segments
+ * overlap in bands around their borders where each vertex's weights blend smoothly from one
+ * segment to the next, so bodies made from segment coefficients have no seams. Each segment's
+ * shape is its own (learned in its own rigid frame, anchored where it attaches): a longer leg keeps
+ * its hip where it was and reaches lower; the torso's components carry the head and limbs along
+ * where they attach. A body's rest shape
+ * is the whole-body shape (ssc_body_set_shape) plus every segment's blended shape; segment
+ * coefficients start at 0, stay until set again, and are not changed by whole-body setters, sliders,
+ * made to measure or fitting. A model may have no segments (count 0).
+ */
+typedef struct ssc_segment_info {
+    uint32_t struct_size;    /**< Set by the caller: sizeof(ssc_segment_info). */
+    const char* name;        /**< "head", "arm_l", ... (owned by the model). */
+    uint32_t shape_count;    /**< The segment's components (standard deviations, as the body's). */
+    uint32_t vertex_count;   /**< Vertices its components move: its own and its blend bands; for the
+                                  torso the whole body, whose limbs and head ride on it. */
+} ssc_segment_info;
+
+/** Number of segment shape spaces. Threads: any. */
+SSC_EXPERIMENTAL uint32_t ssc_model_segment_count(const ssc_model* model);
+
+/**
+ * Describes segment index (below ssc_model_segment_count).
+ * @param out  out: out->struct_size must be set; only that many bytes are written.
+ * Threads: any.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_model_get_segment_info(const ssc_model* model, uint32_t index, ssc_segment_info* out);
+
+/** Finds a segment by name; SSC_ERROR_NOT_FOUND for a name the model lacks. Threads: any. */
+SSC_EXPERIMENTAL ssc_status ssc_model_find_segment(const ssc_model* model, const char* name, uint32_t* out_index);
+
+/**
+ * Copies the vertices segment index moves and their blend weights: how much of each vertex belongs
+ * to the segment, in [0, 1] (0 where it only rides along; a vertex's weights over all segments sum
+ * to 1): vertex_count entries (ssc_segment_info) each. What to colour to show the segments.
+ * @param vertices  out, may be NULL: sorted vertex indices.
+ * @param weights   out, may be NULL: blend weights, in the same order.
+ * @param capacity  entries each array holds.
+ * Threads: any.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_model_get_segment_vertices(const ssc_model* model, uint32_t index, uint32_t* vertices,
+                                                           float* weights, uint32_t capacity);
+
+/**
+ * Sets one segment's coefficients.
+ * @param segment       below ssc_model_segment_count.
+ * @param coefficients  count values in standard deviations, finite and within
+ *                      +-SSC_SHAPE_COEFFICIENT_LIMIT; may be NULL when count is 0.
+ * @param count         at most the segment's shape_count; its remaining components are set to 0.
+ * @return SSC_ERROR_INVALID_ARGUMENT for a bad segment, count or value; the body is unchanged then.
+ * Threads: the body's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_body_set_segment_shape(ssc_body* body, uint32_t segment, const float* coefficients,
+                                                       uint32_t count);
+
+/** Copies one segment's coefficients; capacity at least its shape_count. Threads: the body's thread. */
+SSC_EXPERIMENTAL ssc_status ssc_body_get_segment_shape(const ssc_body* body, uint32_t segment, float* out,
+                                                       uint32_t capacity);
+
+/* ---------------------------------------------------------------------------------------------- */
 /* Bodies made to measure (SSC_EXPERIMENTAL: may change in a minor version)                        */
 
 /** Options of ssc_body_make_to_measure. Initialise with ssc_made_to_measure_def_init. */

@@ -173,6 +173,31 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
         }
     }
 
+    if (const auto* segments = root->segments()) {
+        for (const auto* sg : *segments) {
+            ShapeSegment out;
+            out.name = text(sg->name());
+            const auto* vertices = need(sg->vertices(), "segments.vertices");
+            out.vertices.assign(vertices->begin(), vertices->end());
+            const auto* weights = need(sg->weights(), "segments.weights");
+            out.weights.assign(weights->begin(), weights->end());
+            const auto* stddev = need(sg->stddev(), "segments.stddev");
+            out.stddev.assign(stddev->begin(), stddev->end());
+            out.basis.step = Vec<float>(CAlloc<float>(a));
+            out.basis.q = Vec<int16_t>(CAlloc<int16_t>(a));
+            copy(need(sg->step(), "segments.step"), out.basis.step);
+            out.basis.components = static_cast<uint32_t>(out.stddev.size());
+            const auto n = static_cast<uint32_t>(out.vertices.size());
+            const auto* order = need(sg->vertex_order(), "segments.vertex_order");
+            const auto* pred = need(sg->predictor(), "segments.predictor");
+            const auto* planes = need(sg->residual_planes(), "segments.residual_planes");
+            SSC_REQUIRE_MODEL(order->size() == n && pred->size() == n,
+                              "segment '" + out.name + "': vertex_order/predictor must hold one entry per segment vertex");
+            decode_residuals(planes->data(), planes->size(), n, out.basis.components, order->data(), pred->data(), out.basis.q);
+            m.segments.push_back(std::move(out));
+        }
+    }
+
     validate_model(m);
     return m;
 }

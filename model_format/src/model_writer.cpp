@@ -20,6 +20,25 @@ flatbuffers::Offset<flatbuffers::Vector<T>> opt_vec(flatbuffers::FlatBufferBuild
     return v.empty() ? 0 : vec(fbb, v);
 }
 
+// A segment's basis is predicted over the triangles whose corners all lie in the segment.
+flatbuffers::Offset<sscape::fb::ShapeSegment> write_segment(flatbuffers::FlatBufferBuilder& fbb, const ShapeSegment& s,
+                                                           const Mesh& mesh) {
+    const auto n = static_cast<uint32_t>(s.vertices.size());
+    std::vector<uint32_t> local(mesh.vertex_count, kNone);
+    for (uint32_t i = 0; i < n; ++i)
+        if (s.vertices[i] < mesh.vertex_count) local[s.vertices[i]] = i;
+    Vec<uint32_t> triangles;
+    for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
+        const uint32_t a = local[mesh.triangles[t]], b = local[mesh.triangles[t + 1]], c = local[mesh.triangles[t + 2]];
+        if (a != kNone && b != kNone && c != kNone) triangles.insert(triangles.end(), {a, b, c});
+    }
+    const PredictionTree tree = build_prediction_tree(n, triangles, Vec<uint32_t>{});
+    const std::vector<uint8_t> planes = encode_residuals(s.basis, n, tree);
+    return sscape::fb::CreateShapeSegment(fbb, fbb.CreateString(s.name), fbb.CreateVector(s.vertices), fbb.CreateVector(s.weights),
+                                          fbb.CreateVector(s.stddev), vec(fbb, s.basis.step), fbb.CreateVector(tree.order),
+                                          fbb.CreateVector(tree.predictor), fbb.CreateVector(planes));
+}
+
 }  // namespace
 
 std::vector<unsigned char> write_model(const ModelData& m, const WriteOptions& options) {
@@ -81,9 +100,13 @@ std::vector<unsigned char> write_model(const ModelData& m, const WriteOptions& o
     for (const auto& r : m.joint_roles)
         roles.push_back(fb::CreateJointRole(fbb, r.part, r.side, r.rotation_sigma, r.coarse, r.limb_joint));
 
+    std::vector<flatbuffers::Offset<fb::ShapeSegment>> segments;
+    for (const auto& s : m.segments) segments.push_back(write_segment(fbb, s, me));
+
     auto root = fb::CreateModel(fbb, meta, mesh, shape, skeleton, skin, fbb.CreateVector(landmarks),
                                 fbb.CreateVector(sets), m.joint_limits.empty() ? 0 : fbb.CreateVector(limits), attributes,
-                                m.joint_roles.empty() ? 0 : fbb.CreateVector(roles));
+                                m.joint_roles.empty() ? 0 : fbb.CreateVector(roles),
+                                m.segments.empty() ? 0 : fbb.CreateVector(segments));
     fb::FinishModelBuffer(fbb, root);
     return pack_container(fbb.GetBufferPointer(), fbb.GetSize(), options.zstd_level);
 }

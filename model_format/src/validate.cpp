@@ -219,6 +219,36 @@ void validate_model(const ModelData& m) {
             SSC_REQUIRE_MODEL(am.covariance[a * A + b] == am.covariance[b * A + a], "attributes.covariance is not symmetric");
     }
 
+    // Segment shape spaces: each a valid shape space over its own vertices; blend weights in [0, 1]
+    // that sum to at most 1 at every vertex (a partition of the body, blurred at the borders).
+    names.clear();
+    std::vector<float> weight_sum(m.segments.empty() ? 0 : V, 0.f);
+    for (const auto& sg : m.segments) {
+        names.push_back(sg.name);
+        const std::string what = "segment '" + sg.name + "'";
+        const std::size_t n = sg.vertices.size(), Ks = sg.basis.components;
+        SSC_REQUIRE_MODEL(n > 0, what + " has no vertices");
+        require_below(sg.vertices, V, (what + ".vertices").c_str());
+        for (std::size_t i = 1; i < n; ++i)
+            SSC_REQUIRE_MODEL(sg.vertices[i - 1] < sg.vertices[i], what + ": vertices must be sorted and unique");
+        require_size(sg.weights, n, (what + ".weights").c_str());
+        SSC_REQUIRE_MODEL(Ks > 0, what + " has no components");
+        require_size(sg.stddev, Ks, (what + ".stddev").c_str());
+        require_size(sg.basis.step, Ks, (what + ".step").c_str());
+        require_size(sg.basis.q, 3 * n * Ks, (what + " basis").c_str());
+        for (std::size_t k = 0; k < Ks; ++k)
+            SSC_REQUIRE_MODEL(std::isfinite(sg.stddev[k]) && sg.stddev[k] > 0 && std::isfinite(sg.basis.step[k]) && sg.basis.step[k] > 0,
+                              what + ": stddev and step must be finite and > 0");
+        for (std::size_t i = 0; i < n; ++i) {
+            const float w = sg.weights[i];
+            SSC_REQUIRE_MODEL(std::isfinite(w) && w >= 0 && w <= 1, what + ": weights must lie in [0, 1]");
+            weight_sum[sg.vertices[i]] += w;
+        }
+    }
+    require_unique_names(names, "segments");
+    for (uint32_t v = 0; v < weight_sum.size(); ++v)
+        SSC_REQUIRE_MODEL(weight_sum[v] <= 1.001f, "segments: the blend weights of vertex " + std::to_string(v) + " sum to over 1");
+
     SSC_REQUIRE_MODEL(!m.metadata.units.empty() && m.metadata.units == "m", "metadata.units must be \"m\"");
 }
 

@@ -23,7 +23,8 @@ namespace fs = std::filesystem;
 
 struct Options {
     std::string scans, init, out, posture = "skeleton", units, up, decisions, attributes, name = "sscape-learned", license;
-    uint32_t rounds = 3, components = 20, threads = 0;
+    uint32_t rounds = 3, components = 20, threads = 0, segment_components = 0;
+    double segment_band_mm = 80;
 };
 
 // The scans: every .ply and .obj in the folder, by name; landmarks NAME.lnd beside a scan (or, for
@@ -63,6 +64,8 @@ int run_bootstrap(const Options& o) {
     if (!o.up.empty()) spec.up = o.up;
     spec.learn.components = o.components;
     spec.learn.posture = learning::posture_from_name(o.posture);
+    spec.learn.segment_components = o.segment_components;
+    spec.learn.segment_band = o.segment_band_mm * 1e-3;
     spec.learn.name = o.name;
     if (!o.license.empty()) spec.learn.license = o.license;
     if (!o.decisions.empty()) spec.decisions = learning::read_decisions(o.decisions);
@@ -122,6 +125,11 @@ Run add_bootstrap(CLI::App& app) {
     c->add_option("--components", o->components, "shape components of each learned model (default 20; fewer when fewer scans are accepted)")
         ->check(CLI::Range(1u, 1000u));
     c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default) or none")->check(CLI::IsMember({"none", "skeleton"}));
+    c->add_option("--segment-components", o->segment_components,
+                  "also learn a shape space per body segment (head, arms, torso, legs) with this many components each (default 0: none)")
+        ->check(CLI::Range(0u, 1000u));
+    c->add_option("--segment-band", o->segment_band_mm, "millimetres on each side of a segment border over which segments blend (default 80)")
+        ->check(CLI::Range(5.0, 500.0));
     c->add_option("--units", o->units, "units of the scans and landmark files (default: metres for scans, millimetres for .lnd)")
         ->check(CLI::IsMember({"m", "cm", "mm"}).description(""))->type_name("m|cm|mm");
     c->add_option("--up", o->up, "the scans' up axis (default y)")->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}).description(""));

@@ -2,6 +2,8 @@
 // or, with --json, as one JSON object for scripts.
 #include "cli.hpp"
 
+#include "render/segment_picture.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -11,7 +13,47 @@ namespace ssc::cli {
 
 namespace {
 
-int run_info(const std::string& path, bool json) {
+// The segments coloured on the mean body, and each one's first component at -3 and +3 SD.
+void draw_segments(ssc_model* model, const std::string& png) {
+    const uint32_t S = ssc_model_segment_count(model), V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model);
+    if (S == 0) throw UsageError("--segments-png: the model has no segment shape spaces (sscape learn --segment-components makes them)");
+    std::vector<uint32_t> tris(3ull * T);
+    check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
+    ssc_body* body = nullptr;
+    check(ssc_body_create(model, nullptr, &body), "body");
+    struct Destroy {
+        ssc_body* b;
+        ~Destroy() { ssc_body_destroy(b); }
+    } destroy{body};
+    auto rest = [&] {
+        std::vector<float> xyz(3ull * V);
+        check(ssc_body_get_rest_vertices(body, xyz.data(), V, 0), "vertices");
+        return xyz;
+    };
+    const std::vector<float> mean = rest();
+    std::vector<render::SegmentView> views;
+    for (uint32_t s = 0; s < S; ++s) {
+        ssc_segment_info info{};
+        info.struct_size = sizeof info;
+        check(ssc_model_get_segment_info(model, s, &info), "segment");
+        render::SegmentView view;
+        view.name = info.name;
+        std::vector<uint32_t> vertices(info.vertex_count);
+        std::vector<float> weights(info.vertex_count);
+        check(ssc_model_get_segment_vertices(model, s, vertices.data(), weights.data(), info.vertex_count), "segment vertices");
+        view.weight.assign(V, 0.f);
+        for (uint32_t i = 0; i < info.vertex_count; ++i) view.weight[vertices[i]] = weights[i];
+        for (const float c : {-3.f, 3.f}) {
+            check(ssc_body_set_segment_shape(body, s, &c, 1), "segment shape");
+            (c < 0 ? view.minus : view.plus) = rest();
+        }
+        check(ssc_body_set_segment_shape(body, s, nullptr, 0), "segment shape");
+        views.push_back(std::move(view));
+    }
+    render::write_segment_picture(png, mean, tris, views);
+}
+
+int run_info(const std::string& path, bool json, const std::string& segments_png) {
     ssc_model* model = load_model(path);
     Handles guard(model);
     long long size = -1;
@@ -67,6 +109,13 @@ int run_info(const std::string& path, bool json) {
         check(ssc_model_get_slider_info(model, i, &info), "slider");
         sliders.push_back({{"name", info.name}, {"unit", info.unit}, {"mean", info.mean}, {"minimum", info.minimum}, {"maximum", info.maximum}});
     }
+    nlohmann::ordered_json segments = nlohmann::ordered_json::array();
+    for (uint32_t i = 0; i < ssc_model_segment_count(model); ++i) {
+        ssc_segment_info info{};
+        info.struct_size = sizeof info;
+        check(ssc_model_get_segment_info(model, i, &info), "segment");
+        segments.push_back({{"name", info.name}, {"components", info.shape_count}, {"vertices", info.vertex_count}});
+    }
     const uint32_t K = ssc_model_shape_count(model);
     std::vector<float> sd(K);
     if (K) check(ssc_model_get_shape_stddevs(model, sd.data(), K), "stddevs");
@@ -75,8 +124,13 @@ int run_info(const std::string& path, bool json) {
     j["landmarks"] = landmarks;
     j["vertex_sets"] = sets;
     j["sliders"] = sliders;
+    j["segments"] = segments;
     j["components"] = K;
     j["stddev_m"] = sd;
+    if (!segments_png.empty()) {
+        draw_segments(model, segments_png);
+        if (!json) std::printf("drew the segments and their first components at -3 and +3 SD to %s\n", segments_png.c_str());
+    }
     if (json) {
         std::printf("%s\n", j.dump(2).c_str());
         return 0;
@@ -109,6 +163,10 @@ int run_info(const std::string& path, bool json) {
         std::printf("\n  %-12s %-6s mean %8.3f, population %.3f .. %.3f", s["name"].get<std::string>().c_str(), unit.empty() ? "-" : unit.c_str(),
                     s["mean"].get<double>(), s["minimum"].get<double>(), s["maximum"].get<double>());
     }
+    std::printf("\nsegments:    %u", ssc_model_segment_count(model));
+    for (const auto& s : segments)
+        std::printf("\n  %-12s %u components over %u vertices", s["name"].get<std::string>().c_str(), s["components"].get<uint32_t>(),
+                    s["vertices"].get<uint32_t>());
     std::printf("\ncomponents:  %u\nstddev (m):", K);
     for (uint32_t k = 0; k < K; ++k) std::printf("%s%.4g", k % 10 == 0 ? "\n  " : " ", sd[k]);
     std::printf("\n");
@@ -119,14 +177,18 @@ int run_info(const std::string& path, bool json) {
 
 Run add_info(CLI::App& app) {
     struct Options {
-        std::string model;
+        std::string model, segments_png;
         bool json = false;
     };
     auto o = std::make_shared<Options>();
     CLI::App* c = app.add_subcommand("info", "what a model holds: counts, metadata, joint names, landmarks, sliders, component spreads");
     add_model_argument(*c, o->model);
     c->add_flag("--json", o->json, "print one JSON object (for scripts) instead of the text");
-    return [o] { return run_info(o->model, o->json); };
+    c->add_option("--segments-png", o->segments_png, "draw the segment shape spaces: the segments on the mean body, and each one's first "
+                  "component at -3 and +3 SD")
+        ->type_name("OUT.png")
+        ->check(extension(".png"));
+    return [o] { return run_info(o->model, o->json, o->segments_png); };
 }
 
 }  // namespace ssc::cli

@@ -25,10 +25,29 @@ namespace {
 struct Options {
     std::vector<std::string> registrations;
     std::string model, out, posture = "skeleton", attributes, name = "sscape-learned", license;
-    uint32_t components = 20;
+    uint32_t components = 20, segment_components = 0;
+    double segment_band_mm = 80;
 };
 
 std::string stem_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+// Each segment's own components beside the whole body's, as shares of the segment's variance.
+void print_segment_compactness(const std::vector<training::SegmentCompactness>& segments) {
+    if (segments.empty()) return;
+    std::printf("segment compactness: share of each segment's variance held by its own first k components / by the whole body's first k\n");
+    std::printf("  %-6s %8s %9s", "segment", "vertices", "RMS (mm)");
+    const std::size_t K = segments[0].own.size();
+    const std::size_t shown[] = {1, 3, 5, 10, 20};
+    for (std::size_t k : shown)
+        if (k <= K) std::printf("     k=%-3zu", k);
+    std::printf("\n");
+    for (const auto& s : segments) {
+        std::printf("  %-7s %8u %9.1f", s.name.c_str(), s.vertices, std::sqrt(s.variance / std::max(1u, s.vertices)) * 1e3);
+        for (std::size_t k : shown)
+            if (k <= K) std::printf("  %4.1f/%4.1f", 100 * s.own[k - 1], k <= s.whole_body.size() ? 100 * s.whole_body[k - 1] : NAN);
+        std::printf("\n");
+    }
+}
 
 int run_learn(const Options& o) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -39,6 +58,8 @@ int run_learn(const Options& o) {
     learning::LearnSpec spec;
     spec.components = o.components;
     spec.posture = learning::posture_from_name(o.posture);
+    spec.segment_components = o.segment_components;
+    spec.segment_band = o.segment_band_mm * 1e-3;
     spec.name = o.name;
     if (!o.license.empty()) spec.license = o.license;
     if (o.registrations.size() <= o.components)
@@ -77,6 +98,7 @@ int run_learn(const Options& o) {
         for (const auto& name : report.not_sliders) std::printf(" %s", name.c_str());
     }
     std::printf("\n");
+    print_segment_compactness(report.segments);
     return 0;
 }
 
@@ -94,6 +116,11 @@ Run add_learn(CLI::App& app) {
         ->check(CLI::Range(1u, 1000u));
     c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default: each scan's fitted skinning undone) or none")
         ->check(CLI::IsMember({"none", "skeleton"}));
+    c->add_option("--segment-components", o->segment_components,
+                  "also learn a shape space per body segment (head, arms, torso, legs) with this many components each (default 0: none)")
+        ->check(CLI::Range(0u, 1000u));
+    c->add_option("--segment-band", o->segment_band_mm, "millimetres on each side of a segment border over which segments blend (default 80)")
+        ->check(CLI::Range(5.0, 500.0));
     c->add_option("--attributes", o->attributes, "CSV of known attributes: a header scan,NAME,..., one row per registration named by its file stem")
         ->check(CLI::ExistingFile);
     c->add_option("--name", o->name, "the model's name in its metadata (default sscape-learned)");

@@ -27,7 +27,35 @@ struct Options {
     uint32_t random = 0, seed = 1;
     bool normals = false;
     std::vector<float> hands;  // --hands: left and right closure, or one for both
+    std::vector<std::string> segment_texts;  // --segment NAME=C1,C2,...
 };
+
+// --segment: each segment's coefficients, set on the body on top of its whole-body shape.
+void set_segments(ssc_model* model, ssc_body* body, const std::vector<std::string>& texts) {
+    std::vector<std::string> seen;
+    for (const std::string& text : texts) {
+        const std::size_t eq = text.find('=');
+        if (eq == std::string::npos || eq == 0) throw UsageError("--segment: '" + text + "' is not NAME=C1,C2,...");
+        const std::string name = text.substr(0, eq);
+        if (std::find(seen.begin(), seen.end(), name) != seen.end()) throw UsageError("--segment: " + name + " is given twice");
+        seen.push_back(name);
+        uint32_t index = 0;
+        if (ssc_model_find_segment(model, name.c_str(), &index) != SSC_OK) {
+            std::string names;
+            for (uint32_t s = 0; s < ssc_model_segment_count(model); ++s) {
+                ssc_segment_info info{};
+                info.struct_size = sizeof info;
+                check(ssc_model_get_segment_info(model, s, &info), "segment");
+                names += std::string(names.empty() ? "" : ", ") + info.name;
+            }
+            throw UsageError("--segment: the model has no segment '" + name + "' (" +
+                             (names.empty() ? std::string("it has no segment shape spaces: sscape learn --segment-components makes them")
+                                            : "its segments: " + names) + ")");
+        }
+        const std::vector<float> c = parse_floats(text.substr(eq + 1), "--segment " + name);
+        check(ssc_body_set_segment_shape(body, index, c.data(), uint32_t(c.size())), "--segment " + name);
+    }
+}
 
 // "name=value,name=value" (SI units).
 std::vector<std::pair<std::string, float>> parse_named(const std::string& text, const std::string& option) {
@@ -237,6 +265,7 @@ int run_synth(Options o) {
     std::vector<uint32_t> tris(3ull * T);
     check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
     check(ssc_body_create(model, nullptr, &guard.body), "body");
+    set_segments(model, guard.body, o.segment_texts);
     const FitParams fitted = o.params.empty() ? FitParams{} : read_params(model, o.params);
     std::vector<float> pose = o.params.empty() ? parse_pose(model, o.pose) : fitted.pose;
     if (!o.hands.empty())
@@ -348,6 +377,9 @@ Run add_synth(CLI::App& app) {
     c->add_option("--png", o->png, "draw front and side views of the bodies (up to 20)")->type_name("OUT.png")->check(extension(".png"));
     c->add_option("--landmarks-png", o->landmarks_png, "draw the first body's landmarks: front, back, side, head and trunk close up")
         ->type_name("OUT.png")->check(extension(".png"));
+    c->add_option("--segment", o->segment_texts, "segment shape coefficients (standard deviations) on top of the whole-body shape, "
+                  "for models with segment shape spaces (sscape info lists them)")
+        ->type_name("NAME=C1,C2,...");
     c->add_flag("--normals", o->normals, "kept for old scripts: normals are always written");
     random->excludes(shape)->excludes(sliders)->excludes(measure);
     return [o] { return run_synth(*o); };

@@ -56,6 +56,8 @@ void write_body(Body& body, const std::string& path, BodyFormat format) {
     // glTF: the bind pose is the body's shape at rest; its normals come from a rest-posed twin.
     Body rest(model, nullptr);
     rest.set_shape(body.shape(), model.component_count());
+    for (uint32_t s = 0; s < model.segments().size(); ++s)
+        rest.set_segment_shape(s, body.segment_shape(s), model.segments()[s].components);
     const std::vector<float> rest_positions = interleaved(body.rest_planar(), V);
     RiggedBody rb;
     rb.vertex_count = V;

@@ -275,13 +275,15 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
                                                         "/decisions.csv: edit it and pass it with --decisions)");
         LearnSpec learn = spec.learn;
         learn.components = std::min<uint32_t>(learn.components, uint32_t(accepted.size() - 1));
+        learn.segment_components = std::min<uint32_t>(learn.segment_components, uint32_t(accepted.size() - 1));
         if (!spec.attributes.names.empty()) learn.attributes = attributes_for(spec.attributes, accepted_names);
         std::ostringstream prov;
         prov << "bootstrap round " << round << " of " << spec.rounds << "; " << accepted.size() << " of " << states.size() << " registrations accepted";
         learn.provenance = prov.str();
         nlohmann::ordered_json settings{{"start_model_digest", digest}, {"accepted", accepted_names}, {"components", learn.components},
                                         {"posture", posture_name(learn.posture)}, {"name", learn.name}, {"license", learn.license},
-                                        {"provenance", learn.provenance}};
+                                        {"provenance", learn.provenance}, {"segment_components", learn.segment_components},
+                                        {"segment_band", learn.segment_band}};
         for (const auto& a : learn.attributes) settings["attributes"][a.name] = a.values;
         // The registrations themselves: one made again (another reading of its scan) relearns the model.
         for (const auto& name : accepted_names)

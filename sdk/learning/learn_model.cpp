@@ -29,6 +29,12 @@ void check_inputs(const format::ModelData& t, const std::vector<RegisteredScan>&
         SSC_REQUIRE_ARG_S(spec.posture != Posture::Skeleton || s.has_fit,
                           "learn: " << s.name << " has no model fit, which the skeleton posture normalization needs");
     }
+    if (spec.segment_components > 0) {
+        SSC_REQUIRE_ARG_S(spec.segment_components < scans.size(), "learn: " << spec.segment_components << " components per segment from "
+                                                                             << scans.size() << " registrations (at most " << scans.size() - 1 << ")");
+        SSC_REQUIRE_ARG_S(spec.segment_band >= 0.005 && spec.segment_band <= 0.5, "learn: the segments' blend band is " << spec.segment_band << " m; it must lie in [0.005, 0.5]");
+        training::segment_layout(t, spec.segment_band);  // refuses a template without body parts now, not after the PCA
+    }
     for (const auto& a : spec.attributes) {
         SSC_REQUIRE_ARG_S(!a.name.empty(), "learn: an attribute has no name");
         SSC_REQUIRE_ARG_S(a.values.size() == scans.size(), "learn: attribute " << a.name << " has " << a.values.size() << " values for "
@@ -136,9 +142,24 @@ format::ModelData learn_model(const format::ModelData& template_model, const std
             not_sliders.push_back(at.name);
         }
     }
+    std::vector<training::SegmentCompactness> segment_compactness;
+    if (spec.segment_components > 0) {
+        say("PCA per body segment");
+        training::SegmentSpec segments;
+        segments.components = spec.segment_components;
+        segments.band = spec.segment_band;
+        segments.tolerance = spec.tolerance;
+        segments.seed = spec.seed;
+        m.segments = training::learn_segments(m, X, N, p, segments, &segment_compactness);
+        m.metadata.provenance += "\nsegment shape spaces: " + std::to_string(spec.segment_components) + " components each, blend band " +
+                                 std::to_string(int(std::lround(spec.segment_band * 1000))) + " mm";
+    } else {
+        m.segments.clear();
+    }
     format::validate_model(m);
 
     if (report) {
+        report->segments = segment_compactness;
         report->bodies = N;
         report->components = K;
         report->stddev.assign(p.stddev.data(), p.stddev.data() + p.stddev.size());

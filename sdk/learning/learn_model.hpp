@@ -8,6 +8,7 @@
 #include "sscape_format/model_data.hpp"
 #include "training/attributes.hpp"
 #include "training/pca.hpp"
+#include "training/segment_shapes.hpp"
 
 #include <functional>
 #include <string>
@@ -35,6 +36,10 @@ struct LearnSpec {
     std::string license = "unspecified (set by the owner of the scans)";
     double tolerance = 1e-4;          // basis quantization bound, metres
     uint32_t seed = 1;                // randomized SVD
+    // Segment shape spaces (head, arms, torso, legs) beside the whole body's: components per segment,
+    // 0 for none. The template needs the body-part vertex sets (see training::segment_layout).
+    uint32_t segment_components = 0;
+    double segment_band = 0.08;       // metres on each side of a segment border
 };
 
 struct LearnReport {
@@ -46,6 +51,8 @@ struct LearnReport {
     // Attributes that are sliders, and those that could not be (dependent on the ones before them,
     // or more sliders than components): attributes only.
     std::vector<std::string> sliders, not_sliders;
+    // Per segment, when learned: its own components' share of its variance beside the whole body's.
+    std::vector<training::SegmentCompactness> segments;
 };
 
 using LearnProgress = std::function<void(const std::string& stage)>;
@@ -57,8 +64,8 @@ using LearnProgress = std::function<void(const std::string& stage)>;
 training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture);
 
 // Throws ssc::Error (INVALID_ARGUMENT) for fewer than 3 scans, a scan of another vertex count,
-// non-finite vertices, Posture::Skeleton with a scan lacking its fit, components outside
-// [1, bodies - 1], or attributes without one finite value per scan.
+// non-finite vertices, Posture::Skeleton with a scan lacking its fit, components (or segment components)
+// outside [1, bodies - 1], segments on a template without the body-part vertex sets, or attributes without one finite value per scan.
 format::ModelData learn_model(const format::ModelData& template_model, const std::vector<RegisteredScan>& scans, const LearnSpec& spec,
                               LearnReport* report = nullptr, const LearnProgress& progress = {});
 

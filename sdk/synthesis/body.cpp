@@ -7,6 +7,7 @@ namespace ssc {
 Body::Body(const Model& model, const Allocator* a)
     : model_(model),
       coeffs_(model.component_count(), 0.f, CAlloc<float>(a)),
+      segment_coeffs_(model.segment_coefficient_count(), 0.f, CAlloc<float>(a)),
       scaled_(model.component_count(), 0.f, CAlloc<float>(a)),
       rest_(model.padded_rows(), 0.f, CAlloc<float>(a)),
       joints_(3ull * model.joint_count(), 0.f, CAlloc<float>(a)),
@@ -24,6 +25,15 @@ Body::Body(const Model& model, const Allocator* a)
 void Body::set_shape(const float* coeffs, uint32_t count) {
     std::copy(coeffs, coeffs + count, coeffs_.begin());
     std::fill(coeffs_.begin() + count, coeffs_.end(), 0.f);
+    rest_ok_ = skeleton_ok_ = posed_ok_ = normals_ok_ = false;
+}
+
+void Body::set_segment_shape(uint32_t segment, const float* coeffs, uint32_t count) {
+    const SegmentSpace& s = model_.segments()[segment];
+    float* c = segment_coeffs_.data() + s.first;
+    std::copy(coeffs, coeffs + count, c);
+    std::fill(c + count, c + s.components, 0.f);
+    any_segment_ = std::any_of(segment_coeffs_.begin(), segment_coeffs_.end(), [](float x) { return x != 0.f; });
     rest_ok_ = skeleton_ok_ = posed_ok_ = normals_ok_ = false;
 }
 
@@ -53,6 +63,8 @@ void Body::update_rest() {
     float* j = joints_.data();
     split(model_.padded_rows() / Model::kChunk, 1, [&](std::size_t first, std::size_t end) { kernels::shape_rows(model_, 1, &c, &r, first, end); });
     kernels::shape_joints(model_, 1, &c, &j);
+    if (any_segment_)
+        add_segment_shapes(model_.segments(), model_.vertex_count(), model_.joint_count(), segment_coeffs_.data(), r, j);
     rest_ok_ = true;
 }
 

@@ -21,6 +21,9 @@ public:
 
     void set_shape(const float* coeffs, uint32_t count);  // count <= K, rest zero
     const float* shape() const { return coeffs_.data(); }
+    // Segment s's coefficients (count <= its components, rest zero), added to the whole-body shape.
+    void set_segment_shape(uint32_t segment, const float* coeffs, uint32_t count);
+    const float* segment_shape(uint32_t segment) const { return segment_coeffs_.data() + model_.segments()[segment].first; }
     void set_pose(const float* unit_quats, const float* translation);  // 4J, 3 (null = zero)
 
     const float* rest_planar();     // 3V: x block, y block, z block
@@ -41,10 +44,10 @@ private:
 
     const Model& model_;
     ThreadPool* pool_ = nullptr;
-    Vec<float> coeffs_, scaled_, rest_, joints_, quats_, world_, inverse_bind_, posed_, normals_, scratch_, face_normals_;
+    Vec<float> coeffs_, segment_coeffs_, scaled_, rest_, joints_, quats_, world_, inverse_bind_, posed_, normals_, scratch_, face_normals_;
     Vec<kernels::SkinMatrix> skinning_;
     float translation_[3] = {0, 0, 0};
-    bool rest_ok_ = false, skeleton_ok_ = false, posed_ok_ = false, normals_ok_ = false;
+    bool any_segment_ = false, rest_ok_ = false, skeleton_ok_ = false, posed_ok_ = false, normals_ok_ = false;
 };
 
 }  // namespace ssc

@@ -62,6 +62,9 @@ Model::Model(format::ModelData data, const Allocator* alloc)
         for (std::size_t c = 0; c < tris.size(); ++c) vt_triangles_[fill[tris[c]]++] = static_cast<uint32_t>(c / 3);
     }
 
+    segments_ = build_segment_spaces(data_, alloc);
+    for (const auto& sg : segments_) segment_coefficients_ += sg.components;
+
     for (uint32_t j = 0; j < J_; ++j) joint_index_.emplace(sk.joint_names[j], j);
     for (uint32_t l = 0; l < data_.landmarks.size(); ++l) landmark_index_.emplace(data_.landmarks[l].name, l);
     landmark_rest_.resize(3 * data_.landmarks.size());
@@ -130,6 +133,12 @@ void Model::build_skin_runs(const Allocator* alloc) {
 int64_t Model::find_joint(const std::string& name) const {
     auto it = joint_index_.find(name);
     return it == joint_index_.end() ? int64_t{-1} : int64_t{it->second};
+}
+
+int64_t Model::find_segment(const std::string& name) const {
+    for (std::size_t s = 0; s < segments_.size(); ++s)
+        if (segments_[s].name == name) return int64_t(s);
+    return -1;
 }
 
 int64_t Model::find_landmark(const std::string& name) const {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/alloc.hpp"
+#include "segments.hpp"
 #include "sscape_format/model_data.hpp"
 
 #include <string>
@@ -57,9 +58,14 @@ public:
     const uint32_t* vertex_triangle_offsets() const { return vt_offsets_.data(); }  // V + 1
     const uint32_t* vertex_triangles() const { return vt_triangles_.data(); }
 
+    // Segment shape spaces (may be none); a body's segment coefficients are all segments' in order.
+    const std::vector<SegmentSpace>& segments() const { return segments_; }
+    uint32_t segment_coefficient_count() const { return segment_coefficients_; }
+
     // -1 when absent.
     int64_t find_joint(const std::string& name) const;
     int64_t find_landmark(const std::string& name) const;
+    int64_t find_segment(const std::string& name) const;
 
 private:
     void build_skin_runs(const Allocator* alloc);
@@ -74,6 +80,8 @@ private:
     Vec<float> skin_weights_[4];
     Vec<uint8_t> skin_contiguous_;
     Vec<uint32_t> vt_offsets_, vt_triangles_;
+    std::vector<SegmentSpace> segments_;
+    uint32_t segment_coefficients_ = 0;
     std::unordered_map<std::string, uint32_t> joint_index_, landmark_index_;
 };
 

@@ -96,6 +96,16 @@ struct AttributeModel {
     std::vector<float> shape_covariance;  // A x K, row-major
 };
 
+// See the schema (ShapeSegment). basis is planar over the segment's own vertices:
+// q[k * 3n + axis * n + i] for vertex vertices[i].
+struct ShapeSegment {
+    std::string name;
+    std::vector<uint32_t> vertices;  // sorted, unique
+    std::vector<float> weights;      // per vertex, in [0, 1]; summed over segments at most 1
+    std::vector<float> stddev;       // per component
+    QuantizedBasis basis;
+};
+
 struct ModelData {
     Metadata metadata;
     Mesh mesh;
@@ -107,6 +117,7 @@ struct ModelData {
     std::vector<JointLimit> joint_limits;  // sorted by joint, at most one per joint
     AttributeModel attributes;
     std::vector<JointRole> joint_roles;    // one per joint, or empty (the runtime's table by names)
+    std::vector<ShapeSegment> segments;    // segment shape spaces, optional
 
     uint32_t vertex_count() const { return mesh.vertex_count; }
     uint32_t joint_count() const { return static_cast<uint32_t>(skeleton.parents.size()); }
