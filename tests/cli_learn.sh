@@ -44,6 +44,12 @@ cmp -s "$out/segment_body.obj" "$out/body.obj" && fail "synth --segment changed 
 "$sscape" synth "$out/segments.sscape" --segment arm_l=1,2,3 -o "$out/no.obj" > "$out/no.txt" 2>&1
 [ $? -ne 0 ] && grep -q "segment 'arm_l' has 2 components" "$out/no.txt" && [ ! -e "$out/no.obj" ] || { cat "$out/no.txt"; fail "synth --segment with too many values"; }
 
+# Evaluation against the training-set size: refusals before any work.
+"$sscape" evaluate "$out"/reg?.ply --training-sizes 2 -o "$out/sizes" > "$out/sizes.txt" 2>&1
+[ $? -eq 2 ] && grep -q "'2' is not a number of registrations" "$out/sizes.txt" || { cat "$out/sizes.txt"; fail "evaluate --training-sizes 2"; }
+"$sscape" evaluate "$out"/reg?.ply --training-sizes all -o "$out/sizes" > "$out/sizes.txt" 2>&1
+[ $? -eq 1 ] && grep -q "needs at least 10" "$out/sizes.txt" && [ ! -e "$out/sizes.csv" ] || { cat "$out/sizes.txt"; fail "evaluate --training-sizes with 5 registrations"; }
+
 # Refusals: a message, a non-zero exit, no file.
 expect() {  # expect CODE PATTERN ARGS...
     code=$1 pattern=$2; shift 2

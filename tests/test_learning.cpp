@@ -177,6 +177,23 @@ TEST_CASE("evaluation: six shape directions generalize fully at six components, 
     CHECK(given[2].generalization < 0.5e-3);
     CHECK(given[0].generalization > 10 * given[2].generalization);
     CHECK_THROWS_WITH(learning::evaluate_learning(training::SampleMatrix(2, 3 * m.vertex_count()), spec), Catch::Contains("at least 3"));
+
+    // Fewer training scans: 3 of the 16 held out, 13 to learn from; a size beyond them is left out.
+    const training::SampleMatrix X = learning::normalized_bodies(m, scans, learning::Posture::Skeleton);
+    const auto sized = learning::evaluate_training_sizes(X, {8, 4, 0, 500}, spec);
+    REQUIRE(sized.size() == 3);
+    CHECK(sized[0].size == 4);
+    CHECK(sized[1].size == 8);
+    CHECK(sized[2].size == 13);
+    REQUIRE(sized[0].points.size() == 2);  // k = 1, 3: all that 4 bodies reach
+    REQUIRE(sized[1].points.size() == 3);  // k = 1, 3, 6
+    REQUIRE(sized[2].points.size() == 4);
+    INFO("generalization at 3 components from 4 scans " << sized[0].points[1].generalization * 1e3 << " mm; at 6 from 8 scans "
+                                                       << sized[1].points[2].generalization * 1e3 << " mm");
+    CHECK(sized[1].points[2].generalization < 0.5e-3);  // 8 bodies span the six directions
+    CHECK(sized[0].points[1].generalization > 10 * sized[1].points[2].generalization);
+    CHECK_THROWS_WITH(learning::evaluate_training_sizes(X, {2}, spec), Catch::Contains("at least 3"));
+    CHECK_THROWS_WITH(learning::evaluate_training_sizes(X.topRows(9), {5}, spec), Catch::Contains("at least 10"));
     spec.folds = 40;
     CHECK_THROWS_WITH(learning::evaluate_learning(learning::normalized_bodies(m, scans, learning::Posture::None), spec),
                       Catch::Contains("40 folds for 16 registrations"));

@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -23,6 +24,7 @@ namespace {
 struct Options {
     std::vector<std::string> registrations, postures = {"skeleton"}, models;
     std::vector<uint32_t> components;
+    std::vector<std::string> sizes;
     std::string model, out;
     uint32_t folds = 0, samples = 10000;
 };
@@ -88,7 +90,24 @@ int run_evaluate(const Options& o) {
     spec.samples = o.samples;
 
     std::vector<Series> series;
-    if (o.models.empty()) {
+    if (!o.sizes.empty()) {
+        if (!o.models.empty() || postures.size() != 1) throw UsageError("--training-sizes: one --posture, no --models");
+        std::vector<uint32_t> sizes;
+        for (const auto& s : o.sizes) {
+            if (s == "all") {
+                sizes.push_back(0);
+                continue;
+            }
+            char* end = nullptr;
+            const unsigned long n = std::strtoul(s.c_str(), &end, 10);
+            if (s.empty() || *end || n < 3 || n > 10000000) throw UsageError("--training-sizes: '" + s + "' is not a number of registrations (3 or more) or 'all'");
+            sizes.push_back(uint32_t(n));
+        }
+        say("posture normalization " + o.postures[0] + ": " + std::to_string(scans.size()) + " registrations, every fifth held out");
+        const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[0]);
+        for (const auto& q : learning::evaluate_training_sizes(X, sizes, spec, say)) series.push_back({std::to_string(q.size) + " scans", q.points});
+        if (series.size() < sizes.size()) std::printf("(sizes beyond the %zu registrations not held out are left out)\n", scans.size() - scans.size() / 5);
+    } else if (o.models.empty()) {
         for (std::size_t i = 0; i < postures.size(); ++i) {
             say("posture normalization " + o.postures[i] + ": " + std::to_string(scans.size()) + " registrations");
             const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[i]);
@@ -134,6 +153,9 @@ Run add_evaluate(CLI::App& app) {
         ->delimiter(',')->check(CLI::IsMember({"none", "skeleton"}))->type_name("none,skeleton");
     c->add_option("--models", o->models, "instead of learning, measure these models (bootstrapping's rounds, say) against the registrations")
         ->delimiter(',')->check(CLI::ExistingFile.description(""))->type_name("A.sscape,B.sscape");
+    c->add_option("--training-sizes", o->sizes, "instead, learn from this many of the registrations each (every fifth held out for "
+                                                "generalization): a curve per size")
+        ->delimiter(',')->type_name("50,100,1000,all");
     c->add_option("--components", o->components, "the numbers of components measured (default 1 to 10, then every 5th to 50, within reach)")
         ->delimiter(',')->check(CLI::Range(1u, 1000u))->type_name("K,...");
     c->add_option("--folds", o->folds, "cross-validation folds (default: leave-one-out up to 100 registrations, 10 above)")

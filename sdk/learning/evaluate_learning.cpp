@@ -75,6 +75,36 @@ std::vector<training::QualityPoint> evaluate_learning(const training::SampleMatr
     return out;
 }
 
+std::vector<SizedQuality> evaluate_training_sizes(const training::SampleMatrix& bodies, const std::vector<uint32_t>& sizes,
+                                                  const EvaluationSpec& spec, const EvaluationProgress& progress) {
+    const Eigen::Index N = bodies.rows(), D = bodies.cols();
+    SSC_REQUIRE_ARG_S(N >= 10, "evaluate: " << N << " registrations; comparing training-set sizes needs at least 10");
+    std::vector<Eigen::Index> train, held;
+    for (Eigen::Index i = 0; i < N; ++i) (i % 5 == 4 ? held : train).push_back(i);
+    std::mt19937 rng(spec.seed);
+    std::shuffle(train.begin(), train.end(), rng);
+    training::SampleMatrix Xh(Eigen::Index(held.size()), D);
+    for (std::size_t i = 0; i < held.size(); ++i) Xh.row(Eigen::Index(i)) = bodies.row(held[i]);
+    std::vector<uint32_t> ns;
+    for (uint32_t n : sizes) {
+        SSC_REQUIRE_ARG_S(n == 0 || n >= 3, "evaluate: a training set of " << n << " registrations; at least 3");
+        if (n == 0 || n > train.size()) n = n == 0 ? uint32_t(train.size()) : 0;
+        if (n && std::find(ns.begin(), ns.end(), n) == ns.end()) ns.push_back(n);
+    }
+    std::sort(ns.begin(), ns.end());
+    std::vector<SizedQuality> out;
+    for (uint32_t n : ns) {
+        const std::vector<uint32_t> ks = component_list(spec.components, n - 1);
+        if (ks.empty()) continue;
+        if (progress) progress("learning from " + std::to_string(n) + " registrations, " + std::to_string(held.size()) + " held out");
+        training::SampleMatrix Xt(Eigen::Index(n), D);
+        for (uint32_t i = 0; i < n; ++i) Xt.row(Eigen::Index(i)) = bodies.row(train[i]);
+        const training::Pca p = training::pca(Xt, Xt.rows(), ks.back(), spec.seed);
+        out.push_back({n, training::evaluate_quality(p, Xt, Xh, ks, spec.samples, spec.seed)});
+    }
+    return out;
+}
+
 std::vector<training::QualityPoint> evaluate_model(const format::ModelData& model, const training::SampleMatrix& bodies, const EvaluationSpec& spec) {
     const Eigen::Index N = bodies.rows(), D = bodies.cols();
     const uint32_t V = model.mesh.vertex_count, Kmodel = uint32_t(model.shape.stddev.size());

@@ -30,6 +30,18 @@ using EvaluationProgress = std::function<void(const std::string& stage)>;
 std::vector<training::QualityPoint> evaluate_learning(const training::SampleMatrix& bodies, const EvaluationSpec& spec,
                                                       const EvaluationProgress& progress = {});
 
+// Learning from fewer registrations (the paper's 50, 100, 1,000, all): every fifth body is held out;
+// each size n learns from n of the others (a seeded random order, so each set holds the smaller
+// ones) and is measured by its own compactness, its generalization to the held-out bodies and its
+// specificity against its own n bodies. sizes: 0 means all the others; sizes beyond them are
+// left out. Throws ssc::Error (INVALID_ARGUMENT) for fewer than 10 bodies or a size below 3.
+struct SizedQuality {
+    uint32_t size = 0;
+    std::vector<training::QualityPoint> points;
+};
+std::vector<SizedQuality> evaluate_training_sizes(const training::SampleMatrix& bodies, const std::vector<uint32_t>& sizes,
+                                                  const EvaluationSpec& spec, const EvaluationProgress& progress = {});
+
 // A given model (of the same template, in the template's frame, as learn_model writes them)
 // measured against the bodies: generalization, each body reconstructed from k of the model's
 // components after a rigid alignment onto its mean; specificity, the model's random bodies
