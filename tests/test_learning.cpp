@@ -234,3 +234,38 @@ TEST_CASE("learning refuses bad registrations with a clear message", "[learning]
     attrs.attributes = {{"age", "years", "", true, {30, 40, std::nan(""), 20}}};
     refuses(scans, attrs, "not finite");
 }
+
+TEST_CASE("Procrustes with scale brings every body to one size and keeps their proportions", "[learning]") {
+    const Model& m = test::default_cpp_model();
+    std::mt19937 rng(23);
+    std::vector<learning::RegisteredScan> scans;
+    for (uint32_t i = 0; i < 12; ++i) scans.push_back(sample(m, rng, 10, 0.0).scan);
+    auto sizes = [&](const training::SampleMatrix& X) {
+        std::vector<double> out;
+        for (Eigen::Index i = 0; i < X.rows(); ++i) {
+            const Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>> b(X.row(i).data(), X.cols() / 3, 3);
+            const Eigen::MatrixX3d d = b.cast<double>().rowwise() - b.cast<double>().colwise().mean();
+            out.push_back(std::sqrt(d.squaredNorm() / double(b.rows())));
+        }
+        return out;
+    };
+    const std::vector<double> rigid = sizes(learning::normalized_bodies(m, scans, learning::Posture::None));
+    const std::vector<double> scaled = sizes(learning::normalized_bodies(m, scans, learning::Posture::None, true));
+    const auto [rlo, rhi] = std::minmax_element(rigid.begin(), rigid.end());
+    const auto [slo, shi] = std::minmax_element(scaled.begin(), scaled.end());
+    double average = 0;
+    for (double s : rigid) average += s / double(rigid.size());
+    INFO("body sizes (RMS radius): rigid " << *rlo << " to " << *rhi << " m, with scale " << *slo << " to " << *shi << " m");
+    CHECK(*rhi - *rlo > 0.01);          // the collection's statures differ
+    CHECK(*shi - *slo < 1e-3);          // one size with scale (within a millimetre) ...
+    CHECK(std::abs(*slo - average) < 2e-3);  // ... the collection's average
+    learning::LearnSpec spec;
+    spec.components = 5;
+    spec.posture = learning::Posture::None;
+    learning::LearnReport rigid_report, scaled_report;
+    learning::learn_model(m.data(), scans, spec, &rigid_report);
+    spec.scale = true;
+    const format::ModelData shapes = learning::learn_model(m.data(), scans, spec, &scaled_report);
+    CHECK(scaled_report.total_variance < rigid_report.total_variance);  // size was part of the variance
+    CHECK(shapes.metadata.provenance.find("with scale") != std::string::npos);
+}

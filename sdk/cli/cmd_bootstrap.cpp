@@ -25,6 +25,7 @@ struct Options {
     std::string scans, init, out, posture = "skeleton", units, up, decisions, attributes, name = "sscape-learned", license;
     uint32_t rounds = 3, components = 20, threads = 0, segment_components = 0;
     double segment_band_mm = 80;
+    bool scale = false;
 };
 
 // The scans: every .ply and .obj in the folder, by name; landmarks NAME.lnd beside a scan (or, for
@@ -65,6 +66,7 @@ int run_bootstrap(const Options& o) {
     spec.learn.components = o.components;
     spec.learn.posture = learning::posture_from_name(o.posture);
     spec.learn.segment_components = o.segment_components;
+    spec.learn.scale = o.scale;
     spec.learn.segment_band = o.segment_band_mm * 1e-3;
     spec.learn.name = o.name;
     if (!o.license.empty()) spec.learn.license = o.license;
@@ -125,6 +127,7 @@ Run add_bootstrap(CLI::App& app) {
     c->add_option("--components", o->components, "shape components of each learned model (default 20; fewer when fewer scans are accepted)")
         ->check(CLI::Range(1u, 1000u));
     c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default) or none")->check(CLI::IsMember({"none", "skeleton"}));
+    c->add_flag("--scale", o->scale, "learn with Procrustes alignment with scale (proportions only, no stature)");
     c->add_option("--segment-components", o->segment_components,
                   "also learn a shape space per body segment (head, arms, torso, legs) with this many components each (default 0: none)")
         ->check(CLI::Range(0u, 1000u));

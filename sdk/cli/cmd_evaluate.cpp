@@ -27,6 +27,7 @@ struct Options {
     std::vector<std::string> sizes;
     std::string model, out;
     uint32_t folds = 0, samples = 10000;
+    bool scale = false;
 };
 
 struct Series {
@@ -104,18 +105,18 @@ int run_evaluate(const Options& o) {
             sizes.push_back(uint32_t(n));
         }
         say("posture normalization " + o.postures[0] + ": " + std::to_string(scans.size()) + " registrations, every fifth held out");
-        const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[0]);
+        const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[0], o.scale);
         for (const auto& q : learning::evaluate_training_sizes(X, sizes, spec, say)) series.push_back({std::to_string(q.size) + " scans", q.points});
         if (series.size() < sizes.size()) std::printf("(sizes beyond the %zu registrations not held out are left out)\n", scans.size() - scans.size() / 5);
     } else if (o.models.empty()) {
         for (std::size_t i = 0; i < postures.size(); ++i) {
             say("posture normalization " + o.postures[i] + ": " + std::to_string(scans.size()) + " registrations");
-            const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[i]);
+            const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[i], o.scale);
             series.push_back({"posture " + o.postures[i], learning::evaluate_learning(X, spec, say)});
         }
     } else {
         if (postures.size() != 1) throw UsageError("--models: the registrations are normalized one way; give one --posture");
-        const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[0]);
+        const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[0], o.scale);
         for (const auto& path : o.models) {
             say("model " + path + " against " + std::to_string(scans.size()) + " registrations");
             // Named by file stem, or folder/stem where stems repeat (bootstrapping's round_N/model).
@@ -153,6 +154,7 @@ Run add_evaluate(CLI::App& app) {
         ->delimiter(',')->check(CLI::IsMember({"none", "skeleton"}))->type_name("none,skeleton");
     c->add_option("--models", o->models, "instead of learning, measure these models (bootstrapping's rounds, say) against the registrations")
         ->delimiter(',')->check(CLI::ExistingFile.description(""))->type_name("A.sscape,B.sscape");
+    c->add_flag("--scale", o->scale, "Procrustes alignment with scale: compare shapes, sizes removed");
     c->add_option("--training-sizes", o->sizes, "instead, learn from this many of the registrations each (every fifth held out for "
                                                 "generalization): a curve per size")
         ->delimiter(',')->type_name("50,100,1000,all");

@@ -26,6 +26,7 @@ struct Options {
     std::vector<std::string> registrations;
     std::string model, out, posture = "skeleton", attributes, name = "sscape-learned", license;
     uint32_t components = 20, segment_components = 0;
+    bool scale = false;
     double segment_band_mm = 80;
 };
 
@@ -59,6 +60,7 @@ int run_learn(const Options& o) {
     spec.components = o.components;
     spec.posture = learning::posture_from_name(o.posture);
     spec.segment_components = o.segment_components;
+    spec.scale = o.scale;
     spec.segment_band = o.segment_band_mm * 1e-3;
     spec.name = o.name;
     if (!o.license.empty()) spec.license = o.license;
@@ -116,6 +118,8 @@ Run add_learn(CLI::App& app) {
         ->check(CLI::Range(1u, 1000u));
     c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default: each scan's fitted skinning undone) or none")
         ->check(CLI::IsMember({"none", "skeleton"}));
+    c->add_flag("--scale", o->scale, "Procrustes alignment with scale: every body brought to the collection's average size, so the "
+                                     "model holds proportions only (no stature)");
     c->add_option("--segment-components", o->segment_components,
                   "also learn a shape space per body segment (head, arms, torso, legs) with this many components each (default 0: none)")
         ->check(CLI::Range(0u, 1000u));

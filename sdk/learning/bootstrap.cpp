@@ -283,7 +283,7 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         nlohmann::ordered_json settings{{"start_model_digest", digest}, {"accepted", accepted_names}, {"components", learn.components},
                                         {"posture", posture_name(learn.posture)}, {"name", learn.name}, {"license", learn.license},
                                         {"provenance", learn.provenance}, {"segment_components", learn.segment_components},
-                                        {"segment_band", learn.segment_band}};
+                                        {"segment_band", learn.segment_band}, {"scale", learn.scale}};
         for (const auto& a : learn.attributes) settings["attributes"][a.name] = a.values;
         // The registrations themselves: one made again (another reading of its scan) relearns the model.
         for (const auto& name : accepted_names)

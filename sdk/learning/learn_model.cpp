@@ -68,7 +68,7 @@ void align_to_template(training::SampleMatrix& X, const format::ModelData& t) {
 
 }  // namespace
 
-training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture) {
+training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale) {
     const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
     training::SampleMatrix X(N, 3 * Eigen::Index(V));
     for (uint32_t i = 0; i < N; ++i) {
@@ -78,7 +78,7 @@ training::SampleMatrix normalized_bodies(const Model& model, const std::vector<R
         for (uint32_t v = 0; v < V; ++v)
             for (int a = 0; a < 3; ++a) X(i, 3 * Eigen::Index(v) + a) = float(rest[v][a]);
     }
-    training::procrustes_align(X);
+    training::procrustes_align(X, 5, scale);
     align_to_template(X, model.data());
     return X;
 }
@@ -92,8 +92,8 @@ format::ModelData learn_model(const format::ModelData& template_model, const std
     const Model model(template_model, nullptr);
     const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
 
-    say(std::string("posture normalization: ") + posture_name(spec.posture) + ", Procrustes alignment");
-    training::SampleMatrix X = normalized_bodies(model, scans, spec.posture);
+    say(std::string("posture normalization: ") + posture_name(spec.posture) + (spec.scale ? ", Procrustes alignment with scale" : ", Procrustes alignment"));
+    training::SampleMatrix X = normalized_bodies(model, scans, spec.posture, spec.scale);
 
     say("PCA of " + std::to_string(N) + " registrations");
     const training::Pca p = training::pca(X, N, spec.components, spec.seed);
@@ -106,7 +106,8 @@ format::ModelData learn_model(const format::ModelData& template_model, const std
     m.metadata.description = "Body shape space (S-SCAPE) learned from " + std::to_string(N) + " registered scans.";
     std::ostringstream prov;
     prov << "Learned from " << N << " registrations of model '" << template_model.metadata.name
-         << "'; posture normalization " << posture_name(spec.posture) << "; " << K << " components";
+         << "'; posture normalization " << posture_name(spec.posture) << (spec.scale ? "; Procrustes with scale (sizes removed)" : "") << "; " << K
+         << " components";
     if (!spec.provenance.empty()) prov << "\n" << spec.provenance;
     m.metadata.provenance = prov.str();
     m.shape.mean.assign(p.mean.data(), p.mean.data() + p.mean.size());

@@ -28,6 +28,9 @@ struct RegisteredScan {
 struct LearnSpec {
     uint32_t components = 20;        // at most bodies - 1
     Posture posture = Posture::Skeleton;
+    // Procrustes with scale: every body brought to the collection's average size first, so the
+    // shape space holds proportions only (the paper's option; stature is then not in the model).
+    bool scale = false;
     // Known per-scan attributes (sex, age, ...), each with one value per scan in input order.
     std::vector<training::KnownAttribute> attributes;
     std::string name = "sscape-learned";
@@ -61,7 +64,7 @@ using LearnProgress = std::function<void(const std::string& stage)>;
 // rest posture (posture normalization with the model they were registered with), Procrustes
 // aligned, and moved as one onto the model's mean standing on its ground. Throws ssc::Error
 // (INVALID_ARGUMENT) for a scan of another vertex count, or without its fit for Posture::Skeleton.
-training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture);
+training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale = false);
 
 // Throws ssc::Error (INVALID_ARGUMENT) for fewer than 3 scans, a scan of another vertex count,
 // non-finite vertices, Posture::Skeleton with a scan lacking its fit, components (or segment components)

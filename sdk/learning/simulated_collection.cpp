@@ -24,15 +24,7 @@ SimulatedCollection simulate_collection(const std::string& makehuman, const Mode
     std::mt19937 rng(spec.variation_seed);
     SimulatedCollection out;
     for (const training::BodyParams& person : people) {
-        training::BodyParams body = person;
-        // Half their range (the ends are caricatures), and none that move a part bodily (-trans).
-        std::uniform_real_distribution<double> extra(-0.5, 0.5);
-        body.modifiers.resize(assets.modifiers.size(), 0.0);
-        for (std::size_t k = trained; k < body.modifiers.size(); ++k)
-            if (assets.modifiers[k].name.find("-trans") == std::string::npos)
-                body.modifiers[k] = assets.modifiers[k].decr >= 0 ? extra(rng) : 0.5 + extra(rng);
-        std::vector<float> xyz;
-        training::mh::generate_body(assets, body.macro, body.modifiers, xyz);
+        const std::vector<float> xyz = training::beyond_model_body(assets, person, trained, rng);
         std::vector<Eigen::Vector3d> rest(V);
         for (uint32_t v = 0; v < V; ++v) rest[v] = Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
         out.rest.push_back(std::move(rest));

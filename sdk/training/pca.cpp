@@ -5,14 +5,23 @@
 #include <Eigen/Dense>
 #include <Eigen/SVD>
 
+#include <cmath>
 #include <random>
 
 namespace ssc::training {
 
-void procrustes_align(SampleMatrix& X, int iterations) {
+void procrustes_align(SampleMatrix& X, int iterations, bool with_scale) {
     const Eigen::Index N = X.rows(), V = X.cols() / 3;
     auto body = [&](Eigen::Index i) { return Eigen::Map<Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>>(X.row(i).data(), V, 3); };
     Eigen::MatrixX3d mean = body(0).cast<double>();
+    // With scale, the mean keeps the bodies' average size (RMS distance from the centroid), or
+    // aligning every body onto it would shrink it round after round.
+    double size = 0;
+    if (with_scale)
+        for (Eigen::Index i = 0; i < N; ++i) {
+            const Eigen::MatrixX3d b = body(i).cast<double>();
+            size += std::sqrt((b.rowwise() - b.colwise().mean()).squaredNorm() / double(V)) / double(N);
+        }
     for (int it = 0; it < iterations; ++it) {
         const Eigen::RowVector3d mc = mean.colwise().mean();
         const Eigen::MatrixX3d centred_mean = mean.rowwise() - mc;
@@ -21,13 +30,18 @@ void procrustes_align(SampleMatrix& X, int iterations) {
             auto b = body(i);
             const Eigen::RowVector3d c = b.cast<double>().colwise().mean();
             const Eigen::MatrixX3d p = b.cast<double>().rowwise() - c;
-            // Kabsch: the rotation taking the centred body onto the centred mean.
-            const Eigen::Matrix3d R = align_points(p.transpose(), centred_mean.transpose(), false).R;
-            const Eigen::MatrixX3d aligned = (p * R.transpose()).rowwise() + mc;
+            // Kabsch (Umeyama with scale): the rotation (and scale) taking the centred body onto the centred mean.
+            const Similarity S = align_points(p.transpose(), centred_mean.transpose(), with_scale);
+            const Eigen::MatrixX3d aligned = (S.scale * p * S.R.transpose()).rowwise() + mc;
             b = aligned.cast<float>();
             next += aligned;
         }
         mean = next / double(N);
+        if (with_scale) {
+            const Eigen::RowVector3d c = mean.colwise().mean();
+            const double mean_size = std::sqrt((mean.rowwise() - c).squaredNorm() / double(V));
+            mean = ((mean.rowwise() - c) * (size / mean_size)).rowwise() + c;
+        }
     }
 }
 

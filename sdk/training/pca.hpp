@@ -10,9 +10,10 @@ namespace ssc::training {
 // Samples as rows: N bodies x 3V coordinates (x y z per vertex).
 using SampleMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// Generalized Procrustes alignment, rigid (rotation + translation, no scale): each body is
-// rotated and translated onto the running mean (Kabsch) until the mean settles. In place.
-void procrustes_align(SampleMatrix& X, int iterations = 5);
+// Generalized Procrustes alignment: each body is rotated and translated (and with_scale, scaled)
+// onto the running mean (Kabsch; Umeyama) until the mean settles. With scale the mean keeps the
+// bodies' average size, so the aligned bodies differ in shape only. In place.
+void procrustes_align(SampleMatrix& X, int iterations = 5, bool with_scale = false);
 
 struct Pca {
     Eigen::VectorXf mean;     // 3V

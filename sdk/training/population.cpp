@@ -148,4 +148,15 @@ void write_population_csv(const std::string& path, const mh::Assets& a, const st
     write_file_atomically(path, text.data(), text.size());
 }
 
+std::vector<float> beyond_model_body(const mh::Assets& a, const BodyParams& person, std::size_t trained, std::mt19937& rng) {
+    BodyParams body = person;
+    std::uniform_real_distribution<double> extra(-0.5, 0.5);
+    body.modifiers.resize(a.modifiers.size(), 0.0);
+    for (std::size_t k = trained; k < body.modifiers.size(); ++k)
+        if (a.modifiers[k].name.find("-trans") == std::string::npos) body.modifiers[k] = a.modifiers[k].decr >= 0 ? extra(rng) : 0.5 + extra(rng);
+    std::vector<float> xyz;
+    mh::generate_body(a, body.macro, body.modifiers, xyz);
+    return xyz;
+}
+
 }  // namespace ssc::training

@@ -7,6 +7,7 @@
 #include "makehuman/assets.hpp"
 
 #include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,12 @@ struct BodyParams {
 };
 
 std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationSpec& spec, const StatureStats& stats = {});
+
+// A body the model trained on the first `trained` modifiers cannot represent exactly: the person
+// with the modifiers added after them (mh::add_modifier_groups) set at random over half their range
+// (the ends are caricatures), none that move a part bodily (hand-trans, neck-trans: placement, not
+// shape). Its rest vertices, x y z per vertex.
+std::vector<float> beyond_model_body(const mh::Assets& a, const BodyParams& person, std::size_t trained, std::mt19937& rng);
 
 // Stature (highest minus lowest body vertex, rest posture) of a generated body.
 double stature(const std::vector<float>& xyz);

@@ -138,16 +138,7 @@ int main(int argc, char** argv) {
             scan.cloud = simulation::simulate_cloud(model, truth, spec, rng);
         } else {
 #ifdef SSCAPE_WITH_TRAINING
-            training::BodyParams body = people[std::size_t(t)];
-            // Half their range (the ends are caricatures), and none of the modifiers that move a part
-            // bodily (hand-trans, neck-trans: placement, not shape).
-            std::uniform_real_distribution<double> extra(-0.5, 0.5);
-            body.modifiers.resize(assets.modifiers.size(), 0.0);
-            for (std::size_t k = trained_modifiers; k < body.modifiers.size(); ++k)
-                if (assets.modifiers[k].name.find("-trans") == std::string::npos)
-                    body.modifiers[k] = assets.modifiers[k].decr >= 0 ? extra(rng) : 0.5 + extra(rng);
-            std::vector<float> xyz;
-            training::mh::generate_body(assets, body.macro, body.modifiers, xyz);
+            const std::vector<float> xyz = training::beyond_model_body(assets, people[std::size_t(t)], trained_modifiers, rng);
             std::vector<Vector3d> rest(model.vertex_count());
             for (uint32_t v = 0; v < model.vertex_count(); ++v) rest[v] = Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
             best_errors.push_back(simulation::best_approximation_error(model, rest, false));
