@@ -73,6 +73,16 @@ grep -q "^round_1/model,3," "$out/rounds.csv" || { cat "$out/rounds.csv"; fail "
 "$sscape" evaluate "$out"/run/round_1/registrations/b1.ply "$out"/run/round_1/registrations/b2.ply -o "$out/few" > "$out/few.txt" 2>&1
 [ $? -eq 2 ] && grep -q "needs at least 3 registrations" "$out/few.txt" || { cat "$out/few.txt"; fail "evaluate with 2 registrations"; }
 
+# The weakest start, the template alone: a start model without components, every scan registered
+# with it and judged; the round learns a model when at least 3 pass, and says so when fewer do.
+"$sscape" bootstrap "$out/scans" --template-only --rounds 1 --components 2 -o "$out/template" > "$out/template.txt" 2>&1
+code=$?
+grep -q "from the template alone of the built-in model" "$out/template.txt" || { cat "$out/template.txt"; fail "the template-only start"; }
+"$sscape" info "$out/template/round_0/model.sscape" > "$out/template_info.txt" 2>&1 || fail "info on the template-only start"
+grep -q "^components:  0" "$out/template_info.txt" || { cat "$out/template_info.txt"; fail "the template-only start has components"; }
+for i in 1 2 3 4 5 6; do [ -s "$out/template/round_1/registrations/b$i.ply" ] || fail "template-only registration $i"; done
+[ "$code" -eq 0 ] || grep -q "a model needs at least 3" "$out/template.txt" || { cat "$out/template.txt"; fail "template-only bootstrap exited $code"; }
+
 # Refusals: a message, a non-zero exit.
 expect() {  # expect CODE PATTERN ARGS...
     code=$1 pattern=$2; shift 2

@@ -25,7 +25,7 @@ struct Options {
     std::string scans, init, out, posture = "skeleton", units, up, decisions, attributes, name = "sscape-learned", license;
     uint32_t rounds = 3, components = 20, threads = 0, segment_components = 0;
     double segment_band_mm = 80;
-    bool scale = false;
+    bool scale = false, template_only = false;
 };
 
 // The scans: every .ply and .obj in the folder, by name; landmarks NAME.lnd beside a scan (or, for
@@ -82,8 +82,9 @@ int run_bootstrap(const Options& o) {
         const std::string bytes = read_regular_file(o.init, 1ull << 30);
         start.assign(bytes.begin(), bytes.end());
     }
-    std::printf("%zu scans in %s; %u rounds from %s; output in %s\n", spec.scans.size(), o.scans.c_str(), spec.rounds,
-                o.init.empty() ? "the built-in model" : o.init.c_str(), o.out.c_str());
+    if (o.template_only) start = format::write_model(learning::template_only(format::read_model(start.data(), start.size())));
+    std::printf("%zu scans in %s; %u rounds from %s%s; output in %s\n", spec.scans.size(), o.scans.c_str(), spec.rounds,
+                o.template_only ? "the template alone of " : "", o.init.empty() ? "the built-in model" : o.init.c_str(), o.out.c_str());
     Progress progress("bootstrap");
     std::vector<learning::RoundReport> rounds;
     try {
@@ -127,6 +128,8 @@ Run add_bootstrap(CLI::App& app) {
     c->add_option("--components", o->components, "shape components of each learned model (default 20; fewer when fewer scans are accepted)")
         ->check(CLI::Range(1u, 1000u));
     c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default) or none")->check(CLI::IsMember({"none", "skeleton"}));
+    c->add_flag("--template-only", o->template_only, "start from the starting model's template alone (its mean body, skeleton and "
+                                                     "skinning; no shape components): the weakest start");
     c->add_flag("--scale", o->scale, "learn with Procrustes alignment with scale (proportions only, no stature)");
     c->add_option("--segment-components", o->segment_components,
                   "also learn a shape space per body segment (head, arms, torso, legs) with this many components each (default 0: none)")

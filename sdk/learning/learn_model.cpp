@@ -175,4 +175,18 @@ format::ModelData learn_model(const format::ModelData& template_model, const std
     return m;
 }
 
+format::ModelData template_only(const format::ModelData& model) {
+    format::ModelData m = model;
+    m.shape.stddev.clear();
+    m.shape.basis.components = 0;
+    m.shape.basis.step.clear();
+    m.shape.basis.q.clear();
+    m.attributes = {};
+    m.segments.clear();
+    m.metadata.name = model.metadata.name + " (template only)";
+    m.metadata.provenance = "The template of '" + model.metadata.name + "' alone, without its shape space.\n" + model.metadata.provenance;
+    format::validate_model(m);
+    return m;
+}
+
 }  // namespace ssc::learning

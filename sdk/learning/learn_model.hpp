@@ -72,4 +72,9 @@ training::SampleMatrix normalized_bodies(const Model& model, const std::vector<R
 format::ModelData learn_model(const format::ModelData& template_model, const std::vector<RegisteredScan>& scans, const LearnSpec& spec,
                               LearnReport* report = nullptr, const LearnProgress& progress = {});
 
+// The weakest start for bootstrapping: the model's template alone (its mean body with its skeleton,
+// skinning, landmarks and anatomy) and no shape space, so the first round's registrations owe
+// nothing to any population but the one template body.
+format::ModelData template_only(const format::ModelData& model);
+
 }  // namespace ssc::learning

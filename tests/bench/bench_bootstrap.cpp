@@ -80,7 +80,7 @@ void component_picture(const std::string& path, const format::ModelData& data, c
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string makehuman, out = "bootstrap_bench";
+    std::string makehuman, out = "bootstrap_bench", start = "weak";
     uint32_t scans = 200, heldout = 50, rounds = 3, components = 20, points = 30000, threads = 0;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -93,12 +93,13 @@ int main(int argc, char** argv) {
         else if (a == "--points") points = uint32_t(std::stoul(next()));
         else if (a == "--threads") threads = uint32_t(std::stoul(next()));
         else if (a == "--out") out = next();
+        else if (a == "--start") start = next();
         else {
-            std::fprintf(stderr, "usage: sscape_bootstrap_bench --makehuman DIR [--scans N] [--heldout N] [--rounds N] [--components K] [--points N] [--out DIR] [--threads N]\n");
+            std::fprintf(stderr, "usage: sscape_bootstrap_bench --makehuman DIR [--scans N] [--heldout N] [--rounds N] [--components K] [--points N] [--out DIR] [--threads N] [--start weak|template]\n");
             return 2;
         }
     }
-    if (makehuman.empty() || scans < 10) {
+    if (makehuman.empty() || scans < 10 || (start != "weak" && start != "template")) {
         std::fprintf(stderr, "sscape_bootstrap_bench: --makehuman DIR is required (../shared/makehuman), and at least 10 scans\n");
         return 2;
     }
@@ -129,7 +130,9 @@ int main(int argc, char** argv) {
     weak_spec.components = 5;
     weak_spec.posture = learning::Posture::None;
     weak_spec.name = "weak-start";
-    const std::vector<unsigned char> weak = format::write_model(learning::learn_model(default_data, weak_bodies, weak_spec));
+    // Or weaker still: the template alone (--start template).
+    const std::vector<unsigned char> weak = format::write_model(start == "template" ? learning::template_only(default_data)
+                                                                                    : learning::learn_model(default_data, weak_bodies, weak_spec));
 
     // Bootstrapping.
     spec.out_dir = out + "/boot";
@@ -221,12 +224,16 @@ int main(int argc, char** argv) {
     std::printf("\nheld-out true bodies (%u), rest posture: generalization / specificity, mm\n%-34s", heldout, "model");
     for (uint32_t k : es.components) std::printf("   k=%-2u gen   spec", k);
     std::printf("\n");
-    for (const Named& n : {Named{"weak start (50 true bodies, 5 comp)", &weak_data}, Named{"bootstrapped (final round)", &final_data},
+    for (const Named& n : {Named{start == "template" ? "start: the template alone" : "weak start (50 true bodies, 5 comp)", &weak_data}, Named{"bootstrapped (final round)", &final_data},
                            Named{"from final registrations, skeleton", &skeleton}, Named{"  the same, unposed with the true pose", &known_pose},
                            Named{"from final registrations, none", &none},
                            Named{"from the true rest meshes", &direct}}) {
-        const auto q = learning::evaluate_model(*n.m, H, es);
         std::printf("%-34s", n.name);
+        if (n.m->shape.stddev.empty()) {  // the template alone has nothing to measure
+            std::printf("   (no shape components)\n");
+            continue;
+        }
+        const auto q = learning::evaluate_model(*n.m, H, es);
         for (uint32_t k : es.components) {
             const auto it = std::find_if(q.begin(), q.end(), [&](const training::QualityPoint& p) { return p.components == k; });
             if (it == q.end()) std::printf("   %14s", "-");

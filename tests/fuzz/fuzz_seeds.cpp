@@ -13,6 +13,7 @@
 #include "synthesis/model.hpp"
 #include "testing/synthetic_model.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <tuple>
@@ -39,6 +40,31 @@ ssc::testing::SyntheticModel small_model(ssc::testing::SyntheticSkeleton skeleto
     return ssc::testing::build_synthetic_model(spec);
 }
 
+// Two segment shape spaces over the vertices' halves, blended over a band between them, with
+// two components each (the whole-body basis's first two, restricted): the segments field as a
+// learned model has it, small.
+void add_segments(ssc::format::ModelData& m) {
+    const uint32_t V = m.vertex_count(), band = V / 10;
+    for (int half = 0; half < 2; ++half) {
+        ssc::format::ShapeSegment s;
+        s.name = half ? "upper" : "lower";
+        for (uint32_t v = 0; v < V; ++v) {
+            const float t = std::clamp((float(v) - float(V / 2 - band / 2)) / float(band), 0.f, 1.f);  // 0 below the band, 1 above
+            const float w = half ? t : 1.f - t;
+            if (w > 0) s.vertices.push_back(v), s.weights.push_back(w);
+        }
+        const auto n = uint32_t(s.vertices.size());
+        std::vector<float> basis(2ull * 3 * n);
+        for (uint32_t k = 0; k < 2; ++k)
+            for (uint32_t a = 0; a < 3; ++a)
+                for (uint32_t i = 0; i < n; ++i)
+                    basis[(k * 3 + a) * n + i] = s.weights[i] * m.shape.basis.step[k] * float(m.shape.basis.q[(std::size_t(k) * 3 + a) * V + s.vertices[i]]);
+        s.stddev = {m.shape.stddev[0], m.shape.stddev[1]};
+        s.basis = ssc::format::quantize_basis(basis.data(), n, 2, 1e-4);
+        m.segments.push_back(std::move(s));
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -51,9 +77,11 @@ int main(int argc, char** argv) {
 
     // Models: small meshes on the 6-joint skeleton (the humanoid one needs a full-size mesh).
     int n = 0;
-    for (const auto& [skeleton, V, K] : {std::tuple{ssc::testing::SyntheticSkeleton::Mini6, 300u, 4u},
-                                        std::tuple{ssc::testing::SyntheticSkeleton::Mini6, 600u, 6u}}) {
-        const auto model = small_model(skeleton, V, K);
+    for (const auto& [skeleton, V, K, segments] : {std::tuple{ssc::testing::SyntheticSkeleton::Mini6, 300u, 4u, false},
+                                                  std::tuple{ssc::testing::SyntheticSkeleton::Mini6, 600u, 6u, false},
+                                                  std::tuple{ssc::testing::SyntheticSkeleton::Mini6, 300u, 4u, true}}) {
+        auto model = small_model(skeleton, V, K);
+        if (segments) add_segments(model.data);
         const std::vector<unsigned char> file = ssc::format::write_model(model.data);
         put(out / "model_memory" / ("model" + std::to_string(n) + ".sscape"), file.data(), file.size());
         ssc::Vec<unsigned char> payload;

@@ -32,6 +32,14 @@ inline void use_model(ssc_model* model) {
     std::vector<float> measurements(ssc_measurement_count());
     expect(ssc_body_measure(body, measurements.data(), uint32_t(measurements.size())));
     if (ssc_model_slider_count(model) > 0) expect(ssc_body_set_slider(body, 0, 0.f));
+    for (uint32_t s = 0; s < ssc_model_segment_count(model); ++s) {
+        ssc_segment_info info{};
+        info.struct_size = sizeof info;
+        expect(ssc_model_get_segment_info(model, s, &info));
+        std::vector<float> c(info.shape_count, -1.5f);
+        expect(ssc_body_set_segment_shape(body, s, c.data(), info.shape_count));
+    }
+    if (ssc_model_segment_count(model) > 0) expect(ssc_body_get_vertices(body, out.data(), V, 0));
     ssc_body_destroy(body);
 }
 
