@@ -826,6 +826,7 @@ typedef enum ssc_rotation_format {
 /**
  * Describes a batch: body_count bodies, body i built from its shape, pose and translation.
  * Fill with ssc_batch_desc_init. All arrays are the caller's and are only used during the call.
+ * Batches take whole-body shapes only; segment shapes are set per body (ssc_body_set_segment_shape).
  */
 typedef struct ssc_batch_desc {
     uint32_t struct_size;            /**< sizeof(ssc_batch_desc), set by ssc_batch_desc_init. */

@@ -1,0 +1,175 @@
+"""Body: one body of a model, its shape and pose in, its vertices, joints and measurements out."""
+from __future__ import annotations
+
+import ctypes
+import os
+import weakref
+from typing import Dict, List, Optional, Union
+
+import numpy as np
+
+from ._native import c_float_p, lib
+from .errors import check
+from .model import Model
+
+_FORMATS = {None: 0, "obj": 1, "ply": 2, "glb": 3}
+
+
+def measurement_names() -> List[str]:
+    """The measurements Body.measure returns, in the library's order (SI units)."""
+    names = []
+    for m in range(lib.ssc_measurement_count()):
+        name = ctypes.c_char_p()
+        check(lib.ssc_measurement_get_info(m, ctypes.byref(name), None, None))
+        names.append(name.value.decode())
+    return names
+
+
+def _floats(values, what: str) -> np.ndarray:
+    a = np.ascontiguousarray(values, dtype=np.float32)
+    if a.ndim != 1:
+        raise ValueError(f"{what} must be one-dimensional, not of shape {a.shape}")
+    return a
+
+
+class Body:
+    """A body of a model, at the mean shape in the rest pose when made.
+
+    Shape coefficients are in standard deviations; the pose is a unit quaternion (x, y, z, w) per
+    joint. Arrays come back as new numpy arrays the library wrote into directly. A body is used from
+    one thread at a time (the C API's rule); different bodies may be used on different threads.
+    Freed at ``close()``, at the end of a ``with`` block, or when garbage collected.
+    """
+
+    def __init__(self, model: Model):
+        handle = ctypes.c_void_p()
+        check(lib.ssc_body_create(model.handle, None, ctypes.byref(handle)))
+        self.model = model
+        self._handle = handle
+        self._finalizer = weakref.finalize(self, lib.ssc_body_destroy, handle)
+        self._V = model.vertex_count
+        self._J = model.joint_count
+
+    def close(self) -> None:
+        self._finalizer()
+
+    def __enter__(self) -> "Body":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    @property
+    def handle(self) -> ctypes.c_void_p:
+        if not self._finalizer.alive:
+            raise ValueError("the body is closed")
+        return self._handle
+
+    # Shape and pose.
+    @property
+    def shape(self) -> np.ndarray:
+        """(K,) float32 whole-body coefficients. Setting takes up to K values (the rest become 0)."""
+        out = np.empty(self.model.shape_count, np.float32)
+        check(lib.ssc_body_get_shape(self.handle, out.ctypes.data_as(c_float_p), out.shape[0]))
+        return out
+
+    @shape.setter
+    def shape(self, coefficients) -> None:
+        c = _floats(coefficients, "shape")
+        check(lib.ssc_body_set_shape(self.handle, c.ctypes.data_as(c_float_p), c.shape[0]))
+
+    def set_pose(self, rotations: Optional[np.ndarray] = None, translation=None) -> None:
+        """rotations: (J, 4) quaternions x y z w per joint (None: the rest pose); translation: the root's, metres."""
+        r = None
+        if rotations is not None:
+            r = np.ascontiguousarray(rotations, dtype=np.float32)
+            if r.shape != (self._J, 4):
+                raise ValueError(f"rotations must have shape ({self._J}, 4), not {r.shape}")
+        t = None if translation is None else _floats(translation, "translation")
+        if t is not None and t.shape != (3,):
+            raise ValueError("translation needs 3 values")
+        check(lib.ssc_body_set_pose(self.handle, None if r is None else r.ctypes.data_as(c_float_p), self._J,
+                                    None if t is None else t.ctypes.data_as(c_float_p)))
+
+    def set_segment_shape(self, segment: Union[int, str], coefficients) -> None:
+        """One segment's coefficients (by index or name), on top of the whole-body shape."""
+        index = self._segment_index(segment)
+        c = _floats(coefficients, "coefficients")
+        check(lib.ssc_body_set_segment_shape(self.handle, index, c.ctypes.data_as(c_float_p), c.shape[0]))
+
+    def segment_shape(self, segment: Union[int, str]) -> np.ndarray:
+        index = self._segment_index(segment)
+        out = np.empty(self.model.segments[index].shape_count, np.float32)
+        check(lib.ssc_body_get_segment_shape(self.handle, index, out.ctypes.data_as(c_float_p), out.shape[0]))
+        return out
+
+    def _segment_index(self, segment: Union[int, str]) -> int:
+        if isinstance(segment, str):
+            names = [s.name for s in self.model.segments]
+            if segment not in names:
+                raise KeyError(f"the model has no segment {segment!r} (it has: {', '.join(names) or 'none'})")
+            return names.index(segment)
+        return int(segment)
+
+    # Sliders.
+    @property
+    def sliders(self) -> Dict[str, float]:
+        """The body's slider values by name (read from its shape)."""
+        names = [s.name for s in self.model.sliders]
+        out = np.empty(len(names), np.float32)
+        if names:
+            check(lib.ssc_body_get_sliders(self.handle, out.ctypes.data_as(c_float_p), out.shape[0]))
+        return dict(zip(names, (float(v) for v in out)))
+
+    def set_slider(self, name: str, value: float) -> None:
+        """Moves one slider (SI units), keeping the others' values."""
+        names = [s.name for s in self.model.sliders]
+        if name not in names:
+            raise KeyError(f"the model has no slider {name!r} (it has: {', '.join(names) or 'none'})")
+        check(lib.ssc_body_set_slider(self.handle, names.index(name), float(value)))
+
+    # Outputs.
+    def _vertices(self, fn, n: int) -> np.ndarray:
+        out = np.empty((n, 3), np.float32)
+        check(fn(self.handle, out.ctypes.data_as(c_float_p), n, 12))
+        return out
+
+    @property
+    def vertices(self) -> np.ndarray:
+        """(V, 3) float32 posed vertices, metres."""
+        return self._vertices(lib.ssc_body_get_vertices, self._V)
+
+    @property
+    def normals(self) -> np.ndarray:
+        """(V, 3) float32 unit vertex normals of the posed body."""
+        return self._vertices(lib.ssc_body_get_normals, self._V)
+
+    @property
+    def rest_vertices(self) -> np.ndarray:
+        """(V, 3) float32 vertices of the shaped body in the rest pose."""
+        return self._vertices(lib.ssc_body_get_rest_vertices, self._V)
+
+    @property
+    def landmarks(self) -> np.ndarray:
+        """(L, 3) float32 posed landmarks, in Model.landmark_names order."""
+        return self._vertices(lib.ssc_body_get_landmarks, self.model.landmark_count)
+
+    @property
+    def joint_transforms(self) -> np.ndarray:
+        """(J, 4, 4) float32 world transforms of the joints (the C API's column-major, transposed to rows)."""
+        out = np.empty((self._J, 16), np.float32)
+        check(lib.ssc_body_get_joint_transforms(self.handle, out.ctypes.data_as(c_float_p), self._J))
+        return out.reshape(self._J, 4, 4).transpose(0, 2, 1).copy()
+
+    def measure(self) -> Dict[str, float]:
+        """Every measurement by name, SI units (m, m^2, m^3, kg)."""
+        names = measurement_names()
+        out = np.empty(len(names), np.float32)
+        check(lib.ssc_body_measure(self.handle, out.ctypes.data_as(c_float_p), out.shape[0]))
+        return dict(zip(names, (float(v) for v in out)))
+
+    def write(self, path: Union[str, os.PathLike], format: Optional[str] = None) -> None:
+        """Writes the body as OBJ, PLY or rigged glTF (.glb); format None: from the extension."""
+        if format not in _FORMATS:
+            raise ValueError(f"format must be one of obj, ply, glb or None, not {format!r}")
+        check(lib.ssc_body_write_file(self.handle, os.fsencode(path), _FORMATS[format]))

@@ -1,0 +1,159 @@
+"""The Python package over the built library: every wrapped call, its errors, dtypes and shapes,
+and that what numpy receives is exactly what the library computed."""
+import os
+import pathlib
+import struct
+
+import numpy as np
+import pytest
+
+import sscape
+
+
+@pytest.fixture(scope="module")
+def model():
+    return sscape.Model()
+
+
+def read_ply_vertices(path):
+    """Positions of a binary little-endian PLY as the library writes it (x y z float first)."""
+    data = path.read_bytes()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode().splitlines()
+    count = next(int(line.split()[2]) for line in header if line.startswith("element vertex"))
+    props = []
+    for line in header[header.index(next(l for l in header if l.startswith("element vertex"))) + 1:]:
+        if not line.startswith("property"):
+            break
+        props.append(line.split()[1])
+    assert props[:3] == ["float", "float", "float"]
+    stride = sum({"float": 4, "uchar": 1, "int": 4, "uint": 4}[p] for p in props)
+    out = np.empty((count, 3), np.float32)
+    for i in range(count):
+        out[i] = struct.unpack_from("<3f", data, end + i * stride)
+    return out
+
+
+def test_library_and_version():
+    assert sscape.library_version().startswith(f"{sscape.ABI_MAJOR}.")
+    assert sscape.library_path
+    assert sscape.__version__
+
+
+def test_default_model(model):
+    assert model.vertex_count == 13380
+    assert model.shape_count == 50
+    assert model.joint_count == len(model.joint_names) == 53
+    assert model.joint_names[0] == "Root"
+    assert model.landmark_count == len(model.landmark_names) == 73
+    tris = model.triangles
+    assert tris.dtype == np.uint32 and tris.shape == (model.triangle_count, 3)
+    assert tris.max() < model.vertex_count
+    parents = model.joint_parents
+    assert parents.dtype == np.int32 and parents[0] == -1 and (parents[1:] < np.arange(1, 53)).all()
+    sd = model.shape_stddevs
+    assert sd.dtype == np.float32 and sd.shape == (50,) and (np.diff(sd) <= 0).all()
+    meta = model.metadata
+    assert meta["name"] == "sscape-default" and meta["units"] == "m"
+    assert [s.name for s in model.sliders][:2] == ["stature", "mass"]
+    assert model.segments == []
+    assert "sscape-default" in repr(model)
+
+
+def test_body_shape_pose_outputs(model):
+    with sscape.Body(model) as body:
+        np.testing.assert_array_equal(body.shape, np.zeros(50, np.float32))
+        body.shape = [1.0, -0.5]
+        shape = body.shape
+        assert shape.dtype == np.float32 and shape[0] == 1.0 and shape[1] == -0.5 and not shape[2:].any()
+        rest = body.rest_vertices
+        posed = body.vertices
+        assert posed.dtype == np.float32 and posed.shape == (13380, 3)
+        np.testing.assert_allclose(posed, rest, atol=1e-5)  # the rest pose
+        normals = body.normals
+        np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1, atol=1e-4)
+        assert body.landmarks.shape == (73, 3)
+        # An elbow bent: the hand moves, the feet do not.
+        q = np.tile(np.array([0, 0, 0, 1], np.float32), (53, 1))
+        elbow = model.joint_names.index("lowerarm_l")
+        q[elbow] = [np.sin(0.4), 0, 0, np.cos(0.4)]
+        body.set_pose(q, translation=[0, 0.1, 0])
+        moved = body.vertices - rest
+        assert np.abs(moved[:, 1] - 0.1).min() < 1e-5  # most vertices just translated
+        assert np.abs(moved - [0, 0.1, 0]).max() > 0.05   # the forearm turned
+        transforms = body.joint_transforms
+        assert transforms.shape == (53, 4, 4)
+        np.testing.assert_allclose(transforms[:, 3], np.tile([0, 0, 0, 1], (53, 1)), atol=1e-6)
+        body.set_pose()  # back to rest
+        np.testing.assert_allclose(body.vertices, rest, atol=1e-5)
+
+
+def test_arrays_equal_the_library_bit_for_bit(model, tmp_path):
+    with sscape.Body(model) as body:
+        body.shape = model.sample_shapes(1, seed=3)[0]
+        path = tmp_path / "body.ply"
+        body.write(path)
+        np.testing.assert_array_equal(read_ply_vertices(path), body.vertices)
+
+
+def test_sliders_measurements_and_files(model, tmp_path):
+    names = sscape.measurement_names()
+    assert "stature" in names and "waist_girth" in names
+    with sscape.Body(model) as body:
+        body.set_slider("stature", 1.80)
+        assert abs(body.sliders["stature"] - 1.80) < 1e-3
+        m = body.measure()
+        assert list(m) == names
+        assert abs(m["stature"] - 1.80) < 0.01
+        with pytest.raises(KeyError, match="no slider 'height'"):
+            body.set_slider("height", 1.8)
+        with pytest.raises(sscape.SscapeError) as e:
+            body.set_slider("stature", 9.0)
+        assert e.value.status == -1 and "range" in str(e.value)
+        for ext in ("obj", "ply", "glb"):
+            body.write(tmp_path / f"b.{ext}")
+            assert (tmp_path / f"b.{ext}").stat().st_size > 100000
+        with pytest.raises(ValueError):
+            body.write(tmp_path / "b.obj", format="stl")
+        with pytest.raises(sscape.SscapeError) as e:
+            body.write(tmp_path / "b.stl")
+        assert e.value.status_name == "SSC_ERROR_INVALID_ARGUMENT"
+        assert not (tmp_path / "b.stl").exists()
+
+
+def test_errors_carry_status_and_message(model, tmp_path):
+    with sscape.Body(model) as body:
+        with pytest.raises(sscape.SscapeError) as e:
+            body.shape = [np.nan]
+        assert e.value.status == -1 and "is nan" in str(e.value)
+        with pytest.raises(sscape.SscapeError):
+            body.shape = np.ones(51)  # more than the model has
+        with pytest.raises(ValueError, match="shape"):
+            body.set_pose(np.zeros((52, 4)))
+        with pytest.raises(sscape.SscapeError) as e:
+            body.set_pose(np.zeros((53, 4)))  # zero quaternions
+        assert e.value.status_name == "SSC_ERROR_INVALID_ARGUMENT"
+        with pytest.raises(KeyError, match="no segment 'arm_l'"):
+            body.set_segment_shape("arm_l", [1.0])
+    with pytest.raises(ValueError, match="closed"):
+        body.vertices
+    with pytest.raises(sscape.SscapeError) as e:
+        sscape.Model.from_file(tmp_path / "missing.sscape")
+    assert e.value.status_name == "SSC_ERROR_IO"
+    with pytest.raises(sscape.SscapeError) as e:
+        sscape.Model.from_bytes(b"not a model file, " * 10)
+    assert e.value.status_name == "SSC_ERROR_MODEL_CORRUPT"
+
+
+def test_models_from_files_and_bytes(model, tmp_path):
+    shapes = model.sample_shapes(4, seed=7)
+    assert shapes.shape == (4, 50) and shapes.dtype == np.float32
+    np.testing.assert_array_equal(shapes, model.sample_shapes(4, seed=7))
+    assert np.abs(shapes).max() <= 2.5
+    # A body from a model loaded twice over: the same vertices.
+    source = os.environ.get("SSCAPE_SOURCE_DIR") or pathlib.Path(__file__).resolve().parents[3]
+    default_file = pathlib.Path(source) / "model_format" / "models" / "sscape-default.sscape"
+    for other in (sscape.Model.from_file(default_file), sscape.Model.from_bytes(default_file.read_bytes())):
+        with other, sscape.Body(other) as a, sscape.Body(model) as b:
+            a.shape = b.shape = shapes[0]
+            np.testing.assert_array_equal(a.vertices, b.vertices)
