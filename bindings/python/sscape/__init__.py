@@ -13,7 +13,9 @@ Errors raise sscape.SscapeError with the library's status and message.
 from ._native import ABI_MAJOR, lib, library_path
 from .body import Body, measurement_names
 from .errors import SscapeError
+from .fitter import Fitter
 from .model import Model, Segment, Slider
+from .registration import Registration
 
 __version__ = "0.1.0"
 
@@ -24,5 +26,5 @@ def library_version() -> str:
     return f"{v // 10000}.{v // 100 % 100}.{v % 100}"
 
 
-__all__ = ["ABI_MAJOR", "Body", "Model", "Segment", "Slider", "SscapeError", "library_path", "library_version",
+__all__ = ["ABI_MAJOR", "Body", "Fitter", "Model", "Registration", "Segment", "Slider", "SscapeError", "library_path", "library_version",
            "measurement_names", "__version__"]

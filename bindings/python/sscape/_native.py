@@ -27,6 +27,46 @@ class SliderInfo(ctypes.Structure):
                 ("mean", c_float), ("minimum", c_float), ("maximum", c_float)]
 
 
+class BatchDesc(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("body_count", c_uint32), ("shapes", c_float_p), ("shape_count", c_uint32),
+                ("pose_format", c_int32), ("poses", c_float_p), ("translations", c_float_p), ("vertices", c_float_p),
+                ("vertices_capacity", c_size_t), ("normals", c_float_p), ("normals_capacity", c_size_t)]
+
+
+class FitterDef(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("shape_count", c_uint32), ("fit_scale", c_uint32), ("max_iterations", c_uint32),
+                ("landmark_sigma", c_float), ("point_sigma", c_float), ("shape_prior", c_float), ("pose_prior", c_float),
+                ("max_points", c_uint32), ("seed", c_uint32), ("joint_limits", c_uint32)]
+
+
+class FitReport(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("iterations", c_uint32), ("converged", c_uint32), ("reserved", c_uint32),
+                ("initial_cost", c_float), ("final_cost", c_float), ("landmark_rms", c_float), ("point_mean", c_float),
+                ("inlier_fraction", c_float), ("seconds", c_float), ("restarts", c_uint32), ("unexplained_fraction", c_float),
+                ("implausible", c_uint32)]
+
+
+class RegistrationDef(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("start", c_int32), ("schedule", c_int32), ("stiffness", c_float),
+                ("landmark_weight", c_float), ("gamma", c_float), ("max_iterations", c_uint32), ("rbf_kernel", c_int32),
+                ("rbf_scale", c_float)]
+
+
+class RegistrationQuality(ctypes.Structure):
+    _fields_ = [("scan_mean", c_float), ("scan_median", c_float), ("scan_p95", c_float), ("within", c_float * 4)]
+
+
+class RegistrationReport(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("rounds", c_uint32), ("solves", c_uint32), ("valid_vertices", c_uint32),
+                ("seconds", c_float), ("fit_seconds", c_float), ("quality", RegistrationQuality)]
+
+
+#: int (*ssc_stage_progress_fn)(void* user, const char* stage, uint32_t done, uint32_t total)
+STAGE_PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_char_p, c_uint32, c_uint32)
+
+#: int (*ssc_progress_fn)(void* user, uint32_t iteration, float cost)
+PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_uint32, c_float)
+
 _STATUS = c_int32
 _MODEL = c_void_p
 _BODY = c_void_p
@@ -57,12 +97,39 @@ _DECLARATIONS = {
     "ssc_body_get_shape": (_STATUS, [_BODY, c_float_p, c_uint32]),
     "ssc_body_set_pose": (_STATUS, [_BODY, c_float_p, c_uint32, c_float_p]),
     "ssc_model_sample_shapes": (_STATUS, [_MODEL, c_uint32, c_uint32, c_float, c_float_p, c_uint32]),
+    "ssc_batch_desc_init": (None, [POINTER(BatchDesc), c_size_t]),
+    "ssc_model_synthesize_batch": (_STATUS, [_MODEL, POINTER(BatchDesc)]),
     "ssc_body_get_vertices": (_STATUS, [_BODY, c_float_p, c_uint32, c_size_t]),
     "ssc_body_get_normals": (_STATUS, [_BODY, c_float_p, c_uint32, c_size_t]),
     "ssc_body_get_rest_vertices": (_STATUS, [_BODY, c_float_p, c_uint32, c_size_t]),
     "ssc_body_get_landmarks": (_STATUS, [_BODY, c_float_p, c_uint32, c_size_t]),
     "ssc_body_get_joint_transforms": (_STATUS, [_BODY, c_float_p, c_uint32]),
     "ssc_body_write_file": (_STATUS, [_BODY, c_char_p, c_int32]),
+    "ssc_fitter_def_init": (None, [POINTER(FitterDef), c_size_t]),
+    "ssc_fitter_create": (_STATUS, [_MODEL, POINTER(FitterDef), POINTER(c_void_p)]),
+    "ssc_fitter_destroy": (None, [c_void_p]),
+    "ssc_fitter_clear": (_STATUS, [c_void_p]),
+    "ssc_fitter_frame_count": (c_uint32, [c_void_p]),
+    "ssc_fitter_add_landmarks_by_name": (_STATUS, [c_void_p, c_uint32, POINTER(c_char_p), c_float_p, c_float_p, c_uint32]),
+    "ssc_fitter_add_points": (_STATUS, [c_void_p, c_uint32, c_float_p, c_float_p, c_float_p, c_uint32, c_size_t]),
+    "ssc_fitter_solve": (_STATUS, [c_void_p, PROGRESS_FN, c_void_p, POINTER(FitReport)]),
+    "ssc_fitter_get_shape": (_STATUS, [c_void_p, c_float_p, c_uint32]),
+    "ssc_fitter_get_pose": (_STATUS, [c_void_p, c_uint32, c_float_p, c_uint32, c_float_p, c_float_p]),
+    "ssc_fitter_get_vertices": (_STATUS, [c_void_p, c_uint32, c_float_p, c_uint32, c_size_t]),
+    "ssc_fitter_get_point_residuals": (_STATUS, [c_void_p, c_uint32, c_float_p, c_uint32]),
+    "ssc_fitter_point_count": (c_uint32, [c_void_p, c_uint32]),
+    "ssc_registration_def_init": (None, [POINTER(RegistrationDef), c_size_t]),
+    "ssc_registration_create": (_STATUS, [_MODEL, POINTER(RegistrationDef), POINTER(c_void_p)]),
+    "ssc_registration_destroy": (None, [c_void_p]),
+    "ssc_registration_set_scan": (_STATUS, [c_void_p, c_float_p, c_float_p, c_uint32, c_size_t, c_uint32_p, c_uint32]),
+    "ssc_registration_set_landmarks_by_name": (_STATUS, [c_void_p, POINTER(c_char_p), c_float_p, c_uint32]),
+    "ssc_registration_run": (_STATUS, [c_void_p, STAGE_PROGRESS_FN, c_void_p, POINTER(RegistrationReport)]),
+    "ssc_registration_get_vertices": (_STATUS, [c_void_p, c_float_p, c_uint32, c_size_t]),
+    "ssc_registration_get_valid": (_STATUS, [c_void_p, POINTER(ctypes.c_uint8), c_uint32]),
+    "ssc_registration_get_vertex_distances": (_STATUS, [c_void_p, c_float_p, c_uint32]),
+    "ssc_registration_get_fit": (_STATUS, [c_void_p, c_float_p, c_uint32, c_float_p, c_uint32, c_float_p, c_float_p]),
+    "ssc_registration_region_count": (c_uint32, [c_void_p]),
+    "ssc_registration_get_region": (_STATUS, [c_void_p, c_uint32, POINTER(c_char_p), POINTER(RegistrationQuality)]),
     "ssc_measurement_count": (c_uint32, []),
     "ssc_measurement_get_info": (_STATUS, [c_uint32, POINTER(c_char_p), POINTER(c_int32), POINTER(c_char_p)]),
     "ssc_body_measure": (_STATUS, [_BODY, c_float_p, c_uint32]),

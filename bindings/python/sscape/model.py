@@ -8,7 +8,7 @@ from typing import Dict, List, NamedTuple, Union
 
 import numpy as np
 
-from ._native import SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib
+from ._native import BatchDesc, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib
 from .errors import check
 
 
@@ -169,6 +169,47 @@ class Model:
         out = np.empty((count, self.shape_count), np.float32)
         check(lib.ssc_model_sample_shapes(self.handle, seed, count, truncation, out.ctypes.data_as(c_float_p), out.size))
         return out
+
+    def synthesize(self, shapes=None, poses=None, translations=None, normals: bool = False, count: Union[int, None] = None):
+        """Many bodies at once on the library's worker threads: (N, V, 3) float32 vertices (and normals
+        when asked, as a second array), equal to what a Body gives for the same parameters.
+
+        shapes: (N, k) coefficients, k <= K (None: the mean); poses: (N, J, 4) quaternions x y z w
+        (None: the rest pose); translations: (N, 3) (None: zero); count: N when nothing else gives it.
+        """
+        arrays = {}
+        for name, value, tail in (("shapes", shapes, None), ("poses", poses, (self.joint_count, 4)), ("translations", translations, (3,))):
+            if value is None:
+                continue
+            a = np.ascontiguousarray(value, dtype=np.float32)
+            if a.ndim != (2 if tail is None or len(tail) == 1 else 3) or (tail is not None and a.shape[1:] != tail):
+                raise ValueError(f"{name} has shape {a.shape}; expected (N, {'k' if tail is None else ', '.join(map(str, tail))})")
+            arrays[name] = a
+        counts = {a.shape[0] for a in arrays.values()} | ({count} if count is not None else set())
+        if len(counts) != 1:
+            raise ValueError("give count, or shapes/poses/translations with one number of bodies" if not counts else
+                             f"the arrays disagree on the number of bodies: {sorted(counts)}")
+        n = counts.pop()
+        V = self.vertex_count
+        vertices = np.empty((n, V, 3), np.float32)
+        out_normals = np.empty((n, V, 3), np.float32) if normals else None
+        desc = BatchDesc()
+        lib.ssc_batch_desc_init(ctypes.byref(desc), ctypes.sizeof(BatchDesc))
+        desc.body_count = n
+        if "shapes" in arrays:
+            desc.shapes = arrays["shapes"].ctypes.data_as(c_float_p)
+            desc.shape_count = arrays["shapes"].shape[1]
+        if "poses" in arrays:
+            desc.poses = arrays["poses"].ctypes.data_as(c_float_p)
+        if "translations" in arrays:
+            desc.translations = arrays["translations"].ctypes.data_as(c_float_p)
+        desc.vertices = vertices.ctypes.data_as(c_float_p)
+        desc.vertices_capacity = n * V
+        if normals:
+            desc.normals = out_normals.ctypes.data_as(c_float_p)
+            desc.normals_capacity = n * V
+        check(lib.ssc_model_synthesize_batch(self.handle, ctypes.byref(desc)))
+        return (vertices, out_normals) if normals else vertices
 
     def __repr__(self) -> str:
         return f"<sscape.Model {self.metadata['name']!r}: {self.vertex_count} vertices, {self.shape_count} components, {self.joint_count} joints>"

@@ -157,3 +157,96 @@ def test_models_from_files_and_bytes(model, tmp_path):
         with other, sscape.Body(other) as a, sscape.Body(model) as b:
             a.shape = b.shape = shapes[0]
             np.testing.assert_array_equal(a.vertices, b.vertices)
+
+
+def test_batch_synthesis_equals_bodies(model):
+    shapes = model.sample_shapes(3, seed=11)
+    poses = np.tile(np.array([0, 0, 0, 1], np.float32), (3, 53, 1))
+    poses[1, model.joint_names.index("lowerarm_r")] = [0, np.sin(0.3), 0, np.cos(0.3)]
+    translations = np.array([[0, 0, 0], [0.5, 0, 0], [0, 0.2, -1]], np.float32)
+    vertices, normals = model.synthesize(shapes, poses, translations, normals=True)
+    assert vertices.shape == normals.shape == (3, 13380, 3) and vertices.dtype == np.float32
+    for i in range(3):
+        with sscape.Body(model) as body:
+            body.shape = shapes[i]
+            body.set_pose(poses[i], translations[i])
+            np.testing.assert_array_equal(vertices[i], body.vertices)
+            np.testing.assert_array_equal(normals[i], body.normals)
+    mean = model.synthesize(count=2)
+    np.testing.assert_array_equal(mean[0], mean[1])
+    with pytest.raises(ValueError, match="disagree"):
+        model.synthesize(shapes, translations=translations[:2])
+    with pytest.raises(ValueError, match="poses has shape"):
+        model.synthesize(poses=np.zeros((2, 52, 4)))
+    with pytest.raises(sscape.SscapeError):
+        model.synthesize(shapes=np.full((1, 3), np.inf))
+
+
+def test_fitter_recovers_a_body_from_its_surface(model):
+    with sscape.Body(model) as body:
+        body.shape = model.sample_shapes(1, seed=5)[0]
+        q = np.tile(np.array([0, 0, 0, 1], np.float32), (53, 1))
+        q[model.joint_names.index("upperarm_l")] = [0, 0, np.sin(-0.2), np.cos(-0.2)]
+        body.set_pose(q, translation=[0.3, 0, -0.2])
+        truth = body.vertices
+        names = model.landmark_names[:10]
+        landmarks = body.landmarks[:10]
+    iterations = []
+    with sscape.Fitter(model, max_points=2000) as fitter:
+        fitter.add_points(truth[::4])
+        fitter.add_landmarks(names, landmarks)
+        report = fitter.solve(lambda i, cost: iterations.append(cost) and False)
+        assert report["converged"] and report["iterations"] == len(iterations) > 0
+        error = np.linalg.norm(fitter.vertices() - truth, axis=1).mean()
+        assert error < 0.005, f"mean vertex error {error * 1000:.2f} mm"
+        rotations, translation, scale = fitter.pose()
+        assert rotations.shape == (53, 4) and scale == 1.0
+        np.testing.assert_allclose(translation, [0.3, 0, -0.2], atol=0.02)
+        residuals = fitter.point_residuals()
+        assert residuals.shape == (truth[::4].shape[0],) and np.median(residuals) < 0.003
+        assert fitter.shape.shape == (50,)
+    with sscape.Fitter(model) as fitter:
+        fitter.add_points(truth[::4])
+        with pytest.raises(sscape.SscapeError) as e:
+            fitter.solve(lambda i, cost: True)  # cancelled at once
+        assert e.value.status_name == "SSC_ERROR_CANCELLED"
+        def broken(i, cost):
+            raise RuntimeError("from the callback")
+        with pytest.raises(RuntimeError, match="from the callback"):
+            fitter.solve(broken)
+        with pytest.raises(sscape.SscapeError) as e:
+            fitter.add_landmarks(["Nowhere"], [[0, 0, 0]])
+        assert e.value.status_name == "SSC_ERROR_NOT_FOUND"
+    with pytest.raises(TypeError, match="unknown fitter options: sigma"):
+        sscape.Fitter(model, sigma=1)
+
+
+def test_registration_brings_the_template_onto_a_scan(model):
+    # A "scan": a body's surface with a hole, points only.
+    with sscape.Body(model) as body:
+        body.shape = model.sample_shapes(1, seed=8)[0]
+        truth = body.vertices
+    keep = truth[:, 1] < 1.2  # no head and shoulders above 1.2 m: filled in from the model
+    stages = []
+    with sscape.Registration(model, max_iterations=2) as reg:
+        with pytest.raises(sscape.SscapeError):
+            reg.run()  # no scan yet
+        reg.set_scan(truth[keep])
+        report = reg.run(lambda stage, done, total: stages.append(stage) and False)
+        assert {"fit", "deform"} <= set(stages)
+        assert report["valid_vertices"] > 0.5 * model.vertex_count
+        assert set(report["regions"]) >= {"head", "torso", "legs"}
+        v = reg.vertices()
+        error = np.linalg.norm(v[keep] - truth[keep], axis=1).mean()
+        assert error < 0.01, f"mean error on the scanned part {error * 1000:.1f} mm"
+        valid = reg.valid()
+        assert valid.dtype == bool and valid[keep].mean() > valid[~keep].mean()
+        d = reg.vertex_distances()
+        assert d.shape == (model.vertex_count,) and (d[valid] >= 0).all()
+        shape, rotations, translation, scale = reg.fit()
+        assert shape.shape == (50,) and rotations.shape == (53, 4)
+        with pytest.raises(sscape.SscapeError) as e:
+            reg.set_landmarks(["Nowhere"], [[0, 0, 0]])
+        assert e.value.status_name == "SSC_ERROR_NOT_FOUND"
+    with pytest.raises(ValueError, match="start must be one of"):
+        sscape.Registration(model, start="magic")

@@ -1,0 +1,142 @@
+"""Fitter: the model fitted to landmarks and point clouds of one person, in one or more frames."""
+from __future__ import annotations
+
+import ctypes
+import weakref
+from typing import Callable, Dict, Optional, Sequence, Tuple
+
+import numpy as np
+
+from ._native import PROGRESS_FN, FitReport, FitterDef, c_float_p, lib
+from .errors import check
+from .model import Model
+
+_OPTIONS = {"shape_count", "fit_scale", "max_iterations", "landmark_sigma", "point_sigma", "shape_prior", "pose_prior",
+            "max_points", "seed", "joint_limits"}
+
+
+def _points(values, what: str) -> np.ndarray:
+    a = np.ascontiguousarray(values, dtype=np.float32)
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ValueError(f"{what} must have shape (N, 3), not {a.shape}")
+    return a
+
+
+class Fitter:
+    """Finds the shape (shared by all frames), each frame's pose and translation, and optionally a
+    global scale that best explain the observations added. Options as ssc_fitter_def:
+    shape_count, fit_scale, max_iterations, landmark_sigma, point_sigma, shape_prior, pose_prior,
+    max_points, seed, joint_limits. One thread at a time.
+
+        fitter = sscape.Fitter(model)
+        fitter.add_points(scan_points)               # (N, 3) metres
+        report = fitter.solve()
+        body_vertices = fitter.vertices()
+    """
+
+    def __init__(self, model: Model, **options):
+        unknown = set(options) - _OPTIONS
+        if unknown:
+            raise TypeError(f"unknown fitter options: {', '.join(sorted(unknown))} (known: {', '.join(sorted(_OPTIONS))})")
+        d = FitterDef()
+        lib.ssc_fitter_def_init(ctypes.byref(d), ctypes.sizeof(FitterDef))
+        for key, value in options.items():
+            setattr(d, key, int(value) if isinstance(getattr(d, key), int) else float(value))
+        handle = ctypes.c_void_p()
+        check(lib.ssc_fitter_create(model.handle, ctypes.byref(d), ctypes.byref(handle)))
+        self.model = model
+        self._handle = handle
+        self._finalizer = weakref.finalize(self, lib.ssc_fitter_destroy, handle)
+
+    def close(self) -> None:
+        self._finalizer()
+
+    def __enter__(self) -> "Fitter":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    @property
+    def handle(self) -> ctypes.c_void_p:
+        if not self._finalizer.alive:
+            raise ValueError("the fitter is closed")
+        return self._handle
+
+    @property
+    def frame_count(self) -> int:
+        return lib.ssc_fitter_frame_count(self.handle)
+
+    def _frame(self, frame: Optional[int]) -> int:
+        return max(self.frame_count - 1, 0) if frame is None else int(frame)
+
+    def add_landmarks(self, names: Sequence[str], positions, weights=None, frame: Optional[int] = None) -> None:
+        """Landmarks by the model's names (CAESAR for the default model), (N, 3) metres; frame None: the last (or first)."""
+        p = _points(positions, "positions")
+        if len(names) != p.shape[0]:
+            raise ValueError(f"{len(names)} names for {p.shape[0]} positions")
+        w = None if weights is None else np.ascontiguousarray(weights, dtype=np.float32)
+        if w is not None and w.shape != (p.shape[0],):
+            raise ValueError(f"weights must have shape ({p.shape[0]},)")
+        c_names = (ctypes.c_char_p * len(names))(*[n.encode() for n in names])
+        check(lib.ssc_fitter_add_landmarks_by_name(self.handle, self._frame(frame), c_names, p.ctypes.data_as(c_float_p),
+                                                   None if w is None else w.ctypes.data_as(c_float_p), p.shape[0]))
+
+    def add_points(self, points, normals=None, confidence=None, frame: Optional[int] = None) -> None:
+        """A point cloud, (N, 3) metres, with optional outward normals (N, 3) and confidences (N,) in [0, 1]."""
+        p = _points(points, "points")
+        n = None if normals is None else _points(normals, "normals")
+        c = None if confidence is None else np.ascontiguousarray(confidence, dtype=np.float32)
+        if (n is not None and n.shape != p.shape) or (c is not None and c.shape != (p.shape[0],)):
+            raise ValueError("normals and confidence need one entry per point")
+        check(lib.ssc_fitter_add_points(self.handle, self._frame(frame), p.ctypes.data_as(c_float_p),
+                                        None if n is None else n.ctypes.data_as(c_float_p),
+                                        None if c is None else c.ctypes.data_as(c_float_p), p.shape[0], 0))
+
+    def solve(self, progress: Optional[Callable[[int, float], bool]] = None) -> Dict[str, float]:
+        """Runs the fit; returns the report as a dict. progress(iteration, cost) returning True cancels
+        (SscapeError SSC_ERROR_CANCELLED; the results hold the state reached)."""
+        report = FitReport(struct_size=ctypes.sizeof(FitReport))
+        errors = []
+
+        def call(_user, iteration, cost):
+            try:
+                return 1 if progress(int(iteration), float(cost)) else 0
+            except BaseException as e:  # never across the C boundary
+                errors.append(e)
+                return 1
+
+        callback = PROGRESS_FN(call) if progress else PROGRESS_FN()
+        status = lib.ssc_fitter_solve(self.handle, callback, None, ctypes.byref(report))
+        if errors:
+            raise errors[0]
+        check(status)
+        return {name: getattr(report, name) for name, _ in FitReport._fields_ if name not in ("struct_size", "reserved")}
+
+    @property
+    def shape(self) -> np.ndarray:
+        out = np.empty(self.model.shape_count, np.float32)
+        check(lib.ssc_fitter_get_shape(self.handle, out.ctypes.data_as(c_float_p), out.shape[0]))
+        return out
+
+    def pose(self, frame: int = 0) -> Tuple[np.ndarray, np.ndarray, float]:
+        """(rotations (J, 4) x y z w, translation (3,), scale) of a frame."""
+        J = self.model.joint_count
+        rotations, translation, scale = np.empty((J, 4), np.float32), np.empty(3, np.float32), ctypes.c_float()
+        check(lib.ssc_fitter_get_pose(self.handle, frame, rotations.ctypes.data_as(c_float_p), J, translation.ctypes.data_as(c_float_p),
+                                      ctypes.byref(scale)))
+        return rotations, translation, scale.value
+
+    def vertices(self, frame: int = 0) -> np.ndarray:
+        """(V, 3) the fitted surface of a frame (scale and translation applied)."""
+        V = self.model.vertex_count
+        out = np.empty((V, 3), np.float32)
+        check(lib.ssc_fitter_get_vertices(self.handle, frame, out.ctypes.data_as(c_float_p), V, 0))
+        return out
+
+    def point_residuals(self, frame: int = 0) -> np.ndarray:
+        """(N,) distances of a frame's points to the fitted surface, metres, in the order added."""
+        n = lib.ssc_fitter_point_count(self.handle, frame)
+        out = np.empty(n, np.float32)
+        check(lib.ssc_fitter_get_point_residuals(self.handle, frame, out.ctypes.data_as(c_float_p), n))
+        return out

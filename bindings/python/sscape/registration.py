@@ -1,0 +1,149 @@
+"""Registration: the model's template brought onto a raw scan (model fit, then per-vertex affine
+deformation), giving the scan in the template's topology."""
+from __future__ import annotations
+
+import ctypes
+import weakref
+from typing import Callable, Dict, Optional, Sequence
+
+import numpy as np
+
+from ._native import STAGE_PROGRESS_FN, RegistrationDef, RegistrationQuality, RegistrationReport, c_float_p, c_uint32_p, lib
+from .errors import check
+from .model import Model
+
+_STARTS = {"model": 0, "rigid": 1, "rbf": 2}
+_SCHEDULES = {"relaxed": 0, "constant": 1}
+_KERNELS = {"thin_plate": 0, "multiquadric": 1, "gaussian": 2}
+_NUMBERS = {"stiffness", "landmark_weight", "gamma", "max_iterations", "rbf_scale"}
+
+
+def _quality(q: RegistrationQuality) -> Dict[str, float]:
+    out = {"scan_mean": q.scan_mean, "scan_median": q.scan_median, "scan_p95": q.scan_p95}
+    for mm, share in zip((2, 5, 10, 20), q.within):
+        out[f"within_{mm}mm"] = share
+    return out
+
+
+class Registration:
+    """Registers one scan at a time to the model's template. Options as ssc_registration_def:
+    start ("model", "rigid", "rbf"), schedule ("relaxed", "constant"), stiffness, landmark_weight,
+    gamma, max_iterations, rbf_kernel ("thin_plate", "multiquadric", "gaussian"), rbf_scale.
+    One thread at a time.
+
+        reg = sscape.Registration(model)
+        reg.set_scan(points, triangles=faces)        # metres; faces optional
+        report = reg.run()
+        registered = reg.vertices()                  # (V, 3) in the template's topology
+    """
+
+    def __init__(self, model: Model, start: str = "model", schedule: str = "relaxed", rbf_kernel: str = "thin_plate", **numbers):
+        unknown = set(numbers) - _NUMBERS
+        if unknown:
+            raise TypeError(f"unknown registration options: {', '.join(sorted(unknown))}")
+        d = RegistrationDef()
+        lib.ssc_registration_def_init(ctypes.byref(d), ctypes.sizeof(RegistrationDef))
+        for value, table, what in ((start, _STARTS, "start"), (schedule, _SCHEDULES, "schedule"), (rbf_kernel, _KERNELS, "rbf_kernel")):
+            if value not in table:
+                raise ValueError(f"{what} must be one of {', '.join(table)}, not {value!r}")
+        d.start, d.schedule, d.rbf_kernel = _STARTS[start], _SCHEDULES[schedule], _KERNELS[rbf_kernel]
+        for key, value in numbers.items():
+            setattr(d, key, int(value) if key == "max_iterations" else float(value))
+        handle = ctypes.c_void_p()
+        check(lib.ssc_registration_create(model.handle, ctypes.byref(d), ctypes.byref(handle)))
+        self.model = model
+        self._handle = handle
+        self._finalizer = weakref.finalize(self, lib.ssc_registration_destroy, handle)
+
+    def close(self) -> None:
+        self._finalizer()
+
+    def __enter__(self) -> "Registration":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    @property
+    def handle(self) -> ctypes.c_void_p:
+        if not self._finalizer.alive:
+            raise ValueError("the registration is closed")
+        return self._handle
+
+    def set_scan(self, points, normals=None, triangles=None) -> None:
+        """The scan: (N, 3) points in metres, optional (N, 3) outward normals, optional (T, 3) mesh triangles."""
+        p = np.ascontiguousarray(points, dtype=np.float32)
+        if p.ndim != 2 or p.shape[1] != 3:
+            raise ValueError(f"points must have shape (N, 3), not {p.shape}")
+        n = None if normals is None else np.ascontiguousarray(normals, dtype=np.float32)
+        if n is not None and n.shape != p.shape:
+            raise ValueError("normals need one per point")
+        t = None if triangles is None else np.ascontiguousarray(triangles, dtype=np.uint32)
+        if t is not None and (t.ndim != 2 or t.shape[1] != 3):
+            raise ValueError(f"triangles must have shape (T, 3), not {t.shape}")
+        check(lib.ssc_registration_set_scan(self.handle, p.ctypes.data_as(c_float_p), None if n is None else n.ctypes.data_as(c_float_p),
+                                            p.shape[0], 0, None if t is None else t.ctypes.data_as(c_uint32_p),
+                                            0 if t is None else t.shape[0]))
+
+    def set_landmarks(self, names: Sequence[str], positions) -> None:
+        """Landmarks on the scan by the model's names, (N, 3) metres; an empty list removes them."""
+        p = np.ascontiguousarray(positions, dtype=np.float32).reshape(-1, 3)
+        if len(names) != p.shape[0]:
+            raise ValueError(f"{len(names)} names for {p.shape[0]} positions")
+        c_names = (ctypes.c_char_p * max(len(names), 1))(*[n.encode() for n in names])
+        check(lib.ssc_registration_set_landmarks_by_name(self.handle, c_names, p.ctypes.data_as(c_float_p), p.shape[0]))
+
+    def run(self, progress: Optional[Callable[[str, int, int], bool]] = None) -> Dict[str, object]:
+        """Registers the scan; returns the report (rounds, solves, valid_vertices, seconds, fit_seconds,
+        quality, regions). progress(stage, done, total) returning True cancels (SSC_ERROR_CANCELLED)."""
+        report = RegistrationReport(struct_size=ctypes.sizeof(RegistrationReport))
+        errors = []
+
+        def call(_user, stage, done, total):
+            try:
+                return 1 if progress(stage.decode(), int(done), int(total)) else 0
+            except BaseException as e:  # never across the C boundary
+                errors.append(e)
+                return 1
+
+        callback = STAGE_PROGRESS_FN(call) if progress else STAGE_PROGRESS_FN()
+        status = lib.ssc_registration_run(self.handle, callback, None, ctypes.byref(report))
+        if errors:
+            raise errors[0]
+        check(status)
+        regions = {}
+        for i in range(lib.ssc_registration_region_count(self.handle)):
+            name, q = ctypes.c_char_p(), RegistrationQuality()
+            check(lib.ssc_registration_get_region(self.handle, i, ctypes.byref(name), ctypes.byref(q)))
+            regions[name.value.decode()] = _quality(q)
+        return {"rounds": report.rounds, "solves": report.solves, "valid_vertices": report.valid_vertices,
+                "seconds": report.seconds, "fit_seconds": report.fit_seconds, "quality": _quality(report.quality), "regions": regions}
+
+    def vertices(self) -> np.ndarray:
+        """(V, 3) the registered template (the model's triangles)."""
+        V = self.model.vertex_count
+        out = np.empty((V, 3), np.float32)
+        check(lib.ssc_registration_get_vertices(self.handle, out.ctypes.data_as(c_float_p), V, 0))
+        return out
+
+    def valid(self) -> np.ndarray:
+        """(V,) bool: vertices that ended on a compatible scan point (the others were filled in)."""
+        V = self.model.vertex_count
+        out = np.empty(V, np.uint8)
+        check(lib.ssc_registration_get_valid(self.handle, out.ctypes.data_as(ctypes.POINTER(ctypes.c_uint8)), V))
+        return out.astype(bool)
+
+    def vertex_distances(self) -> np.ndarray:
+        """(V,) metres to the scan, -1 where no compatible point lies within 5 cm."""
+        V = self.model.vertex_count
+        out = np.empty(V, np.float32)
+        check(lib.ssc_registration_get_vertex_distances(self.handle, out.ctypes.data_as(c_float_p), V))
+        return out
+
+    def fit(self):
+        """The model fit that started the run: (shape (K,), rotations (J, 4), translation (3,), scale)."""
+        K, J = self.model.shape_count, self.model.joint_count
+        shape, rotations, translation, scale = np.empty(K, np.float32), np.empty((J, 4), np.float32), np.empty(3, np.float32), ctypes.c_float()
+        check(lib.ssc_registration_get_fit(self.handle, shape.ctypes.data_as(c_float_p), K, rotations.ctypes.data_as(c_float_p), J,
+                                           translation.ctypes.data_as(c_float_p), ctypes.byref(scale)))
+        return shape, rotations, translation, scale.value
