@@ -33,6 +33,15 @@ class BatchDesc(ctypes.Structure):
                 ("vertices_capacity", c_size_t), ("normals", c_float_p), ("normals_capacity", c_size_t)]
 
 
+class ContextDef(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("worker_count", c_uint32), ("alloc", c_void_p), ("free", c_void_p), ("alloc_user", c_void_p),
+                ("log", c_void_p), ("log_user", c_void_p), ("log_level", c_int32), ("max_model_bytes", ctypes.c_uint64)]
+
+
+class MadeToMeasureDef(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("sex", c_float), ("age", c_float), ("max_iterations", c_uint32), ("tolerance", c_float)]
+
+
 class FitterDef(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("shape_count", c_uint32), ("fit_scale", c_uint32), ("max_iterations", c_uint32),
                 ("landmark_sigma", c_float), ("point_sigma", c_float), ("shape_prior", c_float), ("pose_prior", c_float),
@@ -76,6 +85,9 @@ _DECLARATIONS = {
     "ssc_version": (c_uint32, []),
     "ssc_status_name": (c_char_p, [_STATUS]),
     "ssc_last_error": (c_char_p, []),
+    "ssc_context_def_init": (None, [POINTER(ContextDef), c_size_t]),
+    "ssc_context_create": (_STATUS, [POINTER(ContextDef), POINTER(c_void_p)]),
+    "ssc_context_destroy": (None, [c_void_p]),
     "ssc_model_load_file": (_STATUS, [c_void_p, c_char_p, POINTER(_MODEL)]),
     "ssc_model_load_memory": (_STATUS, [c_void_p, c_void_p, c_size_t, POINTER(_MODEL)]),
     "ssc_model_load_default": (_STATUS, [c_void_p, POINTER(_MODEL)]),
@@ -86,6 +98,14 @@ _DECLARATIONS = {
     "ssc_model_shape_count": (c_uint32, [_MODEL]),
     "ssc_model_landmark_count": (c_uint32, [_MODEL]),
     "ssc_model_get_triangles": (_STATUS, [_MODEL, c_uint32_p, c_uint32]),
+    "ssc_model_quad_count": (c_uint32, [_MODEL]),
+    "ssc_model_uv_count": (c_uint32, [_MODEL]),
+    "ssc_model_vertex_set_count": (c_uint32, [_MODEL]),
+    "ssc_model_get_quads": (_STATUS, [_MODEL, c_uint32_p, c_uint32]),
+    "ssc_model_get_uvs": (_STATUS, [_MODEL, c_float_p, c_uint32]),
+    "ssc_model_get_triangle_uvs": (_STATUS, [_MODEL, c_uint32_p, c_uint32]),
+    "ssc_model_get_vertex_set": (_STATUS, [_MODEL, c_uint32, POINTER(c_char_p), c_uint32_p]),
+    "ssc_model_get_vertex_set_indices": (_STATUS, [_MODEL, c_uint32, c_uint32_p, c_uint32]),
     "ssc_model_get_joint_parents": (_STATUS, [_MODEL, POINTER(c_int32), c_uint32]),
     "ssc_model_get_joint_name": (_STATUS, [_MODEL, c_uint32, POINTER(c_char_p)]),
     "ssc_model_get_landmark_name": (_STATUS, [_MODEL, c_uint32, POINTER(c_char_p)]),
@@ -104,6 +124,9 @@ _DECLARATIONS = {
     "ssc_body_get_rest_vertices": (_STATUS, [_BODY, c_float_p, c_uint32, c_size_t]),
     "ssc_body_get_landmarks": (_STATUS, [_BODY, c_float_p, c_uint32, c_size_t]),
     "ssc_body_get_joint_transforms": (_STATUS, [_BODY, c_float_p, c_uint32]),
+    "ssc_body_get_inverse_bind_matrices": (_STATUS, [_BODY, c_float_p, c_uint32]),
+    "ssc_body_get_skinning_matrices": (_STATUS, [_BODY, c_float_p, c_uint32]),
+    "ssc_model_get_skin": (_STATUS, [_MODEL, POINTER(c_uint16), c_float_p, c_uint32]),
     "ssc_body_write_file": (_STATUS, [_BODY, c_char_p, c_int32]),
     "ssc_fitter_def_init": (None, [POINTER(FitterDef), c_size_t]),
     "ssc_fitter_create": (_STATUS, [_MODEL, POINTER(FitterDef), POINTER(c_void_p)]),
@@ -130,6 +153,11 @@ _DECLARATIONS = {
     "ssc_registration_get_fit": (_STATUS, [c_void_p, c_float_p, c_uint32, c_float_p, c_uint32, c_float_p, c_float_p]),
     "ssc_registration_region_count": (c_uint32, [c_void_p]),
     "ssc_registration_get_region": (_STATUS, [c_void_p, c_uint32, POINTER(c_char_p), POINTER(RegistrationQuality)]),
+    "ssc_named_pose_count": (c_uint32, []),
+    "ssc_named_pose_get_info": (_STATUS, [c_uint32, POINTER(c_char_p), POINTER(c_char_p)]),
+    "ssc_model_get_named_pose": (_STATUS, [_MODEL, c_char_p, c_float_p, c_uint32]),
+    "ssc_model_close_hands": (_STATUS, [_MODEL, c_float, c_float, c_float_p, c_uint32]),
+    "ssc_body_set_pose_limited": (_STATUS, [_BODY, c_float_p, c_uint32, c_float_p, c_int32, c_uint32_p]),
     "ssc_measurement_count": (c_uint32, []),
     "ssc_measurement_get_info": (_STATUS, [c_uint32, POINTER(c_char_p), POINTER(c_int32), POINTER(c_char_p)]),
     "ssc_body_measure": (_STATUS, [_BODY, c_float_p, c_uint32]),
@@ -137,6 +165,10 @@ _DECLARATIONS = {
     "ssc_model_get_slider_info": (_STATUS, [_MODEL, c_uint32, POINTER(SliderInfo)]),
     "ssc_body_get_sliders": (_STATUS, [_BODY, c_float_p, c_uint32]),
     "ssc_body_set_slider": (_STATUS, [_BODY, c_uint32, c_float]),
+    "ssc_measurement_find": (_STATUS, [c_char_p, c_uint32_p]),
+    "ssc_made_to_measure_def_init": (None, [POINTER(MadeToMeasureDef), c_size_t]),
+    "ssc_body_make_to_measure": (_STATUS, [_BODY, c_uint32_p, c_float_p, c_uint32, POINTER(MadeToMeasureDef), c_float_p, c_uint32,
+                                           c_uint32_p]),
     "ssc_model_segment_count": (c_uint32, [_MODEL]),
     "ssc_model_get_segment_info": (_STATUS, [_MODEL, c_uint32, POINTER(SegmentInfo)]),
     "ssc_body_set_segment_shape": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32]),

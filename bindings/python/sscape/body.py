@@ -8,7 +8,7 @@ from typing import Dict, List, Optional, Union
 
 import numpy as np
 
-from ._native import c_float_p, lib
+from ._native import MadeToMeasureDef, c_float_p, c_uint32_p, lib
 from .errors import check
 from .model import Model
 
@@ -91,6 +91,20 @@ class Body:
         check(lib.ssc_body_set_pose(self.handle, None if r is None else r.ctypes.data_as(c_float_p), self._J,
                                     None if t is None else t.ctypes.data_as(c_float_p)))
 
+    def set_pose_limited(self, rotations, translation=None, clamp: bool = True) -> int:
+        """As set_pose, within the joints' anatomical limits: clamp (default) or refuse (SscapeError)
+        rotations beyond them. Returns how many joints were outside."""
+        r = np.ascontiguousarray(rotations, dtype=np.float32)
+        if r.shape != (self._J, 4):
+            raise ValueError(f"rotations must have shape ({self._J}, 4), not {r.shape}")
+        t = None if translation is None else _floats(translation, "translation")
+        if t is not None and t.shape != (3,):
+            raise ValueError("translation needs 3 values")
+        outside = ctypes.c_uint32()
+        check(lib.ssc_body_set_pose_limited(self.handle, r.ctypes.data_as(c_float_p), self._J, None if t is None else t.ctypes.data_as(c_float_p),
+                                            1 if clamp else 0, ctypes.byref(outside)))
+        return outside.value
+
     def set_segment_shape(self, segment: Union[int, str], coefficients) -> None:
         """One segment's coefficients (by index or name), on top of the whole-body shape."""
         index = self._segment_index(segment)
@@ -128,6 +142,32 @@ class Body:
             raise KeyError(f"the model has no slider {name!r} (it has: {', '.join(names) or 'none'})")
         check(lib.ssc_body_set_slider(self.handle, names.index(name), float(value)))
 
+    def make_to_measure(self, targets: Dict[str, float], sex: Optional[float] = None, age: Optional[float] = None,
+                        tolerance: Optional[float] = None) -> bool:
+        """Sets the shape to reproduce the measurements asked for ({"stature": 1.75, "waist_girth": 0.82},
+        SI units), for a person of the given sex (0 female, 1 male) and age when known. Returns whether
+        every target was reached within the tolerance (metres; default 0.5 mm)."""
+        if not targets:
+            raise ValueError("make_to_measure needs at least one measurement")
+        ids = np.empty(len(targets), np.uint32)
+        for i, name in enumerate(targets):
+            found = ctypes.c_uint32()
+            check(lib.ssc_measurement_find(name.encode(), ctypes.byref(found)))
+            ids[i] = found.value
+        values = np.array([float(v) for v in targets.values()], np.float32)
+        d = MadeToMeasureDef()
+        lib.ssc_made_to_measure_def_init(ctypes.byref(d), ctypes.sizeof(MadeToMeasureDef))
+        if sex is not None:
+            d.sex = float(sex)
+        if age is not None:
+            d.age = float(age)
+        if tolerance is not None:
+            d.tolerance = float(tolerance)
+        converged = ctypes.c_uint32()
+        check(lib.ssc_body_make_to_measure(self.handle, ids.ctypes.data_as(c_uint32_p), values.ctypes.data_as(c_float_p), len(values),
+                                           ctypes.byref(d), None, 0, ctypes.byref(converged)))
+        return bool(converged.value)
+
     # Outputs.
     def _vertices(self, fn, n: int) -> np.ndarray:
         out = np.empty((n, 3), np.float32)
@@ -160,6 +200,21 @@ class Body:
         out = np.empty((self._J, 16), np.float32)
         check(lib.ssc_body_get_joint_transforms(self.handle, out.ctypes.data_as(c_float_p), self._J))
         return out.reshape(self._J, 4, 4).transpose(0, 2, 1).copy()
+
+    def _matrices(self, fn) -> np.ndarray:
+        out = np.empty((self._J, 16), np.float32)
+        check(fn(self.handle, out.ctypes.data_as(c_float_p), self._J))
+        return out.reshape(self._J, 4, 4).transpose(0, 2, 1).copy()
+
+    @property
+    def inverse_bind_matrices(self) -> np.ndarray:
+        """(J, 4, 4) inverse bind matrices of the shaped body (row-major here)."""
+        return self._matrices(lib.ssc_body_get_inverse_bind_matrices)
+
+    @property
+    def skinning_matrices(self) -> np.ndarray:
+        """(J, 4, 4) world transform x inverse bind per joint, for engines that skin themselves (row-major here)."""
+        return self._matrices(lib.ssc_body_get_skinning_matrices)
 
     def measure(self) -> Dict[str, float]:
         """Every measurement by name, SI units (m, m^2, m^3, kg)."""

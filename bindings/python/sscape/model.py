@@ -8,7 +8,7 @@ from typing import Dict, List, NamedTuple, Union
 
 import numpy as np
 
-from ._native import BatchDesc, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib
+from ._native import BatchDesc, ContextDef, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib
 from .errors import check
 
 
@@ -27,6 +27,40 @@ class Segment(NamedTuple):
     vertex_count: int
 
 
+class Context:
+    """Library settings shared by the models loaded with it: worker threads for batch synthesis and
+    the fits' searches (0: one per hardware thread; 1: the calling thread only), and the largest
+    model accepted (bytes, decompressed; 0: 256 MiB). Models keep their context alive."""
+
+    def __init__(self, worker_count: int = 0, max_model_bytes: int = 0):
+        d = ContextDef()
+        lib.ssc_context_def_init(ctypes.byref(d), ctypes.sizeof(ContextDef))
+        d.worker_count, d.max_model_bytes = int(worker_count), int(max_model_bytes)
+        handle = ctypes.c_void_p()
+        check(lib.ssc_context_create(ctypes.byref(d), ctypes.byref(handle)))
+        self._handle = handle
+        self._finalizer = weakref.finalize(self, lib.ssc_context_destroy, handle)
+
+    @property
+    def handle(self) -> ctypes.c_void_p:
+        if not self._finalizer.alive:
+            raise ValueError("the context is closed")
+        return self._handle
+
+    def close(self) -> None:
+        self._finalizer()
+
+
+def named_poses() -> Dict[str, str]:
+    """The library's named poses (a_pose, t_pose, ...) with their descriptions: Model.named_pose takes them."""
+    out = {}
+    for i in range(lib.ssc_named_pose_count()):
+        name, description = ctypes.c_char_p(), ctypes.c_char_p()
+        check(lib.ssc_named_pose_get_info(i, ctypes.byref(name), ctypes.byref(description)))
+        out[name.value.decode()] = description.value.decode()
+    return out
+
+
 _METADATA = {"name": 0, "version": 1, "units": 2, "axes": 3, "license": 4, "provenance": 5, "description": 6}
 
 
@@ -39,27 +73,27 @@ class Model:
     reference and the last Body made from it are gone, or at ``close()``.
     """
 
-    def __init__(self, _handle: Union[int, None] = None):
+    def __init__(self, context: Union[Context, None] = None, _handle: Union[int, None] = None):
         handle = ctypes.c_void_p()
         if _handle is None:
-            check(lib.ssc_model_load_default(None, ctypes.byref(handle)))
+            check(lib.ssc_model_load_default(None if context is None else context.handle, ctypes.byref(handle)))
         else:
             handle.value = _handle
         self._handle = handle
         self._finalizer = weakref.finalize(self, lib.ssc_model_release, handle)
 
     @classmethod
-    def from_file(cls, path: Union[str, os.PathLike]) -> "Model":
+    def from_file(cls, path: Union[str, os.PathLike], context: Union[Context, None] = None) -> "Model":
         handle = ctypes.c_void_p()
-        check(lib.ssc_model_load_file(None, os.fsencode(path), ctypes.byref(handle)))
-        return cls(handle.value)
+        check(lib.ssc_model_load_file(None if context is None else context.handle, os.fsencode(path), ctypes.byref(handle)))
+        return cls(_handle=handle.value)
 
     @classmethod
-    def from_bytes(cls, data: bytes) -> "Model":
+    def from_bytes(cls, data: bytes, context: Union[Context, None] = None) -> "Model":
         handle = ctypes.c_void_p()
         buffer = bytes(data)
-        check(lib.ssc_model_load_memory(None, buffer, len(buffer), ctypes.byref(handle)))
-        return cls(handle.value)
+        check(lib.ssc_model_load_memory(None if context is None else context.handle, buffer, len(buffer), ctypes.byref(handle)))
+        return cls(_handle=handle.value)
 
     def close(self) -> None:
         """Drops this object's reference now (bodies keep their own)."""
@@ -112,6 +146,56 @@ class Model:
         """(J,) int32: each joint's parent, -1 for the root."""
         out = np.empty(self.joint_count, np.int32)
         check(lib.ssc_model_get_joint_parents(self.handle, out.ctypes.data_as(ctypes.POINTER(ctypes.c_int32)), out.shape[0]))
+        return out
+
+    @property
+    def quads(self) -> np.ndarray:
+        """(Q, 4) uint32: the authoring quads (empty when the model has none)."""
+        n = lib.ssc_model_quad_count(self.handle)
+        out = np.empty((n, 4), np.uint32)
+        if n:
+            check(lib.ssc_model_get_quads(self.handle, out.ctypes.data_as(c_uint32_p), n))
+        return out
+
+    @property
+    def uvs(self):
+        """(coordinates (U, 2) float32, triangle_uvs (T, 3) uint32 indices into them), or None without UVs."""
+        n = lib.ssc_model_uv_count(self.handle)
+        if n == 0:
+            return None
+        uv, tri = np.empty((n, 2), np.float32), np.empty((self.triangle_count, 3), np.uint32)
+        check(lib.ssc_model_get_uvs(self.handle, uv.ctypes.data_as(c_float_p), n))
+        check(lib.ssc_model_get_triangle_uvs(self.handle, tri.ctypes.data_as(c_uint32_p), tri.shape[0]))
+        return uv, tri
+
+    @property
+    def vertex_sets(self) -> Dict[str, np.ndarray]:
+        """Named body parts (head, torso, arms, ...): sorted uint32 vertex indices."""
+        out = {}
+        for i in range(lib.ssc_model_vertex_set_count(self.handle)):
+            name, size = ctypes.c_char_p(), ctypes.c_uint32()
+            check(lib.ssc_model_get_vertex_set(self.handle, i, ctypes.byref(name), ctypes.byref(size)))
+            idx = np.empty(size.value, np.uint32)
+            check(lib.ssc_model_get_vertex_set_indices(self.handle, i, idx.ctypes.data_as(c_uint32_p), size.value))
+            out[name.value.decode()] = idx
+        return out
+
+    @property
+    def skin(self):
+        """(joints (V, 4) uint16, weights (V, 4) float32): 4 influences per vertex, weights summing to 1."""
+        V = self.vertex_count
+        joints, weights = np.empty((V, 4), np.uint16), np.empty((V, 4), np.float32)
+        check(lib.ssc_model_get_skin(self.handle, joints.ctypes.data_as(ctypes.POINTER(ctypes.c_uint16)), weights.ctypes.data_as(c_float_p), V))
+        return joints, weights
+
+    def named_pose(self, name: str, left_hand: float = 0.0, right_hand: float = 0.0) -> np.ndarray:
+        """(J, 4) quaternions of a named pose for this rig (sscape.named_poses() lists them), with the
+        hands closed by the given amounts (0 open, 1 a loose fist)."""
+        J = self.joint_count
+        out = np.empty((J, 4), np.float32)
+        check(lib.ssc_model_get_named_pose(self.handle, name.encode(), out.ctypes.data_as(c_float_p), J))
+        if left_hand or right_hand:
+            check(lib.ssc_model_close_hands(self.handle, float(left_hand), float(right_hand), out.ctypes.data_as(c_float_p), J))
         return out
 
     @property

@@ -250,3 +250,71 @@ def test_registration_brings_the_template_onto_a_scan(model):
         assert e.value.status_name == "SSC_ERROR_NOT_FOUND"
     with pytest.raises(ValueError, match="start must be one of"):
         sscape.Registration(model, start="magic")
+
+
+def test_made_to_measure(model):
+    with sscape.Body(model) as body:
+        assert body.make_to_measure({"stature": 1.72, "waist_girth": 0.86}, sex=1, age=40)
+        m = body.measure()
+        assert abs(m["stature"] - 1.72) < 0.001 and abs(m["waist_girth"] - 0.86) < 0.001
+        with pytest.raises(sscape.SscapeError) as e:
+            body.make_to_measure({"wingspan": 1.8})
+        assert e.value.status_name == "SSC_ERROR_NOT_FOUND"
+        with pytest.raises(sscape.SscapeError) as e:
+            body.make_to_measure({"stature": 4.5})
+        assert e.value.status == -1 and "range" in str(e.value)
+        with pytest.raises(ValueError):
+            body.make_to_measure({})
+
+
+def test_every_declared_function_is_in_the_header():
+    """The declarations are the C API's: a renamed or removed function fails here, not at a user's call."""
+    import re
+    from sscape import _native
+    source = os.environ.get("SSCAPE_SOURCE_DIR") or pathlib.Path(__file__).resolve().parents[3]
+    header = (pathlib.Path(source) / "include" / "sscape" / "sscape.h").read_text()
+    exported = set(re.findall(r"^SSC_(?:API|EXPERIMENTAL)\s[^;(]*?\b(ssc_\w+)\s*\(", header, re.M))
+    assert len(exported) > 100
+    declared = set(_native._DECLARATIONS)
+    assert declared <= exported, sorted(declared - exported)
+
+
+def test_topology_skin_poses_and_matrices(model):
+    quads = model.quads
+    assert quads.shape == (13378, 4) and quads.dtype == np.uint32
+    uv, tri_uv = model.uvs
+    assert uv.shape[1] == 2 and tri_uv.shape == (model.triangle_count, 3) and tri_uv.max() < uv.shape[0]
+    sets = model.vertex_sets
+    assert set(sets) == {"head", "torso", "arms", "hands", "legs", "feet"}
+    assert sum(len(v) for v in sets.values()) == model.vertex_count
+    joints, weights = model.skin
+    assert joints.dtype == np.uint16 and joints.max() < 53
+    np.testing.assert_allclose(weights.sum(axis=1), 1, atol=1e-5)
+    poses = sscape.named_poses()
+    assert "t_pose" in poses and poses["t_pose"]
+    t = model.named_pose("t_pose")
+    fists = model.named_pose("t_pose", left_hand=1, right_hand=1)
+    assert t.shape == (53, 4) and not np.array_equal(t, fists)
+    with pytest.raises(sscape.SscapeError) as e:
+        model.named_pose("moonwalk")
+    assert e.value.status_name == "SSC_ERROR_NOT_FOUND"
+    with sscape.Body(model) as body:
+        body.set_pose(t)
+        skinning = body.skinning_matrices
+        np.testing.assert_allclose(skinning, body.joint_transforms @ body.inverse_bind_matrices, atol=1e-5)
+        # An elbow bent backwards beyond its range: clamped, or refused.
+        q = np.tile(np.array([0, 0, 0, 1], np.float32), (53, 1))
+        q[model.joint_names.index("lowerarm_l")] = [np.sin(-1.2), 0, 0, np.cos(-1.2)]
+        q[model.joint_names.index("lowerarm_r")] = [0, np.sin(-1.2), 0, np.cos(-1.2)]
+        with pytest.raises(sscape.SscapeError):
+            body.set_pose_limited(q, clamp=False)
+        assert body.set_pose_limited(q) >= 1
+
+
+def test_context_with_one_worker_gives_the_same_bodies(model):
+    context = sscape.Context(worker_count=1)
+    single = sscape.Model(context)
+    shapes = model.sample_shapes(4, seed=2)
+    np.testing.assert_array_equal(single.synthesize(shapes), model.synthesize(shapes))
+    context.close()  # the model keeps it alive
+    assert single.synthesize(count=1).shape == (1, 13380, 3)
