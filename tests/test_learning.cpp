@@ -269,3 +269,37 @@ TEST_CASE("Procrustes with scale brings every body to one size and keeps their p
     CHECK(scaled_report.total_variance < rigid_report.total_variance);  // size was part of the variance
     CHECK(shapes.metadata.provenance.find("with scale") != std::string::npos);
 }
+
+TEST_CASE("the template alone: a model without components loads, synthesizes its mean and is fitted in pose", "[learning]") {
+    const Model& m = test::default_cpp_model();
+    const format::ModelData alone = learning::template_only(m.data());
+    CHECK(alone.component_count() == 0);
+    CHECK(alone.metadata.name.find("template only") != std::string::npos);
+    const std::vector<unsigned char> bytes = format::write_model(alone);
+    test::ModelPtr model = test::load(bytes);
+    REQUIRE(model);
+    CHECK(ssc_model_shape_count(model.get()) == 0);
+    CHECK(ssc_model_slider_count(model.get()) == 0);
+    CHECK(ssc_model_sample_shapes(model.get(), 1, 3, 2.5f, nullptr, 0) == SSC_OK);  // three empty shapes
+    // A posed template as the scan: the fit finds the pose (nothing else to find).
+    std::mt19937 rng(31);
+    const std::vector<float> pose = simulation::random_pose(m, rng, 0.2);
+    const simulation::TrueBody truth = simulation::make_body(m, std::vector<float>(m.component_count(), 0.f), pose, Vector3d(0.1, 0, 0.2));
+    std::vector<float> points;
+    for (const auto& v : truth.vertices)
+        for (int a = 0; a < 3; ++a) points.push_back(float(v[a]));
+    ssc_fitter* fitter = nullptr;
+    REQUIRE(ssc_fitter_create(model.get(), nullptr, &fitter) == SSC_OK);
+    REQUIRE(ssc_fitter_add_points(fitter, 0, points.data(), nullptr, nullptr, uint32_t(truth.vertices.size()), 0) == SSC_OK);
+    ssc_fit_report report{};
+    report.struct_size = sizeof report;
+    CHECK(ssc_fitter_solve(fitter, nullptr, nullptr, &report) == SSC_OK);
+    std::vector<float> fitted(points.size());
+    REQUIRE(ssc_fitter_get_vertices(fitter, 0, fitted.data(), uint32_t(truth.vertices.size()), 0) == SSC_OK);
+    double error = 0;
+    for (std::size_t v = 0; v < truth.vertices.size(); ++v)
+        error += (Vector3d(fitted[3 * v], fitted[3 * v + 1], fitted[3 * v + 2]) - truth.vertices[v]).norm() / double(truth.vertices.size());
+    INFO("mean vertex error " << error * 1e3 << " mm after " << report.iterations << " iterations");
+    CHECK(error < 0.005);
+    ssc_fitter_destroy(fitter);
+}

@@ -125,6 +125,7 @@ ssc_status ssc_model_sample_shapes(const ssc_model* model, uint32_t seed, uint32
                             std::to_string(SSC_SHAPE_COEFFICIENT_LIMIT) + "] standard deviations");
         const uint64_t needed = uint64_t(count) * model->model.component_count();
         SSC_REQUIRE_ARG(needed <= 0xFFFFFFFFu, "count x components exceeds 2^32 floats");
+        if (needed == 0) return;  // no bodies, or a model without components (a template alone)
         check_output(out, capacity, uint32_t(needed), 0, 4);
         const std::vector<float> shapes = random_shapes(model->model, seed, count, truncation);
         std::memcpy(out, shapes.data(), 4 * shapes.size());

@@ -12,7 +12,8 @@ namespace ssc::fitting {
 namespace {
 
 FitOptions checked(const Model& model, FitOptions o) {
-    SSC_REQUIRE_ARG_S(o.components >= 1 && o.components <= model.component_count(),
+    // A model without components (a template alone) is fitted in pose only.
+    SSC_REQUIRE_ARG_S((o.components >= 1 || model.component_count() == 0) && o.components <= model.component_count(),
                       "fitter: " << o.components << " shape components; the model has " << model.component_count());
     SSC_REQUIRE_ARG(o.max_iterations >= 3, "fitter: max_iterations must be at least 3");
     SSC_REQUIRE_ARG(std::isfinite(o.landmark_sigma) && o.landmark_sigma > 0, "fitter: landmark_sigma must be positive");

@@ -150,7 +150,7 @@ void Kinematics::update(const FitState& s, bool derivatives) {
     if (!rest_joints_valid_ || rest_joints_shape_ != shape_) {
         for (uint32_t j = 0; j < J_; ++j) {
             Vector3d p = lin_.joint_mean[j];
-            for (uint32_t a = 0; a < 3; ++a) p[a] += dot(&lin_.joint_basis[(std::size_t(j) * 3 + a) * K_], shape_.data(), K_);
+            for (uint32_t a = 0; a < 3; ++a) p[a] += dot(lin_.joint_basis.data() + (std::size_t(j) * 3 + a) * K_, shape_.data(), K_);
             rest_joint_[j] = p;
         }
         rest_joints_shape_ = shape_;
@@ -161,8 +161,8 @@ void Kinematics::update(const FitState& s, bool derivatives) {
         const Vector3d& p = rest_joint_[j];
         const Matrix3d P = s.pose[j].normalized().toRotationMatrix();
         const int32_t parent = parents[j];
-        double* dq = &dpos_[std::size_t(j) * 3 * K_];
-        const double* dp = &lin_.joint_basis[std::size_t(j) * 3 * K_];
+        double* dq = dpos_.data() + std::size_t(j) * 3 * K_;
+        const double* dp = lin_.joint_basis.data() + std::size_t(j) * 3 * K_;
         if (parent < 0) {
             pre_pose_[j] = lin_.rest_orient[j];
             posed_joint_[j] = p;
@@ -171,8 +171,8 @@ void Kinematics::update(const FitState& s, bool derivatives) {
             const auto up = uint32_t(parent);
             pre_pose_[j] = world_[up] * lin_.rest_orient[j];
             posed_joint_[j] = skin_rot_[up] * (p - rest_joint_[up]) + posed_joint_[up];
-            const double* dpp = &lin_.joint_basis[std::size_t(up) * 3 * K_];
-            const double* dqp = &dpos_[std::size_t(up) * 3 * K_];
+            const double* dpp = lin_.joint_basis.data() + std::size_t(up) * 3 * K_;
+            const double* dqp = dpos_.data() + std::size_t(up) * 3 * K_;
             if (derivatives)
                 for (std::size_t k = 0; k < K_; ++k) {
                     const Vector3d diff(dp[k] - dpp[k], dp[K_ + k] - dpp[K_ + k], dp[2 * K_ + k] - dpp[2 * K_ + k]);
@@ -183,7 +183,7 @@ void Kinematics::update(const FitState& s, bool derivatives) {
         world_[j] = pre_pose_[j] * P;
         skin_rot_[j] = world_[j] * rest_world[j].transpose();
         skin_trans_[j] = posed_joint_[j] - skin_rot_[j] * p;
-        double* dc = &dskin_[std::size_t(j) * 3 * K_];
+        double* dc = dskin_.data() + std::size_t(j) * 3 * K_;
         if (derivatives)
             for (std::size_t k = 0; k < K_; ++k) {
                 const Vector3d r = skin_rot_[j] * Vector3d(dp[k], dp[K_ + k], dp[2 * K_ + k]);
@@ -195,7 +195,7 @@ void Kinematics::update(const FitState& s, bool derivatives) {
 Vector3d Kinematics::rest_vertex(uint32_t v) const {
     const float* mean = &model_.data().shape.mean[3 * std::size_t(v)];
     Vector3d u(mean[0], mean[1], mean[2]);
-    for (uint32_t a = 0; a < 3; ++a) u[a] += dot_quantized(&lin_.basis[(std::size_t(v) * 3 + a) * K_], weighted_shape_.data(), shape_terms_);
+    for (uint32_t a = 0; a < 3; ++a) u[a] += dot_quantized(lin_.basis.data() + (std::size_t(v) * 3 + a) * K_, weighted_shape_.data(), shape_terms_);
     return u;
 }
 
@@ -259,11 +259,11 @@ Vector3d Kinematics::vertex_jacobian(uint32_t v, double* J3, double factor, uint
             // Plain pointers and size_t indices: the loops below vectorize only when the compiler
             // can see they are simple strides.
             double* row = J3 + a * P;
-            const double* dc = &dskin_[(std::size_t(j) * 3 + a) * K_];
+            const double* dc = dskin_.data() + (std::size_t(j) * 3 + a) * K_;
             for (std::size_t k = 0; k < Ks; ++k) row[k] += fw * dc[k];
         }
     }
-    const int16_t* B = &lin_.basis[std::size_t(v) * 3 * K_];
+    const int16_t* B = lin_.basis.data() + std::size_t(v) * 3 * K_;
     const double* step = lin_.step.data();
     for (std::size_t a = 0; a < 3; ++a) {
         double* row = J3 + a * P;
