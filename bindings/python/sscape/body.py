@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import ctypes
 import os
-import weakref
 from typing import Dict, List, Optional, Union
 
 import numpy as np
 
 from ._native import MadeToMeasureDef, c_float_p, c_uint32_p, lib
+from ._handle import Handle, progress_callback
 from .errors import check
 from .model import Model
 
@@ -32,7 +32,12 @@ def _floats(values, what: str) -> np.ndarray:
     return a
 
 
-class Body:
+def _pointer(a: Optional[np.ndarray]):
+    """A float32 array's data for C, or NULL for None."""
+    return None if a is None else a.ctypes.data_as(c_float_p)
+
+
+class Body(Handle):
     """A body of a model, at the mean shape in the rest pose when made.
 
     Shape coefficients are in standard deviations; the pose is a unit quaternion (x, y, z, w) per
@@ -41,29 +46,15 @@ class Body:
     Freed at ``close()``, at the end of a ``with`` block, or when garbage collected.
     """
 
+    _what = "body"
+
     def __init__(self, model: Model):
         handle = ctypes.c_void_p()
         check(lib.ssc_body_create(model.handle, None, ctypes.byref(handle)))
         self.model = model
-        self._handle = handle
-        self._finalizer = weakref.finalize(self, lib.ssc_body_destroy, handle)
+        self._own(handle, lib.ssc_body_destroy)
         self._V = model.vertex_count
         self._J = model.joint_count
-
-    def close(self) -> None:
-        self._finalizer()
-
-    def __enter__(self) -> "Body":
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.close()
-
-    @property
-    def handle(self) -> ctypes.c_void_p:
-        if not self._finalizer.alive:
-            raise ValueError("the body is closed")
-        return self._handle
 
     # Shape and pose.
     @property
@@ -78,31 +69,29 @@ class Body:
         c = _floats(coefficients, "shape")
         check(lib.ssc_body_set_shape(self.handle, c.ctypes.data_as(c_float_p), c.shape[0]))
 
-    def set_pose(self, rotations: Optional[np.ndarray] = None, translation=None) -> None:
-        """rotations: (J, 4) quaternions x y z w per joint (None: the rest pose); translation: the root's, metres."""
-        r = None
-        if rotations is not None:
-            r = np.ascontiguousarray(rotations, dtype=np.float32)
-            if r.shape != (self._J, 4):
-                raise ValueError(f"rotations must have shape ({self._J}, 4), not {r.shape}")
-        t = None if translation is None else _floats(translation, "translation")
-        if t is not None and t.shape != (3,):
-            raise ValueError("translation needs 3 values")
-        check(lib.ssc_body_set_pose(self.handle, None if r is None else r.ctypes.data_as(c_float_p), self._J,
-                                    None if t is None else t.ctypes.data_as(c_float_p)))
-
-    def set_pose_limited(self, rotations, translation=None, clamp: bool = True) -> int:
-        """As set_pose, within the joints' anatomical limits: clamp (default) or refuse (SscapeError)
-        rotations beyond them. Returns how many joints were outside."""
-        r = np.ascontiguousarray(rotations, dtype=np.float32)
-        if r.shape != (self._J, 4):
+    def _pose_arguments(self, rotations, translation):
+        """Checked (J, 4) rotations and (3,) translation as float32 arrays (None stays None)."""
+        r = None if rotations is None else np.ascontiguousarray(rotations, dtype=np.float32)
+        if r is not None and r.shape != (self._J, 4):
             raise ValueError(f"rotations must have shape ({self._J}, 4), not {r.shape}")
         t = None if translation is None else _floats(translation, "translation")
         if t is not None and t.shape != (3,):
             raise ValueError("translation needs 3 values")
+        return r, t
+
+    def set_pose(self, rotations: Optional[np.ndarray] = None, translation=None) -> None:
+        """rotations: (J, 4) quaternions x y z w per joint (None: the rest pose); translation: the root's, metres."""
+        r, t = self._pose_arguments(rotations, translation)
+        check(lib.ssc_body_set_pose(self.handle, _pointer(r), self._J, _pointer(t)))
+
+    def set_pose_limited(self, rotations, translation=None, clamp: bool = True) -> int:
+        """As set_pose, within the joints' anatomical limits: clamp (default) or refuse (SscapeError)
+        rotations beyond them. Returns how many joints were outside."""
+        if rotations is None:
+            raise ValueError("set_pose_limited needs rotations")
+        r, t = self._pose_arguments(rotations, translation)
         outside = ctypes.c_uint32()
-        check(lib.ssc_body_set_pose_limited(self.handle, r.ctypes.data_as(c_float_p), self._J, None if t is None else t.ctypes.data_as(c_float_p),
-                                            1 if clamp else 0, ctypes.byref(outside)))
+        check(lib.ssc_body_set_pose_limited(self.handle, _pointer(r), self._J, _pointer(t), 1 if clamp else 0, ctypes.byref(outside)))
         return outside.value
 
     def set_segment_shape(self, segment: Union[int, str], coefficients) -> None:

@@ -2,12 +2,12 @@
 from __future__ import annotations
 
 import ctypes
-import weakref
 from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
 from ._native import PROGRESS_FN, FitReport, FitterDef, c_float_p, lib
+from ._handle import Handle, progress_callback
 from .errors import check
 from .model import Model
 
@@ -22,7 +22,7 @@ def _points(values, what: str) -> np.ndarray:
     return a
 
 
-class Fitter:
+class Fitter(Handle):
     """Finds the shape (shared by all frames), each frame's pose and translation, and optionally a
     global scale that best explain the observations added. Options as ssc_fitter_def:
     shape_count, fit_scale, max_iterations, landmark_sigma, point_sigma, shape_prior, pose_prior,
@@ -33,6 +33,8 @@ class Fitter:
         report = fitter.solve()
         body_vertices = fitter.vertices()
     """
+
+    _what = "fitter"
 
     def __init__(self, model: Model, **options):
         unknown = set(options) - _OPTIONS
@@ -45,23 +47,7 @@ class Fitter:
         handle = ctypes.c_void_p()
         check(lib.ssc_fitter_create(model.handle, ctypes.byref(d), ctypes.byref(handle)))
         self.model = model
-        self._handle = handle
-        self._finalizer = weakref.finalize(self, lib.ssc_fitter_destroy, handle)
-
-    def close(self) -> None:
-        self._finalizer()
-
-    def __enter__(self) -> "Fitter":
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.close()
-
-    @property
-    def handle(self) -> ctypes.c_void_p:
-        if not self._finalizer.alive:
-            raise ValueError("the fitter is closed")
-        return self._handle
+        self._own(handle, lib.ssc_fitter_destroy)
 
     @property
     def frame_count(self) -> int:
@@ -97,16 +83,7 @@ class Fitter:
         """Runs the fit; returns the report as a dict. progress(iteration, cost) returning True cancels
         (SscapeError SSC_ERROR_CANCELLED; the results hold the state reached)."""
         report = FitReport(struct_size=ctypes.sizeof(FitReport))
-        errors = []
-
-        def call(_user, iteration, cost):
-            try:
-                return 1 if progress(int(iteration), float(cost)) else 0
-            except BaseException as e:  # never across the C boundary
-                errors.append(e)
-                return 1
-
-        callback = PROGRESS_FN(call) if progress else PROGRESS_FN()
+        callback, errors = progress_callback(PROGRESS_FN, progress, lambda iteration, cost: (int(iteration), float(cost)))
         status = lib.ssc_fitter_solve(self.handle, callback, None, ctypes.byref(report))
         if errors:
             raise errors[0]

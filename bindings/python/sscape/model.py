@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import ctypes
 import os
-import weakref
 from typing import Dict, List, NamedTuple, Union
 
 import numpy as np
 
 from ._native import BatchDesc, ContextDef, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib
+from ._handle import Handle
 from .errors import check
 
 
@@ -27,10 +27,12 @@ class Segment(NamedTuple):
     vertex_count: int
 
 
-class Context:
+class Context(Handle):
     """Library settings shared by the models loaded with it: worker threads for batch synthesis and
     the fits' searches (0: one per hardware thread; 1: the calling thread only), and the largest
     model accepted (bytes, decompressed; 0: 256 MiB). Models keep their context alive."""
+
+    _what = "context"
 
     def __init__(self, worker_count: int = 0, max_model_bytes: int = 0):
         d = ContextDef()
@@ -38,17 +40,7 @@ class Context:
         d.worker_count, d.max_model_bytes = int(worker_count), int(max_model_bytes)
         handle = ctypes.c_void_p()
         check(lib.ssc_context_create(ctypes.byref(d), ctypes.byref(handle)))
-        self._handle = handle
-        self._finalizer = weakref.finalize(self, lib.ssc_context_destroy, handle)
-
-    @property
-    def handle(self) -> ctypes.c_void_p:
-        if not self._finalizer.alive:
-            raise ValueError("the context is closed")
-        return self._handle
-
-    def close(self) -> None:
-        self._finalizer()
+        self._own(handle, lib.ssc_context_destroy)
 
 
 def named_poses() -> Dict[str, str]:
@@ -64,7 +56,7 @@ def named_poses() -> Dict[str, str]:
 _METADATA = {"name": 0, "version": 1, "units": 2, "axes": 3, "license": 4, "provenance": 5, "description": 6}
 
 
-class Model:
+class Model(Handle):
     """A statistical body model: template mesh, shape space, skeleton, skinning, landmarks.
 
     ``Model()`` is the default model built into the library; ``Model.from_file(path)`` and
@@ -73,14 +65,15 @@ class Model:
     reference and the last Body made from it are gone, or at ``close()``.
     """
 
+    _what = "model"
+
     def __init__(self, context: Union[Context, None] = None, _handle: Union[int, None] = None):
         handle = ctypes.c_void_p()
         if _handle is None:
             check(lib.ssc_model_load_default(None if context is None else context.handle, ctypes.byref(handle)))
         else:
             handle.value = _handle
-        self._handle = handle
-        self._finalizer = weakref.finalize(self, lib.ssc_model_release, handle)
+        self._own(handle, lib.ssc_model_release)
 
     @classmethod
     def from_file(cls, path: Union[str, os.PathLike], context: Union[Context, None] = None) -> "Model":
@@ -94,22 +87,6 @@ class Model:
         buffer = bytes(data)
         check(lib.ssc_model_load_memory(None if context is None else context.handle, buffer, len(buffer), ctypes.byref(handle)))
         return cls(_handle=handle.value)
-
-    def close(self) -> None:
-        """Drops this object's reference now (bodies keep their own)."""
-        self._finalizer()
-
-    def __enter__(self) -> "Model":
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.close()
-
-    @property
-    def handle(self) -> ctypes.c_void_p:
-        if not self._finalizer.alive:
-            raise ValueError("the model is closed")
-        return self._handle
 
     # Counts.
     @property

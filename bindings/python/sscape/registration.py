@@ -3,12 +3,12 @@ deformation), giving the scan in the template's topology."""
 from __future__ import annotations
 
 import ctypes
-import weakref
 from typing import Callable, Dict, Optional, Sequence
 
 import numpy as np
 
 from ._native import STAGE_PROGRESS_FN, RegistrationDef, RegistrationQuality, RegistrationReport, c_float_p, c_uint32_p, lib
+from ._handle import Handle, progress_callback
 from .errors import check
 from .model import Model
 
@@ -25,7 +25,7 @@ def _quality(q: RegistrationQuality) -> Dict[str, float]:
     return out
 
 
-class Registration:
+class Registration(Handle):
     """Registers one scan at a time to the model's template. Options as ssc_registration_def:
     start ("model", "rigid", "rbf"), schedule ("relaxed", "constant"), stiffness, landmark_weight,
     gamma, max_iterations, rbf_kernel ("thin_plate", "multiquadric", "gaussian"), rbf_scale.
@@ -36,6 +36,8 @@ class Registration:
         report = reg.run()
         registered = reg.vertices()                  # (V, 3) in the template's topology
     """
+
+    _what = "registration"
 
     def __init__(self, model: Model, start: str = "model", schedule: str = "relaxed", rbf_kernel: str = "thin_plate", **numbers):
         unknown = set(numbers) - _NUMBERS
@@ -52,23 +54,7 @@ class Registration:
         handle = ctypes.c_void_p()
         check(lib.ssc_registration_create(model.handle, ctypes.byref(d), ctypes.byref(handle)))
         self.model = model
-        self._handle = handle
-        self._finalizer = weakref.finalize(self, lib.ssc_registration_destroy, handle)
-
-    def close(self) -> None:
-        self._finalizer()
-
-    def __enter__(self) -> "Registration":
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.close()
-
-    @property
-    def handle(self) -> ctypes.c_void_p:
-        if not self._finalizer.alive:
-            raise ValueError("the registration is closed")
-        return self._handle
+        self._own(handle, lib.ssc_registration_destroy)
 
     def set_scan(self, points, normals=None, triangles=None) -> None:
         """The scan: (N, 3) points in metres, optional (N, 3) outward normals, optional (T, 3) mesh triangles."""
@@ -97,16 +83,8 @@ class Registration:
         """Registers the scan; returns the report (rounds, solves, valid_vertices, seconds, fit_seconds,
         quality, regions). progress(stage, done, total) returning True cancels (SSC_ERROR_CANCELLED)."""
         report = RegistrationReport(struct_size=ctypes.sizeof(RegistrationReport))
-        errors = []
-
-        def call(_user, stage, done, total):
-            try:
-                return 1 if progress(stage.decode(), int(done), int(total)) else 0
-            except BaseException as e:  # never across the C boundary
-                errors.append(e)
-                return 1
-
-        callback = STAGE_PROGRESS_FN(call) if progress else STAGE_PROGRESS_FN()
+        callback, errors = progress_callback(STAGE_PROGRESS_FN, progress,
+                                             lambda stage, done, total: (stage.decode(), int(done), int(total)))
         status = lib.ssc_registration_run(self.handle, callback, None, ctypes.byref(report))
         if errors:
             raise errors[0]
