@@ -13,7 +13,8 @@ jobs="${JOBS:-$(nproc)}"
 packages=(cmake make g++ pkg-config libeigen3-dev libnanoflann-dev libflatbuffers-dev flatbuffers-compiler
           libzstd-dev libxxhash-dev libpng-dev nlohmann-json3-dev libcli11-dev catch2 libbenchmark-dev)
 # The test suite also fuzzes, with clang's libFuzzer, and tests the Python package (Debian's python3).
-if [ "$mode" = test ]; then packages+=(clang libclang-rt-14-dev python3-numpy python3-pytest python3-venv python3-setuptools python3-wheel); fi
+if [ "$mode" = test ]; then packages+=(clang libclang-rt-14-dev python3-numpy python3-pytest python3-venv python3-setuptools python3-wheel
+                                     python3-distributed python3-tqdm); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -23,6 +23,7 @@ allowed() {  # allowed FOLDER: the folders its files may include from
         simulation|testing) echo "common sscape_format synthesis anatomy fitting registration" ;;
         training) echo "$runtime render makehuman" ;;
         learning) echo "$runtime training render io simulation" ;;
+        capi_offline) echo "$runtime capi io render simulation training learning" ;;
         cli) echo "$runtime capi render simulation io testing training learning" ;;
         *) echo "?" ;;
     esac

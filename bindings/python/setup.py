@@ -1,6 +1,7 @@
-"""Puts the built libsscape into the package, so that `pip install bindings/python` after the CMake
+"""Puts the built library into the package, so that `pip install bindings/python` after the CMake
 build gives a package that needs nothing else. The library is taken from SSCAPE_LIBRARY, or from
-the build folder of this checkout (build/sdk/libsscape.so.0)."""
+the build folder of this checkout: libsscape_offline (the runtime with the offline tools that
+sscape.pipeline needs) where the build made it, else libsscape (the runtime alone)."""
 import os
 import shutil
 from pathlib import Path
@@ -13,7 +14,8 @@ HERE = Path(__file__).resolve().parent
 
 def built_library():
     env = os.environ.get("SSCAPE_LIBRARY")
-    candidates = [Path(env)] if env else [HERE.parents[1] / "build" / "sdk" / "libsscape.so.0"]
+    build = HERE.parents[1] / "build" / "sdk"
+    candidates = [Path(env)] if env else [build / "libsscape_offline.so.0", build / "libsscape.so.0"]
     for path in candidates:
         if path.is_file():
             return path
@@ -24,8 +26,9 @@ def built_library():
 class BuildWithLibrary(build_py):
     def run(self):
         super().run()
-        target = Path(self.build_lib) / "sscape" / "libsscape.so"
-        shutil.copyfile(built_library(), target)
+        library = built_library()
+        name = "libsscape_offline.so" if "sscape_offline" in library.name else "libsscape.so"
+        shutil.copyfile(library, Path(self.build_lib) / "sscape" / name)
 
 
 class BinaryDistribution(Distribution):

@@ -1188,6 +1188,8 @@ typedef struct ssc_registration_report {
     float seconds;                     /**< Wall time, the model fit included. */
     float fit_seconds;                 /**< The model fit's share (SSC_REGISTRATION_START_MODEL). */
     ssc_registration_quality quality;  /**< Over the whole body. */
+    uint32_t scan_points;              /**< Points of the scan registered to. */
+    uint32_t landmarks;                /**< Landmarks on the scan that were used (0 when a file job was reused). */
 } ssc_registration_report;
 
 /**

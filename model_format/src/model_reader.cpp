@@ -202,10 +202,11 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
     return m;
 }
 
-ModelData read_model_file(const std::string& path, const ReadOptions& options) {
+ModelData read_model_file(const std::string& path, const ReadOptions& options, std::string* digest) {
     // A container is at most header + a zstd bound of the content cap: larger files are refused unread.
     const uint64_t cap = options.max_model_bytes ? options.max_model_bytes : kDefaultMaxModelBytes;
     const std::string bytes = read_regular_file(path, kHeaderSize + cap + cap / 128 + (1 << 17), SSC_ERROR_MODEL_CORRUPT);
+    if (digest) *digest = content_digest(bytes.data(), bytes.size());
     try {
         return read_model(bytes.data(), bytes.size(), options);
     } catch (const Error& e) {

@@ -1,4 +1,5 @@
 // Model loading and queries.
+#include "common/files.hpp"
 #include "guard.hpp"
 #include "handles.hpp"
 #include "sscape_format/model_io.hpp"
@@ -24,7 +25,7 @@ ssc_context* context_for_load(ssc_context* ctx) {
 }
 
 template <class Read>
-void load(ssc_context* ctx, ssc_model** out, Read&& read) {
+void load(ssc_context* ctx, ssc_model** out, Read&& read, const std::string& digest) {  // digest: read's, once it returns
     need(out, "out");
     ssc_context* c = context_for_load(ctx);
     try {
@@ -33,6 +34,7 @@ void load(ssc_context* ctx, ssc_model** out, Read&& read) {
         options.allocator = &c->allocator;
         format::ModelData data = read(options);
         ssc_model* m = make<ssc_model>(c->allocator, c, std::move(data));
+        m->digest = digest;
         c->message(SSC_LOG_INFO, "loaded model '" + m->model.data().metadata.name + "': " +
                                      std::to_string(m->model.vertex_count()) + " vertices, " +
                                      std::to_string(m->model.joint_count()) + " joints, " +
@@ -63,14 +65,15 @@ extern "C" {
 ssc_status ssc_model_load_file(ssc_context* ctx, const char* path, ssc_model** out) {
     return guarded(__func__, [&] {
         need(path, "path");
-        load(ctx, out, [&](const format::ReadOptions& o) { return format::read_model_file(path, o); });
+        std::string digest;
+        load(ctx, out, [&](const format::ReadOptions& o) { return format::read_model_file(path, o, &digest); }, digest);
     });
 }
 
 ssc_status ssc_model_load_memory(ssc_context* ctx, const void* bytes, size_t size, ssc_model** out) {
     return guarded(__func__, [&] {
         need(bytes, "data");
-        load(ctx, out, [&](const format::ReadOptions& o) { return format::read_model(bytes, size, o); });
+        load(ctx, out, [&](const format::ReadOptions& o) { return format::read_model(bytes, size, o); }, content_digest(bytes, size));
     });
 }
 

@@ -2,20 +2,62 @@
 // does the work).
 #include "guard.hpp"
 #include "handles.hpp"
+#include "registration_report.hpp"
 
 #include <cstring>
 
 using namespace ssc;
 using namespace ssc::capi;
 
-namespace {
+namespace ssc::capi {
 
 void copy_quality(const registration::DistanceSummary& d, const std::array<double, 4>& below, ssc_registration_quality& q) {
     q.scan_mean = float(d.mean), q.scan_median = float(d.median), q.scan_p95 = float(d.p95);
     for (int k = 0; k < 4; ++k) q.within[k] = float(below[std::size_t(k)]);
 }
 
-}  // namespace
+void write_report(uint32_t rounds, uint32_t solves, std::size_t valid, double seconds, double fit_seconds,
+                  const registration::RegistrationQuality& quality, std::size_t scan_points, std::size_t landmarks,
+                  ssc_registration_report* report) {
+    ssc_registration_report out{};
+    out.struct_size = sizeof out;
+    out.rounds = rounds;
+    out.solves = solves;
+    out.valid_vertices = uint32_t(valid);
+    out.seconds = float(seconds);
+    out.fit_seconds = float(fit_seconds);
+    copy_quality(quality.scan_to_registration, quality.below, out.quality);
+    out.scan_points = uint32_t(scan_points);
+    out.landmarks = uint32_t(landmarks);
+    const uint32_t n = report->struct_size < sizeof out ? report->struct_size : uint32_t(sizeof out);
+    std::memcpy(report, &out, n);
+    report->struct_size = n;
+}
+
+registration::RegistrationOptions registration_options(const ssc_registration_def& d) {
+    registration::RegistrationOptions o;
+    const int32_t start = enum_value(d.start), schedule = enum_value(d.schedule);
+    SSC_REQUIRE_ARG_S(start >= SSC_REGISTRATION_START_MODEL && start <= SSC_REGISTRATION_START_RBF, "def->start " << start << " is unknown");
+    SSC_REQUIRE_ARG_S(schedule == SSC_REGISTRATION_RELAXED || schedule == SSC_REGISTRATION_CONSTANT,
+                      "def->schedule " << schedule << " is unknown");
+    o.initialisation = start == SSC_REGISTRATION_START_MODEL   ? registration::Initialisation::Model
+                       : start == SSC_REGISTRATION_START_RIGID ? registration::Initialisation::Rigid
+                                                               : registration::Initialisation::Rbf;
+    o.schedule = schedule == SSC_REGISTRATION_RELAXED ? registration::Schedule::Relaxed : registration::Schedule::Constant;
+    o.stiffness = d.stiffness;
+    o.landmarks = d.landmark_weight;
+    o.gamma = d.gamma;
+    o.max_iterations = d.max_iterations;  // the registrar checks the values
+    const int32_t kernel = enum_value(d.rbf_kernel);
+    SSC_REQUIRE_ARG_S(kernel >= SSC_RBF_THIN_PLATE && kernel <= SSC_RBF_GAUSSIAN, "def->rbf_kernel " << kernel << " is unknown");
+    o.rbf_kernel = kernel == SSC_RBF_THIN_PLATE     ? registration::RbfKernel::ThinPlate
+                   : kernel == SSC_RBF_MULTIQUADRIC ? registration::RbfKernel::Multiquadric
+                                                    : registration::RbfKernel::Gaussian;
+    o.rbf_scale = d.rbf_scale;
+    return o;
+}
+
+}  // namespace ssc::capi
 
 extern "C" {
 
@@ -40,25 +82,7 @@ ssc_status ssc_registration_create(ssc_model* model, const ssc_registration_def*
         need(model, "model");
         need(out, "out");
         const ssc_registration_def d = read_def(def, ssc_registration_def_init, "def");
-        registration::RegistrationOptions o;
-        const int32_t start = enum_value(d.start), schedule = enum_value(d.schedule);
-        SSC_REQUIRE_ARG_S(start >= SSC_REGISTRATION_START_MODEL && start <= SSC_REGISTRATION_START_RBF, "def->start " << start << " is unknown");
-        SSC_REQUIRE_ARG_S(schedule == SSC_REGISTRATION_RELAXED || schedule == SSC_REGISTRATION_CONSTANT,
-                          "def->schedule " << schedule << " is unknown");
-        o.initialisation = start == SSC_REGISTRATION_START_MODEL   ? registration::Initialisation::Model
-                           : start == SSC_REGISTRATION_START_RIGID ? registration::Initialisation::Rigid
-                                                                   : registration::Initialisation::Rbf;
-        o.schedule = schedule == SSC_REGISTRATION_RELAXED ? registration::Schedule::Relaxed : registration::Schedule::Constant;
-        o.stiffness = d.stiffness;
-        o.landmarks = d.landmark_weight;
-        o.gamma = d.gamma;
-        o.max_iterations = d.max_iterations;  // the registrar checks the values
-        const int32_t kernel = enum_value(d.rbf_kernel);
-        SSC_REQUIRE_ARG_S(kernel >= SSC_RBF_THIN_PLATE && kernel <= SSC_RBF_GAUSSIAN, "def->rbf_kernel " << kernel << " is unknown");
-        o.rbf_kernel = kernel == SSC_RBF_THIN_PLATE     ? registration::RbfKernel::ThinPlate
-                       : kernel == SSC_RBF_MULTIQUADRIC ? registration::RbfKernel::Multiquadric
-                                                        : registration::RbfKernel::Gaussian;
-        o.rbf_scale = d.rbf_scale;
+        const registration::RegistrationOptions o = registration_options(d);
         ssc_registration* r = make<ssc_registration>(allocator_of(model), model, o);
         ssc_model_retain(model);
         *out = r;
@@ -111,19 +135,8 @@ ssc_status ssc_registration_run(ssc_registration* registration, ssc_stage_progre
         registration::RegistrationProgress cb;
         if (progress) cb = [&](const char* stage, uint32_t done, uint32_t total) { return progress(user, stage, done, total) == 0; };
         const registration::Registration& r = registration->registrar.run(cb, &registration->model->context->pool);
-        if (report) {
-            ssc_registration_report out{};
-            out.struct_size = sizeof out;
-            out.rounds = r.report.rounds;
-            out.solves = r.report.solves;
-            out.valid_vertices = uint32_t(r.report.valid);
-            out.seconds = float(r.report.seconds);
-            out.fit_seconds = float(r.report.fit_seconds);
-            copy_quality(r.report.quality.scan_to_registration, r.report.quality.below, out.quality);
-            const uint32_t n = report->struct_size < sizeof out ? report->struct_size : uint32_t(sizeof out);
-            std::memcpy(report, &out, n);
-            report->struct_size = n;
-        }
+        if (report) write_report(r.report.rounds, r.report.solves, r.report.valid, r.report.seconds, r.report.fit_seconds, r.report.quality,
+                                 r.report.scan_points, r.report.landmarks, report);
     });
 }
 

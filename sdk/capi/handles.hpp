@@ -41,6 +41,7 @@ struct ssc_model {
     const ssc::Model& model = runtime.model();
     const ssc::semantics::AttributeModel& attributes = runtime.attributes();  // sliders, made-to-measure regression
     const std::vector<ssc::anatomy::JointLimit>& limits = runtime.anatomy()->limits;  // per joint
+    std::string digest;  // of the file's bytes it was loaded from (ssc::content_digest): what results record
 
     ssc_model(ssc_context* ctx, ssc::format::ModelData data) : context(ctx), runtime(std::move(data), &ctx->allocator) {}
 

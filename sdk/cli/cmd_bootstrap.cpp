@@ -1,20 +1,17 @@
 // `sscape bootstrap`: a model from a folder of raw scans by rounds of registration, inspection and
-// learning (learning/bootstrap.hpp), each round's files kept under the output folder, resumable.
-// An offline tool like `sscape learn`: it links the C++ learning library.
+// learning, each round's files kept under the output folder, resumable; through the offline C API
+// (sscape_offline.h), as the Python pipeline runs it.
 #include "cli.hpp"
 #include "progress.hpp"
 
-#include "capi/cpp_access.hpp"
-#include "common/error.hpp"
 #include "common/files.hpp"
-#include "learning/bootstrap.hpp"
-#include "sscape_format/model_io.hpp"
-#include "synthesis/model.hpp"
 
-#include <algorithm>
+#include <sscape/sscape_offline.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 namespace ssc::cli {
 namespace {
@@ -28,86 +25,61 @@ struct Options {
     bool scale = false, template_only = false;
 };
 
-// The scans: every .ply and .obj in the folder, by name; landmarks NAME.lnd beside a scan (or, for
-// the simulator's PREFIX_scan.ply, PREFIX.lnd).
-std::vector<learning::ScanInput> find_scans(const std::string& folder) {
-    std::vector<learning::ScanInput> out;
-    for (const auto& entry : fs::directory_iterator(folder)) {
-        if (!entry.is_regular_file()) continue;
-        std::string ext = entry.path().extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-        if (ext != ".ply" && ext != ".obj") continue;
-        learning::ScanInput s;
-        s.name = entry.path().stem().string();
-        s.path = entry.path().string();
-        fs::path lnd = entry.path();
-        lnd.replace_extension(".lnd");
-        const std::string suffix = "_scan";
-        if (!fs::exists(lnd) && s.name.size() > suffix.size() && s.name.compare(s.name.size() - suffix.size(), suffix.size(), suffix) == 0)
-            lnd = entry.path().parent_path() / (s.name.substr(0, s.name.size() - suffix.size()) + ".lnd");
-        if (fs::exists(lnd)) s.landmarks = lnd.string();
-        out.push_back(s);
-    }
-    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-    return out;
-}
-
 int run_bootstrap(const Options& o) {
     const auto t0 = std::chrono::steady_clock::now();
-    learning::BootstrapSpec spec;
-    spec.scans = find_scans(o.scans);
-    if (spec.scans.size() < 3)
-        throw UsageError(o.scans + " holds " + std::to_string(spec.scans.size()) + " scans (.ply or .obj); bootstrapping needs at least 3");
-    spec.out_dir = o.out;
-    spec.rounds = o.rounds;
-    spec.threads = o.threads;
-    if (!o.units.empty()) spec.scan_units_to_metres = spec.lnd_units_to_metres = units_to_metres(o.units);
-    if (!o.up.empty()) spec.up = o.up;
-    spec.learn.components = o.components;
-    spec.learn.posture = learning::posture_from_name(o.posture);
-    spec.learn.segment_components = o.segment_components;
-    spec.learn.scale = o.scale;
-    spec.learn.segment_band = o.segment_band_mm * 1e-3;
-    spec.learn.name = o.name;
-    if (!o.license.empty()) spec.learn.license = o.license;
-    if (!o.decisions.empty()) spec.decisions = learning::read_decisions(o.decisions);
-    if (!o.attributes.empty()) spec.attributes = learning::read_attribute_table(o.attributes);
-
-    std::vector<unsigned char> start;
-    if (o.init.empty()) {
-        ssc_model* handle = load_model("");
-        Handles guard(handle);
-        start = format::write_model(model_of(handle).data());
-    } else {
-        const std::string bytes = read_regular_file(o.init, 1ull << 30);
-        start.assign(bytes.begin(), bytes.end());
+    {  // too few scans is a usage error (exit 2), found before anything is read
+        ssc_scan_list* list = nullptr;
+        check(ssc_scan_list_create(o.scans.c_str(), &list), o.scans);
+        const uint32_t n = ssc_scan_list_count(list);
+        ssc_scan_list_destroy(list);
+        if (n < 3) throw UsageError(o.scans + " holds " + std::to_string(n) + " scans (.ply or .obj); bootstrapping needs at least 3");
     }
-    if (o.template_only) start = format::write_model(learning::template_only(format::read_model(start.data(), start.size())));
-    std::printf("%zu scans in %s; %u rounds from %s%s; output in %s\n", spec.scans.size(), o.scans.c_str(), spec.rounds,
+    ssc_bootstrap_def def;
+    ssc_bootstrap_def_init(&def, sizeof def);
+    def.scans_dir = o.scans.c_str();
+    def.out_dir = o.out.c_str();
+    def.init_model_path = o.init.empty() ? nullptr : o.init.c_str();
+    def.template_only = o.template_only;
+    def.components = o.components;
+    def.posture = o.posture == "none" ? SSC_POSTURE_NONE : SSC_POSTURE_SKELETON;
+    def.scale = o.scale;
+    def.segment_components = o.segment_components;
+    def.segment_band = float(o.segment_band_mm * 1e-3);
+    def.units = o.units.empty() ? nullptr : o.units.c_str();
+    def.up = o.up.empty() ? nullptr : o.up.c_str();
+    def.decisions_path = o.decisions.empty() ? nullptr : o.decisions.c_str();
+    def.attributes_path = o.attributes.empty() ? nullptr : o.attributes.c_str();
+    def.name = o.name.c_str();
+    def.license = o.license.empty() ? nullptr : o.license.c_str();
+    def.threads = o.threads;
+    ssc_bootstrap* b = nullptr;
+    check(ssc_bootstrap_create(nullptr, &def, &b), "bootstrap");
+    std::unique_ptr<ssc_bootstrap, void (*)(ssc_bootstrap*)> owned(b, ssc_bootstrap_destroy);
+    std::printf("%u scans in %s; %u rounds from %s%s; output in %s\n", ssc_bootstrap_scan_count(b), o.scans.c_str(), o.rounds,
                 o.template_only ? "the template alone of " : "", o.init.empty() ? "the built-in model" : o.init.c_str(), o.out.c_str());
-    Progress progress("bootstrap");
-    std::vector<learning::RoundReport> rounds;
-    try {
-        rounds = learning::bootstrap(start, spec, [&](const std::string& line) {
-            progress.clear();
-            std::printf("[%6.0f s] %s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), line.c_str());
-            std::fflush(stdout);
-            return !Progress::interrupted();
-        });
-    } catch (const Error& e) {
-        if (e.status() != SSC_ERROR_CANCELLED) throw;
-        progress.clear();
+    struct Lines {
+        Progress progress;
+        std::chrono::steady_clock::time_point t0;
+        explicit Lines(std::chrono::steady_clock::time_point t) : progress("bootstrap"), t0(t) {}
+    } lines(t0);
+    const ssc_line_fn say = [](void* user, const char* line) {
+        auto* l = static_cast<Lines*>(user);
+        l->progress.clear();
+        std::printf("[%6.0f s] %s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - l->t0).count(), line);
+        std::fflush(stdout);
+        return Progress::interrupted() ? 1 : 0;
+    };
+    const ssc_status status = ssc_bootstrap_run(b, o.rounds, say, &lines);
+    lines.progress.clear();
+    if (status == SSC_ERROR_CANCELLED) {
         std::fprintf(stderr, "sscape bootstrap: cancelled (Ctrl-C); what is done stays in %s, run the same command to resume\n", o.out.c_str());
         return 130;
     }
-    progress.clear();
-    std::printf("round  accepted  rejected  failed  register s  learn s  components\n");
-    for (const auto& r : rounds)
-        std::printf("%5u  %8zu  %8zu  %6zu  %10.1f  %7.1f  %10u\n", r.round, r.accepted, r.rejected, r.failed, r.register_seconds, r.learn_seconds,
-                    r.components);
+    check(status, "bootstrap");
+    std::printf("%s", read_regular_file((fs::path(o.out) / "rounds.csv").string(), 1ull << 20).c_str());
     std::printf("wrote %s/model.sscape (round %u's model), %s/rounds.csv; each round's registrations, decisions.csv and contact sheets are in "
                 "%s/round_N\n",
-                o.out.c_str(), rounds.back().round, o.out.c_str(), o.out.c_str());
+                o.out.c_str(), o.rounds, o.out.c_str(), o.out.c_str());
     return 0;
 }
 

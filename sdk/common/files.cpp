@@ -1,5 +1,8 @@
 #include "common/files.hpp"
 
+#define XXH_INLINE_ALL  // header-only use of Debian's xxhash
+#include <xxhash.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -137,6 +140,12 @@ void write_file_atomically(const std::string& path, const void* data, std::size_
         ::unlink(tmp.c_str());
         fail(SSC_ERROR_IO, "cannot replace '" + path + "': " + error);
     }
+}
+
+std::string content_digest(const void* data, std::size_t size) {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(XXH3_64bits(data, size)));
+    return hex;
 }
 
 }  // namespace ssc

@@ -26,4 +26,7 @@ std::string read_regular_file(const std::string& path, uint64_t max_bytes, ssc_s
 // on failure.
 void write_file_atomically(const std::string& path, const void* data, std::size_t size);
 
+// A short digest of bytes (XXH3, 16 hex digits): which model file or scan a result was made from.
+std::string content_digest(const void* data, std::size_t size);
+
 }  // namespace ssc

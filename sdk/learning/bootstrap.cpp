@@ -6,6 +6,7 @@
 #include "io/readers.hpp"
 #include "learning/scan_tables.hpp"
 #include "registration/registrar.hpp"
+#include "runtime/runtime_model.hpp"
 #include "render/registration_picture.hpp"
 #include "sscape_format/model_io.hpp"
 
@@ -37,25 +38,6 @@ std::vector<unsigned char> read_bytes(const std::string& path) {
     return std::vector<unsigned char>(s.begin(), s.end());
 }
 
-// The scan in the model's frame (metres, +Y up) and its landmarks.
-registration::Scan load_scan(const ScanInput& in, const Model& model, const BootstrapSpec& spec) {
-    registration::Scan scan;
-    const Eigen::Matrix3d R = up_axis_rotation(spec.up);
-    const io::PointFile pf = io::read_points(in.path);
-    for (const auto& p : pf.points) scan.cloud.points.push_back(R * (p * spec.scan_units_to_metres));
-    for (const auto& n : pf.normals) scan.cloud.normals.push_back(R * n);
-    if (!in.landmarks.empty()) {
-        std::unordered_map<std::string, uint32_t> by_name;
-        const auto& marks = model.data().landmarks;
-        for (uint32_t l = 0; l < marks.size(); ++l) by_name[io::normalized_landmark_name(marks[l].name)] = l;
-        for (const auto& r : io::read_lnd(in.landmarks)) {  // read_lnd: the file's numbers / 1000
-            const auto it = by_name.find(io::normalized_landmark_name(r.name));
-            if (it != by_name.end()) scan.landmarks.push_back({it->second, R * (r.position * (spec.lnd_units_to_metres * 1e3)), 1.0});
-        }
-    }
-    return scan;
-}
-
 struct ScanState {
     bool ok = false;         // registered (now or before)
     std::string failure;     // why not
@@ -69,7 +51,8 @@ void check_spec(const BootstrapSpec& spec) {
     SSC_REQUIRE_ARG_S(spec.scans.size() >= 3, "bootstrap: " << spec.scans.size() << " scans; a model needs at least 3");
     SSC_REQUIRE_ARG(spec.rounds >= 1 && spec.rounds <= 100, "bootstrap: rounds must be 1 to 100");
     SSC_REQUIRE_ARG(!spec.out_dir.empty(), "bootstrap: no output folder");
-    SSC_REQUIRE_ARG(std::isfinite(spec.scan_units_to_metres) && spec.scan_units_to_metres > 0 && spec.scan_units_to_metres <= 1,
+    SSC_REQUIRE_ARG(std::isfinite(spec.reading.scan_units_to_metres) && spec.reading.scan_units_to_metres > 0 &&
+                        spec.reading.scan_units_to_metres <= 1,
                     "bootstrap: the scans' units must be metres or smaller");
     std::set<std::string> names;
     for (const auto& s : spec.scans) {
@@ -105,30 +88,53 @@ std::map<std::string, PersonDecision> read_decisions(const std::string& path) {
     return out;
 }
 
-std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_model, const BootstrapSpec& spec, const BootstrapProgress& progress) {
+std::string round_model_path(const std::string& out_dir, uint32_t round) { return round_dir(out_dir, round) + "/model.sscape"; }
+
+std::string round_registration_path(const std::string& out_dir, uint32_t round, const std::string& scan_name) {
+    return round_dir(out_dir, round) + "/registrations/" + scan_name + ".ply";
+}
+
+void prepare_bootstrap(const std::vector<unsigned char>& initial_model, const BootstrapSpec& spec) {
     check_spec(spec);
-    auto say = [&](const std::string& line) {
-        if (progress && !progress(line)) throw Error(SSC_ERROR_CANCELLED, "bootstrap: stopped; run it again to resume");
-    };
-    ThreadPool pool(spec.threads ? spec.threads : std::max(1u, std::thread::hardware_concurrency()));
     fs::create_directories(round_dir(spec.out_dir, 0));
-    const std::string start_path = round_dir(spec.out_dir, 0) + "/model.sscape";
+    const std::string start_path = round_model_path(spec.out_dir, 0);
     if (!fs::exists(start_path) || read_bytes(start_path) != initial_model) {
         format::read_model(initial_model.data(), initial_model.size());  // refuses a bad model before anything is written
         write_file_atomically(start_path, initial_model.data(), initial_model.size());
     }
+}
+
+ScanFileJob round_registration_job(const BootstrapSpec& spec, uint32_t round, const ScanInput& scan) {
+    ScanFileJob job;
+    job.scan = scan;
+    job.reading = spec.reading;
+    job.mesh_path = round_registration_path(spec.out_dir, round, scan.name);
+    job.reuse = true;
+    return job;
+}
+
+std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_model, const BootstrapSpec& spec, const BootstrapProgress& progress) {
+    prepare_bootstrap(initial_model, spec);
+    auto say = [&](const std::string& line) {
+        if (progress && !progress(line)) throw Error(SSC_ERROR_CANCELLED, "bootstrap: stopped; run it again to resume");
+    };
+    ThreadPool pool(spec.threads ? spec.threads : std::max(1u, std::thread::hardware_concurrency()));
 
     std::vector<RoundReport> reports;
     std::string rounds_csv = "round,scans,registered,reused,failed,accepted,rejected,register_seconds,learn_seconds,components\n";
     for (uint32_t round = 1; round <= spec.rounds; ++round) {
         RoundReport rep;
         rep.round = round;
-        const std::string dir = round_dir(spec.out_dir, round), previous = round_dir(spec.out_dir, round - 1) + "/model.sscape";
+        const std::string dir = round_dir(spec.out_dir, round), previous = round_model_path(spec.out_dir, round - 1);
         fs::create_directories(dir + "/registrations");
         const std::vector<unsigned char> model_bytes = read_bytes(previous);
         const std::string digest = model_digest(model_bytes);
-        const Model model(format::read_model(model_bytes.data(), model_bytes.size()), nullptr);
-        registration::Registrar registrar(model, spec.registration);
+        // Made as the C API makes it (a runtime model, the C heap), so that registrations made here
+        // and by ssc_registration_run_file elsewhere are the same to the bit.
+        const Allocator heap;
+        const RuntimeModel runtime(format::read_model(model_bytes.data(), model_bytes.size()), &heap);
+        const Model& model = runtime.model();
+        registration::Registrar registrar(model, spec.registration, runtime.anatomy());
 
         // Register (or reuse) and inspect every scan.
         const auto t_register = Clock::now();
@@ -136,59 +142,17 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         for (std::size_t i = 0; i < spec.scans.size(); ++i) {
             const ScanInput& in = spec.scans[i];
             ScanState& st = states[i];
-            const std::string mesh = dir + "/registrations/" + in.name + ".ply";
-            std::string how = "reused", scan_digest;
-            try {  // the scan and its landmarks, as read: a changed file is registered again
-                std::string bytes = read_regular_file(in.path, 4ull << 30);
-                if (!in.landmarks.empty()) bytes += read_regular_file(in.landmarks, 64ull << 20);
-                scan_digest = file_digest(bytes);
-            } catch (const Error&) {
-                scan_digest.clear();  // unreadable: registering it fails below with the reason
-            }
-            if (!scan_digest.empty() && fs::exists(record_report_path(mesh))) {
-                try {
-                    st.record = read_registration_record(mesh, model, false);
-                    st.ok = st.record.model_digest == digest && st.record.scan_digest == scan_digest &&
-                            st.record.scan_units_to_metres == spec.scan_units_to_metres && st.record.scan_up == spec.up;
-                } catch (const Error&) {
-                    st.ok = false;  // made again below
-                }
-            }
-            if (!st.ok) {
-                how = "registered";
-                try {
-                    registration::Scan scan;
-                    try {
-                        scan = load_scan(in, model, spec);
-                    } catch (const Error& e) {  // an unreadable or hostile scan fails alone
-                        throw Error(SSC_ERROR_INVALID_ARGUMENT, e.what());
-                    }
-                    registrar.set_scan(std::move(scan.cloud), std::move(scan.triangles));
-                    registrar.set_landmarks(std::move(scan.landmarks));
-                    const registration::Registration& r = registrar.run({}, &pool);
-                    RegistrationRecord& rec = st.record;
-                    rec = {};
-                    rec.scan = in.path;
-                    rec.scan_units_to_metres = spec.scan_units_to_metres;
-                    rec.scan_up = spec.up;
-                    rec.seconds = r.report.seconds;
-                    rec.fit_seconds = r.report.fit_seconds;
-                    rec.registered.name = mesh;
-                    rec.registered.vertices = r.vertices;
-                    if (!r.fit.frames.empty()) rec.registered.fit = r.fit.frames[0], rec.registered.has_fit = true;
-                    rec.quality = r.report.quality;
-                    rec.model_digest = digest;
-                    rec.scan_digest = scan_digest;
-                    write_registration_record(mesh, model, rec);
-                    st.ok = true;
-                    ++rep.registered;
-                } catch (const Error& e) {
-                    if (e.status() != SSC_ERROR_INVALID_ARGUMENT) throw;  // I/O, memory, cancel: stop (resumable)
-                    st.failure = e.what();
-                    ++rep.failed;
-                }
-            } else {
-                ++rep.reused;
+            std::string how = "reused";
+            try {
+                ScanFileResult r = register_scan_file(registrar, digest, round_registration_job(spec, round, in), {}, &pool);
+                st.record = std::move(r.record);
+                st.ok = true;
+                if (!r.reused) how = "registered", ++rep.registered;
+                else ++rep.reused;
+            } catch (const Error& e) {
+                if (e.status() != SSC_ERROR_INVALID_ARGUMENT) throw;  // I/O, memory, cancel: stop (resumable)
+                st.failure = e.what();
+                ++rep.failed;
             }
             if (st.ok) {
                 st.inspection = inspect_registration(model, st.record, spec.rules);
@@ -232,12 +196,27 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
             }
             decisions += "\n";
         }
+        // Contact sheets are drawn again only when the verdicts changed (a resumed run skips them).
+        bool sheets_current = false;
+        if (fs::exists(dir + "/decisions.csv") && spec.sheet_entries > 0) {
+            try {
+                sheets_current = read_regular_file(dir + "/decisions.csv", 64ull << 20) == decisions;
+            } catch (const Error&) {
+                sheets_current = false;
+            }
+        }
         write_text(dir + "/decisions.csv", decisions);
 
         // Contact sheets, a page at a time (each page reads its scans again: memory stays flat).
         if (spec.sheet_entries > 0) {
             const std::size_t per = std::size_t(spec.sheet_entries), pages = (states.size() + per - 1) / per;
             for (std::size_t page = 0; page < pages; ++page) {
+                char name[40];
+                std::snprintf(name, sizeof name, "/contact_sheet_%02zu.png", page + 1);
+                if (sheets_current && fs::exists(dir + name)) {
+                    rep.sheets.push_back(dir + name);
+                    continue;
+                }
                 std::vector<render::SheetEntry> entries;
                 for (std::size_t i = page * per; i < std::min(states.size(), (page + 1) * per); ++i) {
                     render::SheetEntry e;
@@ -247,15 +226,13 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
                     if (states[i].ok) {
                         const RegistrationRecord& rec = states[i].record;
                         e.frame = render::fit_picture_frame(model, rec.registered.fit);
-                        e.points = load_scan(spec.scans[i], model, spec).cloud.points;
+                        e.points = load_scan(spec.scans[i], model, spec.reading).cloud.points;
                         e.registered = rec.registered.vertices;
                         e.error = rec.quality.vertex_distance;
                         e.error.resize(e.registered.size(), -1.0);
                     }
                     entries.push_back(std::move(e));
                 }
-                char name[40];
-                std::snprintf(name, sizeof name, "/contact_sheet_%02zu.png", page + 1);
                 char title[120];
                 std::snprintf(title, sizeof title, "round %u, page %zu of %zu: %zu accepted, %zu rejected", round, page + 1, pages, rep.accepted,
                               rep.rejected);
@@ -278,7 +255,8 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         learn.segment_components = std::min<uint32_t>(learn.segment_components, uint32_t(accepted.size() - 1));
         if (!spec.attributes.names.empty()) learn.attributes = attributes_for(spec.attributes, accepted_names);
         std::ostringstream prov;
-        prov << "bootstrap round " << round << " of " << spec.rounds << "; " << accepted.size() << " of " << states.size() << " registrations accepted";
+        // Not the run's planned rounds: a round's model is the same whether more rounds follow.
+        prov << "bootstrap round " << round << "; " << accepted.size() << " of " << states.size() << " registrations accepted";
         learn.provenance = prov.str();
         nlohmann::ordered_json settings{{"start_model_digest", digest}, {"accepted", accepted_names}, {"components", learn.components},
                                         {"posture", posture_name(learn.posture)}, {"name", learn.name}, {"license", learn.license},
@@ -287,8 +265,8 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         for (const auto& a : learn.attributes) settings["attributes"][a.name] = a.values;
         // The registrations themselves: one made again (another reading of its scan) relearns the model.
         for (const auto& name : accepted_names)
-            settings["registrations"].push_back(file_digest(read_regular_file(record_report_path(dir + "/registrations/" + name + ".ply"), 64ull << 20)));
-        const std::string model_path = dir + "/model.sscape", round_json = dir + "/round.json";
+            settings["registrations"].push_back(file_digest(read_regular_file(record_report_path(round_registration_path(spec.out_dir, round, name)), 64ull << 20)));
+        const std::string model_path = round_model_path(spec.out_dir, round), round_json = dir + "/round.json";
         const auto t_learn = Clock::now();
         if (fs::exists(round_json) && fs::exists(model_path)) {
             try {

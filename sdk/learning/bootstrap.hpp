@@ -17,6 +17,7 @@
 #pragma once
 
 #include "learning/acceptance.hpp"
+#include "learning/collection_scan.hpp"
 #include "learning/learn_model.hpp"
 #include "learning/scan_tables.hpp"
 #include "registration/register_scan.hpp"
@@ -28,12 +29,6 @@
 
 namespace ssc::learning {
 
-struct ScanInput {
-    std::string name;       // unique; names its files in every round (the scan file's stem)
-    std::string path;       // PLY or OBJ
-    std::string landmarks;  // a CAESAR .lnd on the scan, or empty
-};
-
 // A person's verdict on a scan (from an edited decisions file): holds in every round.
 struct PersonDecision {
     bool accept = false;
@@ -44,9 +39,7 @@ struct BootstrapSpec {
     std::vector<ScanInput> scans;
     std::string out_dir;
     uint32_t rounds = 3;
-    double scan_units_to_metres = 1;  // the scans' units
-    double lnd_units_to_metres = 1e-3;  // the landmark files' (the .lnd format's millimetres by default)
-    std::string up = "y";             // the scans' axis that is up
+    ScanReading reading;              // the scans' and landmark files' units, the axis that is up
     registration::RegistrationOptions registration;
     AcceptanceRules rules;
     LearnSpec learn;                  // components (capped at accepted - 1), posture, name, licence
@@ -69,6 +62,19 @@ struct RoundReport {
 // Called with each line worth telling (a scan registered, a round's summary); returning false
 // stops the run (ssc::Error, CANCELLED) after the file being written.
 using BootstrapProgress = std::function<bool(const std::string& line)>;
+
+// The files of a round (round 0: the starting model).
+std::string round_model_path(const std::string& out_dir, uint32_t round);
+std::string round_registration_path(const std::string& out_dir, uint32_t round, const std::string& scan_name);
+
+// Checks the spec and writes round 0's starting model (unless the same bytes are there): what
+// bootstrap() does first, and what a distributed run does before it registers round 1's scans.
+// Throws ssc::Error (INVALID_ARGUMENT for bad settings or a bad model, IO).
+void prepare_bootstrap(const std::vector<unsigned char>& initial_model, const BootstrapSpec& spec);
+
+// The registration of one scan in a round, as bootstrap() makes it (reused when current): what a
+// distributed run's tasks call with round - 1's model, before bootstrap() finds them all done.
+ScanFileJob round_registration_job(const BootstrapSpec& spec, uint32_t round, const ScanInput& scan);
 
 // Runs (or resumes) the rounds from the starting model's file bytes. Throws ssc::Error:
 // INVALID_ARGUMENT for bad settings (fewer than 3 scans, duplicate names, decisions naming no scan)

@@ -8,9 +8,6 @@
 
 #include <nlohmann/json.hpp>
 
-#define XXH_INLINE_ALL  // header-only use of Debian's xxhash
-#include <xxhash.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -49,20 +46,11 @@ void quality_from_json(const ordered_json& j, registration::DistanceSummary& d, 
 
 std::string record_report_path(const std::string& mesh_path) { return std::filesystem::path(mesh_path).replace_extension(".json").string(); }
 
-namespace {
 
-std::string digest_of(const void* data, std::size_t size) {
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(XXH3_64bits(data, size)));
-    return hex;
-}
+std::string model_digest(const std::vector<unsigned char>& model_file) { return content_digest(model_file.data(), model_file.size()); }
+std::string file_digest(const std::string& bytes) { return content_digest(bytes.data(), bytes.size()); }
 
-}  // namespace
-
-std::string model_digest(const std::vector<unsigned char>& model_file) { return digest_of(model_file.data(), model_file.size()); }
-std::string file_digest(const std::string& bytes) { return digest_of(bytes.data(), bytes.size()); }
-
-void write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& r) {
+void write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& r, bool with_report) {
     const uint32_t V = model.vertex_count();
     SSC_REQUIRE_ARG(r.registered.vertices.size() == V, "registration record: vertex count differs from the model's");
     SSC_REQUIRE_ARG(std::find(kAxes.begin(), kAxes.end(), r.scan_up) != kAxes.end(), "registration record: scan_up is no axis");
@@ -79,6 +67,7 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
     mesh.triangle_count = uint32_t(model.data().mesh.triangles.size() / 3);
     mesh.triangles = model.data().mesh.triangles.data();
     exporters::write_mesh(mesh_path, mesh);
+    if (!with_report) return;
 
     ordered_json j;
     j["scan"] = r.scan;
@@ -86,6 +75,9 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
     j["scan_up"] = r.scan_up;
     j["seconds"] = r.seconds;
     j["fit_seconds"] = r.fit_seconds;
+    j["rounds"] = r.rounds;
+    j["solves"] = r.solves;
+    if (!r.valid.empty()) j["valid_vertices"] = std::count(r.valid.begin(), r.valid.end(), uint8_t(1));
     if (!r.model_digest.empty()) j["model_digest"] = r.model_digest;
     if (!r.scan_digest.empty()) j["scan_digest"] = r.scan_digest;
     j["quality"] = quality_json(r.quality.scan_to_registration, r.quality.below);
@@ -104,6 +96,7 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
         for (double d : r.quality.vertex_distance) mm.push_back(d < 0 ? -1.0 : std::round(d * 1e5) / 100);
         j["vertex_distance_mm"] = mm;
     }
+    if (!r.valid.empty()) j["valid"] = r.valid;
     const std::string text = j.dump(1) + "\n";
     write_file_atomically(record_report_path(mesh_path), text.data(), text.size());
 }
@@ -128,6 +121,8 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
         r.scan_units_to_metres = j.value("scan_units_to_metres", 1.0);
         r.seconds = j.value("seconds", 0.0);
         r.fit_seconds = j.value("fit_seconds", 0.0);
+        r.rounds = j.value("rounds", 0u);
+        r.solves = j.value("solves", 0u);
         r.model_digest = j.value("model_digest", "");
         r.scan_digest = j.value("scan_digest", "");
         SSC_REQUIRE_ARG_S(std::isfinite(r.scan_units_to_metres) && r.scan_units_to_metres > 0 && r.scan_units_to_metres <= 1,
@@ -145,6 +140,10 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
             const std::vector<double> mm = j.at("vertex_distance_mm");
             SSC_REQUIRE_ARG(mm.size() == V, "vertex_distance_mm has a value per vertex of another model");
             for (double d : mm) r.quality.vertex_distance.push_back(d < 0 ? -1.0 : d * 1e-3);
+        }
+        if (j.contains("valid")) {
+            r.valid = j.at("valid").get<std::vector<uint8_t>>();
+            SSC_REQUIRE_ARG(r.valid.size() == V, "valid has a flag per vertex of another model");
         }
         if (j.contains("fit")) {
             const auto& fit = j.at("fit");

@@ -18,6 +18,8 @@ struct RegistrationRecord {
     double scan_units_to_metres = 1;  // the scan's units
     std::string scan_up = "y";        // the scan's axis that is the model's +Y
     double seconds = 0, fit_seconds = 0;
+    uint32_t rounds = 0, solves = 0;  // the deformation's stiffness rounds and linear solves
+    std::vector<uint8_t> valid;       // per vertex: ended on a compatible scan point (empty when unknown)
     RegisteredScan registered;        // the model frame (metres, +Y up); name: the mesh's path
     registration::RegistrationQuality quality;  // vertex_distance may be empty
     std::string model_digest;         // empty when unknown
@@ -27,9 +29,9 @@ struct RegistrationRecord {
 // The report's path for a registered mesh.
 std::string record_report_path(const std::string& mesh_path);
 
-// Writes the mesh (.ply or .obj, by extension) then the report, each atomically: a report on disk
-// means its mesh is complete. Throws ssc::Error (IO).
-void write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& record);
+// Writes the mesh (.ply or .obj, by extension) then (with_report) the report, each atomically: a
+// report on disk means its mesh is complete. Throws ssc::Error (IO).
+void write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& record, bool with_report = true);
 
 // Reads a mesh and its report. Throws ssc::Error (IO for a missing or unreadable file;
 // INVALID_ARGUMENT for a malformed report, a mesh of another vertex count, or a report without

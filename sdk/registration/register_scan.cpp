@@ -228,6 +228,8 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
     for (uint32_t v = 0; v < V; ++v) out.valid[v] = weights[v] > 0, out.report.valid += out.valid[v];
     out.report.quality = registration_quality(out.vertices, triangles, vertex_normals(out.vertices, triangles), region,
                                               region_names, points, normals, oriented, index, workers);
+    out.report.scan_points = scan.cloud.points.size();
+    out.report.landmarks = scan.landmarks.size();
     out.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }

@@ -67,6 +67,7 @@ struct RegistrationReport {
     double seconds = 0, fit_seconds = 0;
     uint32_t rounds = 0, solves = 0;
     std::size_t valid = 0;  // template vertices that ended on a compatible scan point
+    std::size_t scan_points = 0, landmarks = 0;  // what the scan gave
     RegistrationQuality quality;
 };
 

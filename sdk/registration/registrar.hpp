@@ -27,6 +27,9 @@ public:
     // Registers the scan (register_scan); INVALID_ARGUMENT without a scan, CANCELLED.
     const Registration& run(const RegistrationProgress& progress = {}, ThreadPool* pool = nullptr);
 
+    // Forgets the result (the scan stays).
+    void forget_result() { result_.reset(); }
+
     // After a run (else INVALID_ARGUMENT).
     bool done() const { return result_.has_value(); }
     const Registration& result() const;

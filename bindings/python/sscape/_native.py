@@ -67,12 +67,25 @@ class RegistrationQuality(ctypes.Structure):
 
 class RegistrationReport(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("rounds", c_uint32), ("solves", c_uint32), ("valid_vertices", c_uint32),
-                ("seconds", c_float), ("fit_seconds", c_float), ("quality", RegistrationQuality)]
+                ("seconds", c_float), ("fit_seconds", c_float), ("quality", RegistrationQuality), ("scan_points", c_uint32),
+                ("landmarks", c_uint32)]
+# sscape_offline.h
+class ScanFileJob(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("scan_path", c_char_p), ("landmarks_path", c_char_p), ("units", c_char_p), ("up", c_char_p),
+                ("mesh_path", c_char_p), ("write_report", c_uint32), ("reuse", c_uint32), ("picture_path", c_char_p)]
+class BootstrapDef(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("scans_dir", c_char_p), ("out_dir", c_char_p), ("init_model_path", c_char_p),
+                ("template_only", c_uint32), ("components", c_uint32), ("posture", c_int32), ("scale", c_uint32),
+                ("segment_components", c_uint32), ("segment_band", c_float), ("units", c_char_p), ("up", c_char_p),
+                ("decisions_path", c_char_p), ("attributes_path", c_char_p), ("name", c_char_p), ("license", c_char_p),
+                ("threads", c_uint32), ("contact_sheet_entries", c_uint32)]
 
 
 #: int (*ssc_stage_progress_fn)(void* user, const char* stage, uint32_t done, uint32_t total)
 STAGE_PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_char_p, c_uint32, c_uint32)
 
+#: int (*ssc_line_fn)(void* user, const char* line)
+LINE_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_char_p)
 #: int (*ssc_progress_fn)(void* user, uint32_t iteration, float cost)
 PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_uint32, c_float)
 
@@ -175,20 +188,41 @@ _DECLARATIONS = {
     "ssc_body_get_segment_shape": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32]),
 }
 
+# The offline tools (sscape_offline.h): in libsscape_offline.so only.
+_OFFLINE_DECLARATIONS = {
+    "ssc_scan_list_create": (_STATUS, [c_char_p, POINTER(c_void_p)]),
+    "ssc_scan_list_destroy": (None, [c_void_p]),
+    "ssc_scan_list_count": (c_uint32, [c_void_p]),
+    "ssc_scan_list_get": (_STATUS, [c_void_p, c_uint32, POINTER(c_char_p), POINTER(c_char_p), POINTER(c_char_p)]),
+    "ssc_scan_file_job_init": (None, [POINTER(ScanFileJob), c_size_t]),
+    "ssc_registration_run_file": (_STATUS, [c_void_p, POINTER(ScanFileJob), STAGE_PROGRESS_FN, c_void_p, POINTER(RegistrationReport),
+                                            c_uint32_p]),
+    "ssc_bootstrap_def_init": (None, [POINTER(BootstrapDef), c_size_t]),
+    "ssc_bootstrap_create": (_STATUS, [c_void_p, POINTER(BootstrapDef), POINTER(c_void_p)]),
+    "ssc_bootstrap_destroy": (None, [c_void_p]),
+    "ssc_bootstrap_scan_count": (c_uint32, [c_void_p]),
+    "ssc_bootstrap_get_scan": (_STATUS, [c_void_p, c_uint32, POINTER(c_char_p), POINTER(c_char_p), POINTER(c_char_p)]),
+    "ssc_bootstrap_prepare": (_STATUS, [c_void_p]),
+    "ssc_bootstrap_get_job": (_STATUS, [c_void_p, c_uint32, c_uint32, POINTER(ScanFileJob), POINTER(c_char_p)]),
+    "ssc_bootstrap_run": (_STATUS, [c_void_p, c_uint32, LINE_FN, c_void_p]),
+}
+
 
 def _candidates():
-    """Where the library may be: SSCAPE_LIBRARY, beside the package, then the system's search path."""
+    """Where the library may be: SSCAPE_LIBRARY, beside the package, then the system's search path;
+    libsscape_offline (the whole C API with the offline tools) before libsscape (the runtime)."""
     env = os.environ.get("SSCAPE_LIBRARY")
     if env:
         yield env
         return
     here = Path(__file__).resolve().parent
-    for name in ("libsscape.so", "libsscape.so.0", "libsscape.dylib", "sscape.dll"):
+    for name in ("libsscape_offline.so", "libsscape.so", "libsscape.so.0", "libsscape.dylib", "sscape.dll"):
         if (here / name).exists():
             yield str(here / name)
-    found = ctypes.util.find_library("sscape")
-    if found:
-        yield found
+    for name in ("sscape_offline", "sscape"):
+        found = ctypes.util.find_library(name)
+        if found:
+            yield found
 
 
 def _load():
@@ -199,16 +233,24 @@ def _load():
         except OSError as e:
             tried.append(f"{path}: {e}")
             continue
-        for name, (restype, argtypes) in _DECLARATIONS.items():
+        offline = hasattr(lib, "ssc_bootstrap_create")
+        for name, (restype, argtypes) in list(_DECLARATIONS.items()) + (list(_OFFLINE_DECLARATIONS.items()) if offline else []):
             fn = getattr(lib, name)
             fn.restype = restype
             fn.argtypes = argtypes
         major = lib.ssc_version() // 10000
         if major != ABI_MAJOR:
             raise ImportError(f"{path} is libsscape {lib.ssc_version()}: its ABI major version {major} is not this package's {ABI_MAJOR}")
-        return lib, path
+        return lib, path, offline
     raise ImportError("libsscape not found (set SSCAPE_LIBRARY to its path, or install it beside the package or on the "
                       "system's library path)" + ("; tried " + "; ".join(tried) if tried else ""))
 
 
-lib, library_path = _load()
+lib, library_path, has_offline = _load()
+
+
+def need_offline(what: str) -> None:
+    """Raises a clear error when the loaded library lacks the offline tools."""
+    if not has_offline:
+        raise RuntimeError(f"{what} needs libsscape_offline (the offline tools); {library_path} is the runtime alone: "
+                           "point SSCAPE_LIBRARY at build/sdk/libsscape_offline.so or install the package from a full build")

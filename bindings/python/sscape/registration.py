@@ -7,7 +7,8 @@ from typing import Callable, Dict, Optional, Sequence
 
 import numpy as np
 
-from ._native import STAGE_PROGRESS_FN, RegistrationDef, RegistrationQuality, RegistrationReport, c_float_p, c_uint32_p, lib
+from ._native import (STAGE_PROGRESS_FN, RegistrationDef, RegistrationQuality, RegistrationReport, ScanFileJob, c_float_p, c_uint32_p, lib,
+                      need_offline)
 from ._handle import Handle, progress_callback
 from .errors import check
 from .model import Model
@@ -89,13 +90,46 @@ class Registration(Handle):
         if errors:
             raise errors[0]
         check(status)
-        regions = {}
-        for i in range(lib.ssc_registration_region_count(self.handle)):
+        return self._report(report)
+
+    def run_file(self, scan: str, mesh: str, landmarks: Optional[str] = None, units: Optional[str] = None, up: Optional[str] = None,
+                 report: bool = True, reuse: bool = False, picture: Optional[str] = None,
+                 progress: Optional[Callable[[str, int, int], bool]] = None) -> Dict[str, object]:
+        """Registers a scan file (PLY or OBJ; landmarks: a CAESAR .lnd) and writes the registered mesh
+        (.ply or .obj, the scan's frame and units), the JSON report beside it and, on request, a PNG:
+        what `sscape register` does (ssc_registration_run_file; needs libsscape_offline). units: "m",
+        "cm" or "mm" for both files (None: metres for the scan, millimetres for the .lnd); up: the
+        scan's up axis (None: "y"). With reuse, a registration already there from the same model,
+        scan, landmarks, units and up axis is kept (the result's "reused" is then True and the
+        getters have nothing). Returns the report as run() does, plus "reused"."""
+        need_offline("Registration.run_file")
+        job = ScanFileJob()
+        lib.ssc_scan_file_job_init(ctypes.byref(job), ctypes.sizeof(ScanFileJob))
+        text = lambda v: None if v is None else str(v).encode()
+        job.scan_path, job.mesh_path = text(scan), text(mesh)
+        job.landmarks_path, job.units, job.up, job.picture_path = text(landmarks), text(units), text(up), text(picture)
+        job.write_report, job.reuse = int(bool(report)), int(bool(reuse))
+        out = RegistrationReport(struct_size=ctypes.sizeof(RegistrationReport))
+        reused = ctypes.c_uint32()
+        callback, errors = progress_callback(STAGE_PROGRESS_FN, progress,
+                                             lambda stage, done, total: (stage.decode(), int(done), int(total)))
+        status = lib.ssc_registration_run_file(self.handle, ctypes.byref(job), callback, None, ctypes.byref(out), ctypes.byref(reused))
+        if errors:
+            raise errors[0]
+        check(status)
+        result = self._report(out, regions=not reused.value)
+        result["reused"] = bool(reused.value)
+        return result
+
+    def _report(self, report: RegistrationReport, regions: bool = True) -> Dict[str, object]:
+        regions_out = {}
+        for i in range(lib.ssc_registration_region_count(self.handle) if regions else 0):
             name, q = ctypes.c_char_p(), RegistrationQuality()
             check(lib.ssc_registration_get_region(self.handle, i, ctypes.byref(name), ctypes.byref(q)))
-            regions[name.value.decode()] = _quality(q)
+            regions_out[name.value.decode()] = _quality(q)
         return {"rounds": report.rounds, "solves": report.solves, "valid_vertices": report.valid_vertices,
-                "seconds": report.seconds, "fit_seconds": report.fit_seconds, "quality": _quality(report.quality), "regions": regions}
+                "seconds": report.seconds, "fit_seconds": report.fit_seconds, "quality": _quality(report.quality),
+                "scan_points": report.scan_points, "landmarks": report.landmarks, "regions": regions_out}
 
     def vertices(self) -> np.ndarray:
         """(V, 3) the registered template (the model's triangles)."""

@@ -16,8 +16,9 @@ struct ReadOptions {
 // Decodes and fully verifies a file image. Throws ssc::Error; never returns a partial model.
 ModelData read_model(const void* data, std::size_t size, const ReadOptions& options = {});
 
-// Reads a whole file (SSC_ERROR_IO when it cannot) and decodes it.
-ModelData read_model_file(const std::string& path, const ReadOptions& options = {});
+// Reads a whole file (SSC_ERROR_IO when it cannot) and decodes it; digest: NULL, or receives the
+// content_digest (common/files.hpp) of the file's bytes.
+ModelData read_model_file(const std::string& path, const ReadOptions& options = {}, std::string* digest = nullptr);
 
 struct WriteOptions {
     int zstd_level = 19;

@@ -1,0 +1,69 @@
+"""python3 -m sscape.pipeline: scan collections on a Dask cluster from the command line."""
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..errors import SscapeError
+
+
+def _cluster_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--scheduler", metavar="tcp://HOST:8786", help="a running Dask scheduler (default: a local cluster on this machine)")
+    p.add_argument("--workers", type=int, metavar="N", help="processes of the local cluster (default: one per core)")
+    p.add_argument("--units", choices=["m", "cm", "mm"], help="units of the scans and landmark files (default: metres, .lnd millimetres)")
+    p.add_argument("--up", choices=["x", "y", "z", "-x", "-y", "-z"], help="the scans' up axis (default y)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python3 -m sscape.pipeline", description=__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("register", help="register every scan of a folder to the model's template (as sscape register)")
+    r.add_argument("scans", metavar="SCANS_DIR")
+    r.add_argument("-o", "--output", required=True, metavar="OUT_DIR")
+    r.add_argument("--model", metavar="MODEL.sscape", help="default: the built-in model")
+    r.add_argument("--png", action="store_true", help="also draw each scan beside its registration (NAME.png)")
+    _cluster_options(r)
+    b = sub.add_parser("bootstrap", help="learn a model from a folder of scans by rounds (as sscape bootstrap)")
+    b.add_argument("scans", metavar="SCANS_DIR")
+    b.add_argument("-o", "--output", required=True, metavar="OUT_DIR")
+    b.add_argument("--init", metavar="MODEL.sscape", help="the starting model (default: the built-in model)")
+    b.add_argument("--rounds", type=int, default=3)
+    b.add_argument("--components", type=int, default=20)
+    b.add_argument("--posture", choices=["skeleton", "none"], default="skeleton")
+    b.add_argument("--template-only", action="store_true")
+    b.add_argument("--scale", action="store_true")
+    b.add_argument("--segment-components", type=int, default=0)
+    b.add_argument("--decisions", metavar="FILE.csv")
+    b.add_argument("--attributes", metavar="FILE.csv")
+    b.add_argument("--name")
+    b.add_argument("--license")
+    _cluster_options(b)
+    a = parser.parse_args(argv)
+    from . import bootstrap, register_collection
+    try:
+        if a.command == "register":
+            scans = register_collection(a.scans, a.model, a.output, units=a.units, up=a.up, pictures=a.png, scheduler=a.scheduler,
+                                        workers=a.workers, progress=not a.quiet)
+            failed = {n: s for n, s in scans.items() if s["status"] == "failed"}
+            done = sum(s["status"] == "registered" for s in scans.values())
+            print(f"{len(scans)} scans: {done} registered, {len(scans) - done - len(failed)} reused, {len(failed)} failed; "
+                  f"{a.output}/manifest.json")
+            for name, s in failed.items():
+                print(f"failed: {name}: {s['error']}", file=sys.stderr)
+            return 1 if failed else 0
+        rows = bootstrap(a.scans, a.init, a.rounds, a.output, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet,
+                         components=a.components, posture=a.posture, template_only=a.template_only, scale=a.scale,
+                         segment_components=a.segment_components, units=a.units, up=a.up, decisions=a.decisions,
+                         attributes=a.attributes, name=a.name, license=a.license)
+        for row in rows:
+            print(f"round {row['round']}: {row['accepted']} accepted, {row['rejected']} rejected, {row['failed']} failed")
+        print(f"wrote {a.output}/model.sscape")
+        return 0
+    except (SscapeError, OSError, ValueError) as e:
+        print(f"sscape.pipeline {a.command}: {e}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,73 @@
+"""The Dask side shared by the pipeline's commands: a client (the caller's, one for a scheduler
+address, or a LocalCluster on this machine), tasks mapped over scans with their results gathered
+as they finish (a progress bar when tqdm is installed), and the manifest written as they come."""
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import sys
+import tempfile
+from typing import Callable, Iterator, List, Optional
+
+
+@contextlib.contextmanager
+def client_for(client=None, scheduler: Optional[str] = None, workers: Optional[int] = None) -> Iterator[object]:
+    """The given client; else one connected to `scheduler` (tcp://host:8786); else a LocalCluster of
+    `workers` processes (default: one per core) with one thread each, closed at the end."""
+    if client is not None:
+        yield client
+        return
+    from distributed import Client, LocalCluster
+    if scheduler:
+        with Client(scheduler) as c:
+            yield c
+        return
+    n = workers or os.cpu_count() or 1
+    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, Client(cluster) as c:
+        yield c
+
+
+def write_json_atomically(path: str, value) -> None:
+    """The manifest is replaced whole: a reader (or a killed run) never sees half of it."""
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".manifest.", dir=folder)
+    try:
+        with os.fdopen(fd, "w") as f:
+            json.dump(value, f, indent=1)
+            f.write("\n")
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def run_tasks(client, function: Callable, jobs: List[dict], on_result: Callable[[dict], None], label: str, progress: bool) -> None:
+    """Runs function(job) for every job on the cluster; on_result(result) as each finishes. A task
+    whose worker died counts as a failed scan."""
+    from distributed import as_completed
+    futures = client.map(function, jobs, pure=False)
+    by_future = dict(zip(futures, jobs))
+    bar = None
+    if progress:
+        try:
+            from tqdm import tqdm
+            bar = tqdm(total=len(jobs), desc=label, unit="scan", file=sys.stderr)
+        except ImportError:
+            bar = None
+    try:
+        for future in as_completed(futures):
+            job = by_future[future]
+            try:
+                result = future.result()
+            except Exception as e:  # the worker died or the task could not run
+                result = {"name": job["name"], "scan": job["scan"], "mesh": job["mesh"], "status": "failed",
+                          "error": f"{type(e).__name__}: {e}"}
+            on_result(result)
+            if bar is not None:
+                bar.update(1)
+    finally:
+        if bar is not None:
+            bar.close()
+        client.cancel(futures)

@@ -1,0 +1,125 @@
+"""sscape.pipeline on a LocalCluster of 2 worker processes: the same files as the serial command
+line for a handful of simulated scans, a broken scan failing alone, an interrupted run resumed,
+and bootstrapping. Needs libsscape_offline, Debian's python3-distributed and the sscape command
+line (SSCAPE_CLI) that makes the scans and the serial reference."""
+import filecmp
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+import sscape
+from sscape import _native
+
+if not _native.has_offline:
+    pytest.skip(f"{_native.library_path} is the runtime alone (the pipeline needs libsscape_offline)", allow_module_level=True)
+distributed = pytest.importorskip("distributed", reason="python3-distributed is not installed")
+CLI = os.environ.get("SSCAPE_CLI")
+if not CLI:
+    pytest.skip("SSCAPE_CLI (the sscape command line, for the serial reference) is not set", allow_module_level=True)
+
+from sscape import pipeline  # noqa: E402
+
+SCANS = 6
+
+
+def run(*args):
+    done = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return done.stdout
+
+
+@pytest.fixture(scope="module")
+def scans(tmp_path_factory):
+    """Six simulated booth-like scans of posed bodies the model cannot represent exactly (bumps),
+    with landmarks, and a broken file."""
+    folder = tmp_path_factory.mktemp("scans")
+    for seed in range(1, SCANS + 1):
+        run("simulate", "-o", folder / f"p{seed}", "--seed", seed, "--points", 8000, "--pose-amount", 0.2)
+        (folder / f"p{seed}_truth.obj").unlink()
+    (folder / "broken.ply").write_text("ply\nthis is not a scan\n")
+    return folder
+
+
+@pytest.fixture(scope="module")
+def client():
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as c:
+        yield c
+
+
+def without_times(path):
+    report = json.loads(path.read_text())
+    for key in ("seconds", "fit_seconds"):
+        report.pop(key)
+    return report
+
+
+def test_register_collection_equals_the_serial_command_line(scans, client, tmp_path):
+    out = tmp_path / "registered"
+    result = pipeline.register_collection(scans, out_dir=out, client=client, progress=False)
+    assert sorted(result) == ["broken"] + [f"p{i}_scan" for i in range(1, SCANS + 1)]
+    assert result["broken"]["status"] == "failed"
+    assert "not a PLY file" in result["broken"]["error"]
+    assert not (out / "broken.ply").exists()
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert manifest["scans"] == json.loads(json.dumps(result)) and manifest["finished"]
+    assert len({s["pid"] for s in result.values() if "pid" in s}) == 2  # both worker processes worked
+    serial = tmp_path / "serial"
+    serial.mkdir()
+    for i in range(1, SCANS + 1):
+        name = f"p{i}_scan"
+        assert result[name]["status"] == "registered", result[name]
+        run("register", scans / f"{name}.ply", "--landmarks", scans / f"p{i}.lnd", "-o", serial / f"{name}.ply", "--report", serial / f"{name}.json")
+        assert filecmp.cmp(out / f"{name}.ply", serial / f"{name}.ply", shallow=False), name
+        assert without_times(out / f"{name}.json") == without_times(serial / f"{name}.json"), name
+
+
+def test_an_interrupted_run_resumes(scans, client, tmp_path):
+    out = tmp_path / "registered"
+    first = pipeline.register_collection(scans, out_dir=out, client=client, progress=False)
+    kept = {n: (out / f"{n}.ply").read_bytes() for n, s in first.items() if s["status"] == "registered"}
+    # As if stopped after four scans: the last two never written (a report is written after its mesh).
+    for name in ("p5_scan", "p6_scan"):
+        (out / f"{name}.json").unlink()
+        (out / f"{name}.ply").unlink()
+    (out / "p4_scan.json").unlink()  # stopped between a mesh and its report: made again
+    again = pipeline.register_collection(scans, out_dir=out, client=client, progress=False)
+    assert {n for n, s in again.items() if s["status"] == "registered"} == {"p4_scan", "p5_scan", "p6_scan"}
+    assert {n for n, s in again.items() if s["status"] == "reused"} == {"p1_scan", "p2_scan", "p3_scan"}
+    assert again["broken"]["status"] == "failed"
+    for name, data in kept.items():
+        assert (out / f"{name}.ply").read_bytes() == data, name
+
+
+def test_bootstrap_equals_the_serial_command_line(scans, client, tmp_path):
+    out, serial = tmp_path / "bootstrap", tmp_path / "serial"
+    rows = pipeline.bootstrap(str(scans), None, 1, str(out), client=client, components=2, progress=False, log=lambda line: None)
+    assert len(rows) == 1 and int(rows[0]["failed"]) == 1 and int(rows[0]["accepted"]) >= 3
+    run("bootstrap", scans, "-o", serial, "--rounds", 1, "--components", 2)
+    for f in ("model.sscape", "round_0/model.sscape", "round_1/model.sscape", "round_1/decisions.csv", "round_1/contact_sheet_01.png"):
+        assert filecmp.cmp(out / f, serial / f, shallow=False), f
+    for i in range(1, SCANS + 1):
+        f = f"round_1/registrations/p{i}_scan.ply"
+        assert filecmp.cmp(out / f, serial / f, shallow=False), f
+    manifest = json.loads((out / "round_1" / "manifest.json").read_text())
+    assert manifest["scans"]["broken"]["status"] == "failed"
+    learned = sscape.Model.from_file(out / "model.sscape")
+    assert learned.shape_count == 2
+
+
+def test_the_command_line(scans, tmp_path):
+    out = tmp_path / "cli"
+    env = dict(os.environ)
+    done = subprocess.run([sys.executable, "-m", "sscape.pipeline", "register", str(scans), "-o", str(out), "--workers", "2", "--quiet"],
+                          capture_output=True, text=True, env=env)
+    assert done.returncode == 1, done.stdout + done.stderr  # the broken scan
+    assert f"{SCANS + 1} scans: {SCANS} registered, 0 reused, 1 failed" in done.stdout, done.stdout
+    assert "failed: broken:" in done.stderr
+    assert all((out / f"p{i}_scan.ply").exists() for i in range(1, SCANS + 1))
+    bad = subprocess.run([sys.executable, "-m", "sscape.pipeline", "register", str(tmp_path / "none"), "-o", str(out)],
+                         capture_output=True, text=True, env=env)
+    assert bad.returncode == 1 and "cannot list the folder" in bad.stderr, bad.stderr

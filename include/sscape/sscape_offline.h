@@ -1,0 +1,155 @@
+/*
+ * sscape offline tools: scan collections on disk, registered one scan file at a time and learned
+ * into models by bootstrapping (what `sscape register` and `sscape bootstrap` do), for callers that
+ * spread a collection over many processes or machines (the Python package's Dask pipeline).
+ *
+ * These functions live in libsscape_offline.so, which holds the whole C API of sscape.h as well
+ * (one library: handles from it work with every function of both headers). libsscape.so, the
+ * runtime, stays without them: it neither reads scan files nor learns models. Conventions are
+ * sscape.h's. Everything here is SSC_EXPERIMENTAL.
+ *
+ * Files written here are written atomically (a file on disk is complete) and a run that stops
+ * resumes: a registration whose report names the same model, scan, landmarks, units and up axis is
+ * reused rather than made again.
+ */
+#ifndef SSCAPE_SSCAPE_OFFLINE_H
+#define SSCAPE_SSCAPE_OFFLINE_H
+
+#include "sscape/sscape.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Scan files                                                                                      */
+
+/** A folder's scans: every .ply and .obj in it, sorted by name, each with its landmark file NAME.lnd
+ *  beside it (or PREFIX.lnd for the simulator's PREFIX_scan.ply) when there is one. */
+typedef struct ssc_scan_list ssc_scan_list;
+
+/** Lists the folder. @return SSC_ERROR_IO when it cannot be listed; SSC_ERROR_INVALID_ARGUMENT for NULL. */
+SSC_EXPERIMENTAL ssc_status ssc_scan_list_create(const char* folder, ssc_scan_list** out);
+SSC_EXPERIMENTAL void ssc_scan_list_destroy(ssc_scan_list* list);
+SSC_EXPERIMENTAL uint32_t ssc_scan_list_count(const ssc_scan_list* list);
+/** One scan: its name (the file's stem), its path and its landmark file's path ("" when none);
+ *  strings owned by the list. Any output may be NULL. */
+SSC_EXPERIMENTAL ssc_status ssc_scan_list_get(const ssc_scan_list* list, uint32_t index, const char** name, const char** path,
+                                              const char** landmarks);
+
+/** One scan file to register, and where its registration goes. */
+typedef struct ssc_scan_file_job {
+    uint32_t struct_size;        /**< sizeof(ssc_scan_file_job), set by ssc_scan_file_job_init. */
+    const char* scan_path;       /**< PLY or OBJ points or mesh (normals used where given). Required. */
+    const char* landmarks_path;  /**< CAESAR .lnd on the scan, matched to the model's landmarks by name; NULL: none. */
+    const char* units;           /**< "m", "cm" or "mm" for the scan and the .lnd; NULL: metres for the scan,
+                                      millimetres for the .lnd (the format's). */
+    const char* up;              /**< The scan's up axis: "x", "y", "z", "-x", "-y", "-z"; NULL: "y". */
+    const char* mesh_path;       /**< The registered mesh, .ply or .obj, in the scan's frame and units. Required. */
+    uint32_t write_report;       /**< Write the JSON report beside the mesh (its path with .json). Default 1. */
+    uint32_t reuse;              /**< Keep a registration already there when its report names this model, scan,
+                                      landmarks, units and up axis (needs write_report). Default 0. */
+    const char* picture_path;    /**< A PNG of the scan beside the registration, coloured by distance; NULL: none. */
+} ssc_scan_file_job;
+
+/** Fills job with defaults; size = sizeof(*job). Threads: any. */
+SSC_EXPERIMENTAL void ssc_scan_file_job_init(ssc_scan_file_job* job, size_t size);
+
+/**
+ * Reads the scan (and landmarks), registers it with the registration's model and options, and
+ * writes the mesh and report (the format `sscape register` writes and `sscape learn` reads).
+ * @param report      NULL or a report to fill (struct_size set by the caller); from the report on
+ *                    disk when reused.
+ * @param out_reused  NULL, or receives 1 when a current registration was kept (nothing run; the
+ *                    registration then holds no result), else 0.
+ * @return SSC_ERROR_INVALID_ARGUMENT for a bad job, a scan that cannot be read as a body (its
+ *         extent in the given units is not 5 cm to 3 m), or one that cannot be registered;
+ *         SSC_ERROR_IO; SSC_ERROR_CANCELLED (nothing written).
+ * Threads: the registration's thread; the work also uses the worker threads of the model's context.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_registration_run_file(ssc_registration* registration, const ssc_scan_file_job* job,
+                                                      ssc_stage_progress_fn progress, void* user, ssc_registration_report* report,
+                                                      uint32_t* out_reused);
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Bootstrapping: rounds of registration, inspection and learning over a folder of scans          */
+
+typedef enum ssc_posture_normalization {
+    SSC_POSTURE_SKELETON = 0, /**< Each registration unposed by its fitted skeleton before PCA. */
+    SSC_POSTURE_NONE = 1,     /**< PCA of the registrations as they are. */
+    SSC_POSTURE_FORCE32 = 0x7fffffff
+} ssc_posture_normalization;
+
+typedef struct ssc_bootstrap_def {
+    uint32_t struct_size;             /**< sizeof(ssc_bootstrap_def), set by ssc_bootstrap_def_init. */
+    const char* scans_dir;            /**< The scans (as ssc_scan_list_create lists them); at least 3. Required. */
+    const char* out_dir;              /**< round_N/ per round, model.sscape, rounds.csv (docs/learning.md). Required. */
+    const char* init_model_path;      /**< The starting model; NULL: the built-in model. */
+    uint32_t template_only;           /**< Start from its template alone (no shape components). Default 0. */
+    uint32_t components;              /**< Shape components of each learned model, 1..1000. Default 20. */
+    ssc_posture_normalization posture;/**< Default SSC_POSTURE_SKELETON. */
+    uint32_t scale;                   /**< Procrustes alignment with scale. Default 0. */
+    uint32_t segment_components;      /**< Components per body segment shape space, 0..1000. Default 0. */
+    float segment_band;               /**< Metres each side of a segment border, [0.005, 0.5]. Default 0.08. */
+    const char* units;                /**< As ssc_scan_file_job's. */
+    const char* up;                   /**< As ssc_scan_file_job's. */
+    const char* decisions_path;       /**< A person's verdicts (an edited decisions.csv); NULL: none. */
+    const char* attributes_path;      /**< Known per-scan attributes (CSV scan,NAME,...); NULL: none. */
+    const char* name;                 /**< The learned models' name; NULL: "sscape-learned". */
+    const char* license;              /**< Their licence; NULL: unspecified. */
+    uint32_t threads;                 /**< Worker threads of ssc_bootstrap_run, 0..256; 0: all. */
+    uint32_t contact_sheet_entries;   /**< Registrations per contact sheet page, 0..100; 0: none. Default 12. */
+} ssc_bootstrap_def;
+
+typedef struct ssc_bootstrap ssc_bootstrap;
+
+/** Fills def with defaults; size = sizeof(*def). Threads: any. */
+SSC_EXPERIMENTAL void ssc_bootstrap_def_init(ssc_bootstrap_def* def, size_t size);
+
+/**
+ * Reads a bootstrapping's inputs: lists the scans, reads the starting model, the decisions and the
+ * attributes, and checks the settings. Writes nothing.
+ * @param ctx  NULL: a context of its own.
+ * @return SSC_ERROR_INVALID_ARGUMENT for a bad def, fewer than 3 scans, duplicate names, decisions
+ *         naming no scan, an attribute table without a row for a scan, a bad model; SSC_ERROR_IO.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, ssc_bootstrap** out);
+SSC_EXPERIMENTAL void ssc_bootstrap_destroy(ssc_bootstrap* bootstrap);
+
+/** The scans, as ssc_scan_list_get gives them; strings owned by the bootstrap. */
+SSC_EXPERIMENTAL uint32_t ssc_bootstrap_scan_count(const ssc_bootstrap* bootstrap);
+SSC_EXPERIMENTAL ssc_status ssc_bootstrap_get_scan(const ssc_bootstrap* bootstrap, uint32_t index, const char** name,
+                                                   const char** path, const char** landmarks);
+
+/** Writes round 0's starting model (unless the same bytes are there): the first step of a run
+ *  whose registrations are made elsewhere. Threads: one at a time per bootstrap. */
+SSC_EXPERIMENTAL ssc_status ssc_bootstrap_prepare(ssc_bootstrap* bootstrap);
+
+/**
+ * The registration that round `round` (1..100) makes of scan `index`, as ssc_bootstrap_run makes it:
+ * run it with ssc_registration_run_file on a registration of the model at *model_path (round - 1's)
+ * with default options, in any process that sees the same files; ssc_bootstrap_run then reuses it.
+ * Makes the round's registrations folder. Strings are owned by the bootstrap and valid until its
+ * next call. @return SSC_ERROR_IO when the folder cannot be made.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_bootstrap_get_job(ssc_bootstrap* bootstrap, uint32_t round, uint32_t index, ssc_scan_file_job* job,
+                                                  const char** model_path);
+
+/** Called with each line worth telling (a scan registered, a round's summary); non-zero stops. */
+typedef int (*ssc_line_fn)(void* user, const char* line);
+
+/**
+ * Runs (or resumes) rounds 1..rounds (1..100): registers what is not registered yet, inspects
+ * every registration, writes decisions and contact sheets, learns each round's model; then
+ * OUT/model.sscape (the last round's) and OUT/rounds.csv.
+ * @return SSC_ERROR_INVALID_ARGUMENT when a round accepts fewer than 3 registrations (its decisions
+ *         are on disk to be edited); SSC_ERROR_IO; SSC_ERROR_CANCELLED (resumable).
+ * Threads: one at a time per bootstrap.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_bootstrap_run(ssc_bootstrap* bootstrap, uint32_t rounds, ssc_line_fn progress, void* user);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SSCAPE_SSCAPE_OFFLINE_H */

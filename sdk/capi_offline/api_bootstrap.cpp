@@ -1,0 +1,176 @@
+// Bootstrapping a folder of scans (sscape_offline.h): the settings read once into a
+// learning::BootstrapSpec, each round's registrations as file jobs (for callers that run them
+// elsewhere), and the rounds themselves (learning/bootstrap.hpp does the work).
+#include "capi/guard.hpp"
+#include "capi/handles.hpp"
+#include "capi/registration_report.hpp"
+#include "common/files.hpp"
+#include "learning/bootstrap.hpp"
+#include <sscape/sscape_offline.h>
+#include "sscape_format/model_io.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+using namespace ssc;
+using namespace ssc::capi;
+
+struct ssc_bootstrap {
+    learning::BootstrapSpec spec;
+    std::vector<unsigned char> initial_model;  // the starting model file's bytes
+    std::string units, up;                     // as given (the file jobs carry them)
+    std::string job_mesh, job_model;           // the last job's strings
+};
+
+namespace {
+
+std::string optional(const char* s) { return s ? std::string(s) : std::string(); }
+
+std::vector<unsigned char> starting_model(ssc_context* ctx, const ssc_bootstrap_def& d) {
+    std::vector<unsigned char> bytes;
+    if (d.init_model_path) {
+        const std::string s = read_regular_file(d.init_model_path, 1ull << 30);
+        bytes.assign(s.begin(), s.end());
+    } else {  // the built-in model, written out as a model file
+        ssc_model* m = nullptr;
+        const ssc_status status = ssc_model_load_default(ctx, &m);
+        if (status != SSC_OK) fail(status, ssc_last_error());
+        try {
+            bytes = format::write_model(m->model.data());
+        } catch (...) {
+            ssc_model_release(m);
+            throw;
+        }
+        ssc_model_release(m);
+    }
+    if (d.template_only) bytes = format::write_model(learning::template_only(format::read_model(bytes.data(), bytes.size())));
+    else format::read_model(bytes.data(), bytes.size());  // refuses a bad model now
+    return bytes;
+}
+
+}  // namespace
+
+extern "C" {
+
+void ssc_bootstrap_def_init(ssc_bootstrap_def* def, size_t size) {
+    if (!def || size < sizeof(uint32_t)) return;
+    const learning::LearnSpec learn;
+    ssc_bootstrap_def d{};
+    d.struct_size = static_cast<uint32_t>(size < sizeof d ? size : sizeof d);
+    d.components = learn.components;
+    d.posture = SSC_POSTURE_SKELETON;
+    d.segment_components = learn.segment_components;
+    d.segment_band = float(learn.segment_band);
+    d.contact_sheet_entries = 12;
+    std::memcpy(def, &d, d.struct_size);
+}
+
+ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, ssc_bootstrap** out) {
+    return guarded(__func__, [&] {
+        need(out, "out");
+        need(def, "def");
+        const ssc_bootstrap_def d = read_def(def, ssc_bootstrap_def_init, "def");
+        need(d.scans_dir, "def->scans_dir");
+        need(d.out_dir, "def->out_dir");
+        SSC_REQUIRE_ARG_S(d.components >= 1 && d.components <= 1000, "def->components " << d.components << " is not 1..1000");
+        SSC_REQUIRE_ARG_S(d.segment_components <= 1000, "def->segment_components " << d.segment_components << " is not 0..1000");
+        SSC_REQUIRE_ARG_S(std::isfinite(d.segment_band) && d.segment_band >= 0.005f && d.segment_band <= 0.5f,
+                          "def->segment_band " << d.segment_band << " m is not 0.005..0.5");
+        SSC_REQUIRE_ARG_S(d.threads <= 256, "def->threads " << d.threads << " is not 0..256");
+        SSC_REQUIRE_ARG_S(d.contact_sheet_entries <= 100, "def->contact_sheet_entries " << d.contact_sheet_entries << " is not 0..100");
+        const int32_t posture = enum_value(d.posture);
+        SSC_REQUIRE_ARG_S(posture == SSC_POSTURE_SKELETON || posture == SSC_POSTURE_NONE, "def->posture " << posture << " is unknown");
+
+        auto b = std::make_unique<ssc_bootstrap>();
+        learning::BootstrapSpec& spec = b->spec;
+        spec.scans = learning::find_scans(d.scans_dir);
+        SSC_REQUIRE_ARG_S(spec.scans.size() >= 3, d.scans_dir << " holds " << spec.scans.size() << " scans (.ply or .obj); bootstrapping needs at least 3");
+        spec.out_dir = d.out_dir;
+        spec.threads = d.threads;
+        ssc_registration_def registration;  // the defaults, as a file job's registration has them
+        ssc_registration_def_init(&registration, sizeof registration);
+        spec.registration = registration_options(registration);
+        b->units = optional(d.units);
+        b->up = optional(d.up);
+        spec.reading = learning::scan_reading(b->units, b->up);
+        spec.learn.components = d.components;
+        spec.learn.posture = posture == SSC_POSTURE_SKELETON ? learning::Posture::Skeleton : learning::Posture::None;
+        spec.learn.scale = d.scale != 0;
+        spec.learn.segment_components = d.segment_components;
+        spec.learn.segment_band = d.segment_band;
+        if (d.name) spec.learn.name = d.name;
+        if (d.license) spec.learn.license = d.license;
+        spec.sheet_entries = int(d.contact_sheet_entries);
+        if (d.decisions_path) spec.decisions = learning::read_decisions(d.decisions_path);
+        if (d.attributes_path) spec.attributes = learning::read_attribute_table(d.attributes_path);
+        b->initial_model = starting_model(ctx, d);
+        *out = b.release();
+    });
+}
+
+void ssc_bootstrap_destroy(ssc_bootstrap* bootstrap) { delete bootstrap; }
+
+uint32_t ssc_bootstrap_scan_count(const ssc_bootstrap* bootstrap) { return bootstrap ? uint32_t(bootstrap->spec.scans.size()) : 0; }
+
+ssc_status ssc_bootstrap_get_scan(const ssc_bootstrap* bootstrap, uint32_t index, const char** name, const char** path, const char** landmarks) {
+    return guarded(__func__, [&] {
+        need(bootstrap, "bootstrap");
+        const auto& scans = bootstrap->spec.scans;
+        SSC_REQUIRE_ARG_S(index < scans.size(), "index " << index << " is beyond the " << scans.size() << " scans");
+        if (name) *name = scans[index].name.c_str();
+        if (path) *path = scans[index].path.c_str();
+        if (landmarks) *landmarks = scans[index].landmarks.c_str();
+    });
+}
+
+ssc_status ssc_bootstrap_prepare(ssc_bootstrap* bootstrap) {
+    return guarded(__func__, [&] {
+        need(bootstrap, "bootstrap");
+        learning::prepare_bootstrap(bootstrap->initial_model, bootstrap->spec);
+    });
+}
+
+ssc_status ssc_bootstrap_get_job(ssc_bootstrap* bootstrap, uint32_t round, uint32_t index, ssc_scan_file_job* job, const char** model_path) {
+    return guarded(__func__, [&] {
+        need(bootstrap, "bootstrap");
+        need(job, "job");
+        SSC_REQUIRE_ARG(job->struct_size >= sizeof(uint32_t) && job->struct_size <= sizeof(ssc_scan_file_job),
+                        "job->struct_size must be set (ssc_scan_file_job_init)");
+        SSC_REQUIRE_ARG_S(round >= 1 && round <= 100, "round " << round << " is not 1..100");
+        const auto& scans = bootstrap->spec.scans;
+        SSC_REQUIRE_ARG_S(index < scans.size(), "index " << index << " is beyond the " << scans.size() << " scans");
+        const learning::ScanFileJob w = learning::round_registration_job(bootstrap->spec, round, scans[index]);
+        std::error_code ec;  // the round's folder, for the job to write into
+        std::filesystem::create_directories(std::filesystem::path(w.mesh_path).parent_path(), ec);
+        if (ec) fail(SSC_ERROR_IO, "cannot make the folder of " + w.mesh_path + ": " + ec.message());
+        bootstrap->job_mesh = w.mesh_path;
+        bootstrap->job_model = learning::round_model_path(bootstrap->spec.out_dir, round - 1);
+        ssc_scan_file_job j;
+        ssc_scan_file_job_init(&j, sizeof j);
+        j.scan_path = scans[index].path.c_str();
+        j.landmarks_path = scans[index].landmarks.empty() ? nullptr : scans[index].landmarks.c_str();
+        j.units = bootstrap->units.empty() ? nullptr : bootstrap->units.c_str();
+        j.up = bootstrap->up.empty() ? nullptr : bootstrap->up.c_str();
+        j.mesh_path = bootstrap->job_mesh.c_str();
+        j.write_report = w.write_report ? 1 : 0;
+        j.reuse = w.reuse ? 1 : 0;
+        const uint32_t size = job->struct_size;
+        std::memcpy(job, &j, size);
+        job->struct_size = size;
+        if (model_path) *model_path = bootstrap->job_model.c_str();
+    });
+}
+
+ssc_status ssc_bootstrap_run(ssc_bootstrap* bootstrap, uint32_t rounds, ssc_line_fn progress, void* user) {
+    return guarded(__func__, [&] {
+        need(bootstrap, "bootstrap");
+        SSC_REQUIRE_ARG_S(rounds >= 1 && rounds <= 100, "rounds " << rounds << " is not 1..100");
+        learning::BootstrapSpec spec = bootstrap->spec;
+        spec.rounds = rounds;
+        learning::BootstrapProgress say;
+        if (progress) say = [&](const std::string& line) { return progress(user, line.c_str()) == 0; };
+        learning::bootstrap(bootstrap->initial_model, spec, say);
+    });
+}
+
+}  // extern "C"

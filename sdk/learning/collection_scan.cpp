@@ -1,0 +1,184 @@
+#include "learning/collection_scan.hpp"
+
+#include "common/error.hpp"
+#include "common/files.hpp"
+#include "common/rigid.hpp"
+#include "io/readers.hpp"
+#include "render/registration_picture.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <unordered_map>
+
+namespace ssc::learning {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* units_name(double to_metres) { return to_metres == 1 ? "m" : to_metres == 1e-2 ? "cm" : to_metres == 1e-3 ? "mm" : "its units"; }
+
+// Refuses points that, read in these units, span no body: the usual mistake is millimetres read as
+// metres. The message names the units that would fit.
+void check_body_size(const std::string& path, const std::vector<Eigen::Vector3d>& metres, double to_metres, bool given) {
+    constexpr double kSmallest = 0.05, kLargest = 3.0;  // a hand or a face scan .. a tall person with arms raised
+    if (metres.size() < 2) return;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+    for (const auto& p : metres) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    const double span = (hi - lo).maxCoeff();
+    if (span >= kSmallest && span <= kLargest) return;
+    std::string message = path + ": read in " + units_name(to_metres) + (given ? " (as given)" : " (the default for this kind of file)") +
+                          " it spans " + std::to_string(span) + " m, but a body or body part spans " + std::to_string(kSmallest) + " to " +
+                          std::to_string(kLargest) + " m";
+    std::string hint = "; give its units (m, cm or mm)";
+    for (const std::string u : {"m", "cm", "mm"}) {
+        const double other = span * units_to_metres(u) / to_metres;
+        if (units_to_metres(u) != to_metres && other >= 0.3 && other <= 2.6) hint = "; in " + u + " it would span " + std::to_string(other) + " m";
+    }
+    throw Error(SSC_ERROR_INVALID_ARGUMENT, message + hint);
+}
+
+}  // namespace
+
+double units_to_metres(const std::string& u) {
+    if (u == "m") return 1.0;
+    if (u == "cm") return 1e-2;
+    if (u == "mm") return 1e-3;
+    throw Error(SSC_ERROR_INVALID_ARGUMENT, "units '" + u + "' are none of m, cm, mm");
+}
+
+ScanReading scan_reading(const std::string& units, const std::string& up) {
+    ScanReading r;
+    if (!units.empty()) r.scan_units_to_metres = r.lnd_units_to_metres = units_to_metres(units), r.units_given = true;
+    if (!up.empty()) {
+        const std::vector<std::string> axes = {"x", "y", "z", "-x", "-y", "-z"};
+        SSC_REQUIRE_ARG(std::find(axes.begin(), axes.end(), up) != axes.end(), "the up axis '" + up + "' is none of x, y, z, -x, -y, -z");
+        r.up = up;
+    }
+    return r;
+}
+
+std::vector<ScanInput> find_scans(const std::string& folder) {
+    std::vector<ScanInput> out;
+    std::error_code ec;
+    fs::directory_iterator it(folder, ec);
+    if (ec) throw Error(SSC_ERROR_IO, folder + ": cannot list the folder: " + ec.message());
+    for (const auto& entry : it) {
+        if (!entry.is_regular_file()) continue;
+        std::string ext = entry.path().extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        if (ext != ".ply" && ext != ".obj") continue;
+        ScanInput s;
+        s.name = entry.path().stem().string();
+        s.path = entry.path().string();
+        fs::path lnd = entry.path();
+        lnd.replace_extension(".lnd");
+        const std::string suffix = "_scan";
+        if (!fs::exists(lnd) && s.name.size() > suffix.size() && s.name.compare(s.name.size() - suffix.size(), suffix.size(), suffix) == 0)
+            lnd = entry.path().parent_path() / (s.name.substr(0, s.name.size() - suffix.size()) + ".lnd");
+        if (fs::exists(lnd)) s.landmarks = lnd.string();
+        out.push_back(s);
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+    return out;
+}
+
+registration::Scan load_scan(const ScanInput& in, const Model& model, const ScanReading& reading, std::vector<std::string>* ignored) {
+    registration::Scan scan;
+    const Eigen::Matrix3d R = up_axis_rotation(reading.up);
+    const io::PointFile pf = io::read_points(in.path);
+    for (const auto& p : pf.points) scan.cloud.points.push_back(R * (p * reading.scan_units_to_metres));
+    for (const auto& n : pf.normals) scan.cloud.normals.push_back(R * n);
+    check_body_size(in.path, scan.cloud.points, reading.scan_units_to_metres, reading.units_given);
+    if (!in.landmarks.empty()) {
+        std::unordered_map<std::string, uint32_t> by_name;
+        const auto& marks = model.data().landmarks;
+        for (uint32_t l = 0; l < marks.size(); ++l) by_name[io::normalized_landmark_name(marks[l].name)] = l;
+        std::vector<Eigen::Vector3d> positions;
+        for (const auto& r : io::read_lnd(in.landmarks)) {  // read_lnd: the file's numbers / 1000
+            const auto it = by_name.find(io::normalized_landmark_name(r.name));
+            if (it == by_name.end()) {
+                if (ignored) ignored->push_back(r.name);
+                continue;
+            }
+            positions.push_back(R * (r.position * (reading.lnd_units_to_metres * 1e3)));
+            scan.landmarks.push_back({it->second, positions.back(), 1.0});
+        }
+        check_body_size(in.landmarks, positions, reading.lnd_units_to_metres, reading.units_given);
+    }
+    return scan;
+}
+
+std::string scan_digest(const ScanInput& in) {
+    std::string bytes = read_regular_file(in.path, 4ull << 30);
+    if (!in.landmarks.empty()) bytes += read_regular_file(in.landmarks, 64ull << 20);
+    return file_digest(bytes);
+}
+
+ScanFileResult register_scan_file(registration::Registrar& registrar, const std::string& model_digest, const ScanFileJob& job,
+                                  const registration::RegistrationProgress& progress, ThreadPool* pool) {
+    const Model& model = registrar.model();
+    const ScanReading& reading = job.reading;
+    ScanFileResult out;
+    std::string digest;
+    try {
+        digest = scan_digest(job.scan);
+    } catch (const Error& e) {  // an unreadable scan fails alone in a collection
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, e.what());
+    }
+    if (job.reuse && job.write_report && fs::exists(record_report_path(job.mesh_path))) {
+        try {
+            RegistrationRecord old = read_registration_record(job.mesh_path, model, false);
+            if (old.model_digest == model_digest && old.scan_digest == digest && old.scan_units_to_metres == reading.scan_units_to_metres &&
+                old.scan_up == reading.up) {
+                out.record = std::move(old);
+                out.reused = true;
+                registrar.forget_result();  // its result is not this job's
+                return out;
+            }
+        } catch (const Error&) {
+            // unreadable or from another model: made again below
+        }
+    }
+    registration::Scan scan;
+    try {
+        scan = load_scan(job.scan, model, reading, &out.ignored_landmarks);
+    } catch (const Error& e) {  // an unreadable or hostile scan fails alone
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, e.what());
+    }
+    out.points = scan.cloud.points.size();
+    out.landmarks = scan.landmarks.size();
+    std::vector<Eigen::Vector3d> points = job.picture_path.empty() ? std::vector<Eigen::Vector3d>() : scan.cloud.points;
+    registrar.set_scan(std::move(scan.cloud), std::move(scan.triangles));
+    registrar.set_landmarks(std::move(scan.landmarks));
+    const registration::Registration& r = registrar.run(progress, pool);
+
+    RegistrationRecord& rec = out.record;
+    rec.scan = job.scan.path;
+    rec.scan_units_to_metres = reading.scan_units_to_metres;
+    rec.scan_up = reading.up;
+    rec.seconds = r.report.seconds;
+    rec.fit_seconds = r.report.fit_seconds;
+    rec.rounds = r.report.rounds;
+    rec.solves = r.report.solves;
+    rec.valid = r.valid;
+    rec.registered.name = job.mesh_path;
+    rec.registered.vertices = r.vertices;
+    if (!r.fit.frames.empty()) rec.registered.fit = r.fit.frames[0], rec.registered.has_fit = true;
+    rec.quality = r.report.quality;
+    rec.model_digest = model_digest;
+    rec.scan_digest = digest;
+    out.rounds = r.report.rounds;
+    out.solves = r.report.solves;
+    write_registration_record(job.mesh_path, model, rec, job.write_report);
+    if (!job.picture_path.empty()) {
+        const render::PictureFrame frame = rec.registered.has_fit ? render::fit_picture_frame(model, rec.registered.fit) : render::PictureFrame();
+        render::write_registration_picture(job.picture_path, model, frame, points, rec.registered.vertices, rec.quality.vertex_distance);
+    }
+    // What is on disk from here on (floats in the scan's frame, distances to 0.01 mm): a run that
+    // goes on from this record and one that resumes from the files then learn the same model.
+    if (job.write_report) out.record = read_registration_record(job.mesh_path, model, false);
+    return out;
+}
+
+}  // namespace ssc::learning
