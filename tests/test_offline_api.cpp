@@ -173,6 +173,26 @@ TEST_CASE("a scan file is registered into its record, reused while current, and 
     CHECK(ssc_registration_run_file(reg, &job, stop, nullptr, &again, &reused) == SSC_ERROR_CANCELLED);
     CHECK(!fs::exists(mesh));
     CHECK(!fs::exists(dir + "/out.json"));
+    // A scan that cannot be registered: with reuse, its failure is kept and repeated at once, until
+    // the scan changes.
+    const std::string broken = dir + "/broken.ply", broken_mesh = dir + "/broken_out.ply";
+    std::ofstream(broken) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n";
+    ssc_scan_file_job bad = job;
+    bad.scan_path = broken.c_str();
+    bad.mesh_path = broken_mesh.c_str();
+    bad.reuse = 1;
+    CHECK(ssc_registration_run_file(reg, &bad, nullptr, nullptr, &again, &reused) == SSC_ERROR_INVALID_ARGUMENT);
+    const std::string reason = last_error();
+    CHECK(fs::exists(dir + "/broken_out.failed.json"));
+    CHECK(!fs::exists(broken_mesh));
+    CHECK(ssc_registration_run_file(reg, &bad, nullptr, nullptr, &again, &reused) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(last_error() == reason);
+    fs::copy_file(scan, broken, fs::copy_options::overwrite_existing);  // mended
+    REQUIRE(ssc_registration_run_file(reg, &bad, nullptr, nullptr, &again, &reused) == SSC_OK);
+    CHECK(reused == 0);
+    CHECK(!fs::exists(dir + "/broken_out.failed.json"));
+    CHECK(fs::exists(broken_mesh));
+
     ssc_registration_destroy(reg_other);
     ssc_model_release(other);
     ssc_registration_destroy(reg_same);

@@ -48,7 +48,9 @@ typedef struct ssc_scan_file_job {
     const char* mesh_path;       /**< The registered mesh, .ply or .obj, in the scan's frame and units. Required. */
     uint32_t write_report;       /**< Write the JSON report beside the mesh (its path with .json). Default 1. */
     uint32_t reuse;              /**< Keep a registration already there when its report names this model, scan,
-                                      landmarks, units and up axis (needs write_report). Default 0. */
+                                      landmarks, units and up axis (needs write_report); a scan that could not
+                                      be registered with them before (NAME.failed.json beside the mesh) fails
+                                      again at once with the same reason. Default 0. */
     const char* picture_path;    /**< A PNG of the scan beside the registration, coloured by distance; NULL: none. */
 } ssc_scan_file_job;
 

@@ -6,6 +6,8 @@
 #include "io/readers.hpp"
 #include "render/registration_picture.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <filesystem>
 #include <unordered_map>
@@ -140,18 +142,46 @@ ScanFileResult register_scan_file(registration::Registrar& registrar, const std:
             // unreadable or from another model: made again below
         }
     }
-    registration::Scan scan;
-    try {
-        scan = load_scan(job.scan, model, reading, &out.ignored_landmarks);
-    } catch (const Error& e) {  // an unreadable or hostile scan fails alone
-        throw Error(SSC_ERROR_INVALID_ARGUMENT, e.what());
+    // A scan that failed with this model before fails again at once, with the same reason: a
+    // resumed or distributed run does not pay for it twice.
+    const std::string failure_path = fs::path(job.mesh_path).replace_extension(".failed.json").string();
+    const bool memo = job.reuse && job.write_report;
+    const nlohmann::json key{{"model_digest", model_digest}, {"scan_digest", digest}, {"scan_units_to_metres", reading.scan_units_to_metres},
+                             {"scan_up", reading.up}};
+    if (memo && fs::exists(failure_path)) {
+        std::string reason;
+        try {
+            const nlohmann::json old = nlohmann::json::parse(read_regular_file(failure_path, 1u << 20));
+            if (old.at("key") == key) reason = old.at("error").get<std::string>();
+        } catch (const std::exception&) {
+            reason.clear();  // unreadable: registered again
+        }
+        if (!reason.empty()) throw Error(SSC_ERROR_INVALID_ARGUMENT, reason);
     }
-    out.points = scan.cloud.points.size();
-    out.landmarks = scan.landmarks.size();
-    std::vector<Eigen::Vector3d> points = job.picture_path.empty() ? std::vector<Eigen::Vector3d>() : scan.cloud.points;
-    registrar.set_scan(std::move(scan.cloud), std::move(scan.triangles));
-    registrar.set_landmarks(std::move(scan.landmarks));
-    const registration::Registration& r = registrar.run(progress, pool);
+    std::vector<Eigen::Vector3d> points;
+    const registration::Registration* result = nullptr;
+    try {
+        registration::Scan scan;
+        try {
+            scan = load_scan(job.scan, model, reading, &out.ignored_landmarks);
+        } catch (const Error& e) {  // an unreadable or hostile scan fails alone
+            throw Error(SSC_ERROR_INVALID_ARGUMENT, e.what());
+        }
+        out.points = scan.cloud.points.size();
+        out.landmarks = scan.landmarks.size();
+        if (!job.picture_path.empty()) points = scan.cloud.points;
+        registrar.set_scan(std::move(scan.cloud), std::move(scan.triangles));
+        registrar.set_landmarks(std::move(scan.landmarks));
+        result = &registrar.run(progress, pool);
+    } catch (const Error& e) {
+        if (memo && e.status() == SSC_ERROR_INVALID_ARGUMENT) {
+            const std::string text = nlohmann::json{{"key", key}, {"error", e.what()}}.dump(1) + "\n";
+            write_file_atomically(failure_path, text.data(), text.size());
+        }
+        throw;
+    }
+    if (memo && fs::exists(failure_path)) fs::remove(failure_path);
+    const registration::Registration& r = *result;
 
     RegistrationRecord& rec = out.record;
     rec.scan = job.scan.path;

@@ -71,7 +71,8 @@ struct ScanFileResult {
 
 // Registers the scan with the registrar's model (model_digest: its file's digest, recorded for
 // reuse) and writes the record atomically; with job.reuse, first returns a current record already
-// on disk without registering. The registrar keeps the result (not when reused). Throws
+// on disk without registering, and a scan that could not be registered with this model before
+// (NAME.failed.json beside the mesh) fails again at once with the same reason. The registrar keeps the result (not when reused). Throws
 // ssc::Error: INVALID_ARGUMENT for a scan that cannot be read as a body or registered, IO,
 // CANCELLED (nothing written).
 ScanFileResult register_scan_file(registration::Registrar& registrar, const std::string& model_digest, const ScanFileJob& job,
