@@ -76,15 +76,6 @@ struct Handles {
 // Loads MODEL, or the default model compiled into the library when path is empty.
 ssc_model* load_model(const std::string& path);
 
-// Metres per unit of measurement files' --units: m, cm, mm (0 for anything else).
-double units_to_metres(const std::string& units);
-
-// Refuses (std::runtime_error) an input that, read in the units assumed for it, cannot be a body or
-// part of one: a millimetre scan read as metres spans kilometres, a metre landmark file read as
-// millimetres spans millimetres. Says which units were assumed (given: by --units) and which would
-// give a body's size. Returns the span, metres.
-double check_body_size(const std::string& path, const std::vector<Eigen::Vector3d>& metres, const std::string& units, bool given);
-
 // path with suffix inserted before its extension: ("out/fit.obj", "_frame1") -> "out/fit_frame1.obj".
 std::string with_suffix(const std::string& path, const std::string& suffix);
 

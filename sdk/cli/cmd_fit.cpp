@@ -9,6 +9,7 @@
 #include "export/mesh_writers.hpp"
 #include "fitting/depth_image.hpp"
 #include "io/readers.hpp"
+#include "io/units.hpp"
 #include "render/fit_picture.hpp"
 
 #include <nlohmann/json.hpp>
@@ -36,7 +37,7 @@ void finish(Options& o) {
         o.intrinsics = parse_floats(o.intrinsics_text, "--intrinsics");
         if (o.intrinsics.size() != 4) throw UsageError("--intrinsics needs FX,FY,CX,CY (pixels)");
     }
-    if (!o.units.empty()) o.units_scale = units_to_metres(o.units);
+    if (!o.units.empty()) o.units_scale = io::units_to_metres(o.units);
     if (o.landmarks.empty() && o.points.empty() && o.depth.empty())
         throw UsageError("fit needs --landmarks FILE.lnd, --points FILE.ply|.obj and/or --depth FILE.pgm");
     exporters::format_of(o.out);  // refuses other extensions, naming the formats
@@ -94,7 +95,7 @@ int run_fit(Options o) {
             metres.emplace_back(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
         }
         if (frame == 0) shown.insert(shown.end(), metres.begin(), metres.end());
-        const double span = check_body_size(path, metres, units, !o.units.empty());
+        const double span = io::checked_body_span(path, metres, o.units.empty() ? 1e-3 : o.units_scale, !o.units.empty(), "--units");
         check(ssc_fitter_add_landmarks(guard.fitter, frame, indices.data(), positions.data(), nullptr, uint32_t(indices.size())), path);
         std::printf("%s: %zu landmarks in %s%s, spanning %.2f m (%u hand landmarks left out; --hands uses them)\n", path.c_str(),
                     indices.size(), units.c_str(), o.units.empty() ? " (the .lnd convention; --units sets it)" : "", span, skipped_hands);
@@ -105,7 +106,7 @@ int run_fit(Options o) {
         const std::string units = o.units.empty() ? "m" : o.units;
         std::vector<Eigen::Vector3d> metres;
         for (const auto& p : pf.points) metres.push_back(p * o.units_scale);
-        const double span = check_body_size(path, metres, units, !o.units.empty());
+        const double span = io::checked_body_span(path, metres, o.units_scale, !o.units.empty(), "--units");
         std::vector<float> pts, nrm;
         for (const auto& p : metres) {
             for (int a = 0; a < 3; ++a) pts.push_back(float(p[a]));

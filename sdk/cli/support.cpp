@@ -113,23 +113,4 @@ ssc_model* load_model(const std::string& path) {
     return model;
 }
 
-double units_to_metres(const std::string& u) { return u == "m" ? 1.0 : u == "cm" ? 1e-2 : u == "mm" ? 1e-3 : 0.0; }
-
-double check_body_size(const std::string& path, const std::vector<Eigen::Vector3d>& metres, const std::string& units, bool given) {
-    constexpr double kSmallest = 0.05, kLargest = 3.0;  // a hand or a face scan .. a tall person with arms raised
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-    for (const auto& p : metres) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    const double span = metres.size() > 1 ? (hi - lo).maxCoeff() : 0.0;
-    if (metres.size() < 2 || (span >= kSmallest && span <= kLargest)) return span;
-    std::string message = path + ": read in " + units + (given ? " (--units)" : " (the default for this kind of file)") + " it spans " +
-                          std::to_string(span) + " m, but a body or body part spans " + std::to_string(kSmallest) + " to " +
-                          std::to_string(kLargest) + " m";
-    std::string hint = "; give its units with --units m|cm|mm";
-    for (const std::string u : {"m", "cm", "mm"}) {
-        const double other = span * units_to_metres(u) / units_to_metres(units);
-        if (u != units && other >= 0.3 && other <= 2.6) hint = "; with --units " + u + " it would span " + std::to_string(other) + " m";
-    }
-    throw std::runtime_error(message + hint);
-}
-
 }  // namespace ssc::cli

@@ -4,6 +4,7 @@
 #include "common/files.hpp"
 #include "common/rigid.hpp"
 #include "io/readers.hpp"
+#include "io/units.hpp"
 #include "render/registration_picture.hpp"
 
 #include <nlohmann/json.hpp>
@@ -16,42 +17,9 @@ namespace ssc::learning {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-const char* units_name(double to_metres) { return to_metres == 1 ? "m" : to_metres == 1e-2 ? "cm" : to_metres == 1e-3 ? "mm" : "its units"; }
-
-// Refuses points that, read in these units, span no body: the usual mistake is millimetres read as
-// metres. The message names the units that would fit.
-void check_body_size(const std::string& path, const std::vector<Eigen::Vector3d>& metres, double to_metres, bool given) {
-    constexpr double kSmallest = 0.05, kLargest = 3.0;  // a hand or a face scan .. a tall person with arms raised
-    if (metres.size() < 2) return;
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-    for (const auto& p : metres) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    const double span = (hi - lo).maxCoeff();
-    if (span >= kSmallest && span <= kLargest) return;
-    std::string message = path + ": read in " + units_name(to_metres) + (given ? " (as given)" : " (the default for this kind of file)") +
-                          " it spans " + std::to_string(span) + " m, but a body or body part spans " + std::to_string(kSmallest) + " to " +
-                          std::to_string(kLargest) + " m";
-    std::string hint = "; give its units (m, cm or mm)";
-    for (const std::string u : {"m", "cm", "mm"}) {
-        const double other = span * units_to_metres(u) / to_metres;
-        if (units_to_metres(u) != to_metres && other >= 0.3 && other <= 2.6) hint = "; in " + u + " it would span " + std::to_string(other) + " m";
-    }
-    throw Error(SSC_ERROR_INVALID_ARGUMENT, message + hint);
-}
-
-}  // namespace
-
-double units_to_metres(const std::string& u) {
-    if (u == "m") return 1.0;
-    if (u == "cm") return 1e-2;
-    if (u == "mm") return 1e-3;
-    throw Error(SSC_ERROR_INVALID_ARGUMENT, "units '" + u + "' are none of m, cm, mm");
-}
-
 ScanReading scan_reading(const std::string& units, const std::string& up) {
     ScanReading r;
-    if (!units.empty()) r.scan_units_to_metres = r.lnd_units_to_metres = units_to_metres(units), r.units_given = true;
+    if (!units.empty()) r.scan_units_to_metres = r.lnd_units_to_metres = io::units_to_metres(units), r.units_given = true;
     if (!up.empty()) {
         const std::vector<std::string> axes = {"x", "y", "z", "-x", "-y", "-z"};
         SSC_REQUIRE_ARG(std::find(axes.begin(), axes.end(), up) != axes.end(), "the up axis '" + up + "' is none of x, y, z, -x, -y, -z");
@@ -91,7 +59,7 @@ registration::Scan load_scan(const ScanInput& in, const Model& model, const Scan
     const io::PointFile pf = io::read_points(in.path);
     for (const auto& p : pf.points) scan.cloud.points.push_back(R * (p * reading.scan_units_to_metres));
     for (const auto& n : pf.normals) scan.cloud.normals.push_back(R * n);
-    check_body_size(in.path, scan.cloud.points, reading.scan_units_to_metres, reading.units_given);
+    io::checked_body_span(in.path, scan.cloud.points, reading.scan_units_to_metres, reading.units_given);
     if (!in.landmarks.empty()) {
         std::unordered_map<std::string, uint32_t> by_name;
         const auto& marks = model.data().landmarks;
@@ -106,7 +74,7 @@ registration::Scan load_scan(const ScanInput& in, const Model& model, const Scan
             positions.push_back(R * (r.position * (reading.lnd_units_to_metres * 1e3)));
             scan.landmarks.push_back({it->second, positions.back(), 1.0});
         }
-        check_body_size(in.landmarks, positions, reading.lnd_units_to_metres, reading.units_given);
+        io::checked_body_span(in.landmarks, positions, reading.lnd_units_to_metres, reading.units_given);
     }
     return scan;
 }

@@ -31,8 +31,6 @@ struct ScanReading {
     bool units_given = false;           // for messages: the units were chosen, not defaulted
 };
 
-// "m", "cm", "mm" in metres; INVALID_ARGUMENT for anything else.
-double units_to_metres(const std::string& units);
 // A reading with both files in `units` (empty: the defaults) and the given up axis (empty: y).
 // INVALID_ARGUMENT for unknown units or axes.
 ScanReading scan_reading(const std::string& units, const std::string& up);
