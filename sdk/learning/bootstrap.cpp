@@ -3,7 +3,6 @@
 #include "common/error.hpp"
 #include "common/files.hpp"
 #include "common/rigid.hpp"
-#include "io/readers.hpp"
 #include "learning/scan_tables.hpp"
 #include "registration/registrar.hpp"
 #include "runtime/runtime_model.hpp"
@@ -18,7 +17,6 @@
 #include <filesystem>
 #include <set>
 #include <sstream>
-#include <unordered_map>
 
 namespace ssc::learning {
 
@@ -129,8 +127,9 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         fs::create_directories(dir + "/registrations");
         const std::vector<unsigned char> model_bytes = read_bytes(previous);
         const std::string digest = model_digest(model_bytes);
-        // Made as the C API makes it (a runtime model, the C heap), so that registrations made here
-        // and by ssc_registration_run_file elsewhere are the same to the bit.
+        // Loaded as the C API loads a model (a runtime model, its anatomy shared). With the C API's
+        // registration options (ssc_bootstrap_create sets them) a registration made here is the one
+        // ssc_registration_run_file makes elsewhere, to the bit.
         const Allocator heap;
         const RuntimeModel runtime(format::read_model(model_bytes.data(), model_bytes.size()), &heap);
         const Model& model = runtime.model();

@@ -40,7 +40,7 @@ struct BootstrapSpec {
     std::string out_dir;
     uint32_t rounds = 3;
     ScanReading reading;              // the scans' and landmark files' units, the axis that is up
-    registration::RegistrationOptions registration;
+    registration::RegistrationOptions registration;  // ssc_bootstrap_create: the C API's defaults (floats)
     AcceptanceRules rules;
     LearnSpec learn;                  // components (capped at accepted - 1), posture, name, licence
     AttributeTable attributes;        // known per-scan attributes (optional; every scan needs a row)
