@@ -12,7 +12,9 @@ from ..errors import SscapeError
 from ..model import Context, Model
 from ..registration import Registration
 
-# Per process: (model path or "", file size, mtime, context threads) -> Model; per thread: its registrations.
+# Per process: (model path or "", file size, mtime, context threads) -> Model, the few used last (a
+# bootstrapping moves on to each round's model); per thread: a registration of the model used last.
+_KEEP_MODELS = 2
 _models: Dict[Tuple, Model] = {}
 _models_lock = threading.Lock()
 _local = threading.local()
@@ -29,24 +31,25 @@ def model_for(path: Optional[str], threads: int = 1) -> Model:
     """The model at path (None: the built-in one), loaded once per worker process."""
     key = _model_key(path, threads)
     with _models_lock:
-        model = _models.get(key)
+        model = _models.pop(key, None)
         if model is None:
             context = Context(worker_count=threads)
             model = Model.from_file(path, context=context) if path else Model(context=context)
-            _models[key] = model
+        _models[key] = model  # most recently used last
+        while len(_models) > _KEEP_MODELS:
+            _models.pop(next(iter(_models)))
         return model
 
 
 def registration_for(path: Optional[str], threads: int = 1) -> Registration:
     """This thread's registration of the model at path (default options, as the CLI's)."""
     key = _model_key(path, threads)
-    cache = getattr(_local, "registrations", None)
-    if cache is None:
-        cache = _local.registrations = {}
-    reg = cache.get(key)
-    if reg is None:
-        reg = cache[key] = Registration(model_for(path, threads))
-    return reg
+    last = getattr(_local, "registration", None)
+    if last is None or last[0] != key:
+        _local.registration = (key, Registration(model_for(path, threads)))
+    else:
+        model_for(path, threads)  # keeps the model recently used
+    return _local.registration[1]
 
 
 def register_job(job: dict) -> dict:
