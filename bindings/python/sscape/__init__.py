@@ -11,7 +11,7 @@
 Errors raise sscape.SscapeError with the library's status and message.
 """
 from ._native import ABI_MAJOR, lib, library_path
-from .body import Body, measurement_names
+from .body import Body, measurement_names, quaternion_from_axis_angle
 from .errors import SscapeError
 from .fitter import Fitter
 from .model import Context, Model, Segment, Slider, named_poses
@@ -27,4 +27,4 @@ def library_version() -> str:
 
 
 __all__ = ["ABI_MAJOR", "Body", "Context", "named_poses", "Fitter", "Model", "Registration", "Segment", "Slider", "SscapeError", "library_path", "library_version",
-           "measurement_names", "__version__"]
+           "measurement_names", "quaternion_from_axis_angle", "__version__"]

@@ -69,6 +69,8 @@ class RegistrationReport(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("rounds", c_uint32), ("solves", c_uint32), ("valid_vertices", c_uint32),
                 ("seconds", c_float), ("fit_seconds", c_float), ("quality", RegistrationQuality), ("scan_points", c_uint32),
                 ("landmarks", c_uint32)]
+class JointLimit(ctypes.Structure):
+    _fields_ = [("limited", c_uint32), ("frame", c_float * 9), ("lower", c_float * 3), ("upper", c_float * 3)]
 # sscape_offline.h
 class ScanFileJob(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("scan_path", c_char_p), ("landmarks_path", c_char_p), ("units", c_char_p), ("up", c_char_p),
@@ -186,6 +188,12 @@ _DECLARATIONS = {
     "ssc_model_get_segment_info": (_STATUS, [_MODEL, c_uint32, POINTER(SegmentInfo)]),
     "ssc_body_set_segment_shape": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32]),
     "ssc_body_get_segment_shape": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32]),
+    "ssc_model_get_joint_limit": (_STATUS, [_MODEL, c_uint32, POINTER(JointLimit)]),
+    "ssc_model_get_landmark_positions": (_STATUS, [_MODEL, c_float_p, c_uint32, c_size_t]),
+    "ssc_model_get_segment_vertices": (_STATUS, [_MODEL, c_uint32, c_uint32_p, c_float_p, c_uint32]),
+    "ssc_body_set_pose_axis_angle": (_STATUS, [_BODY, c_float_p, c_uint32, c_float_p]),
+    "ssc_rotation_from_axis_angle": (_STATUS, [c_float_p, c_float_p]),
+    "ssc_body_set_sliders": (_STATUS, [_BODY, c_float_p, c_uint32]),
 }
 
 # The offline tools (sscape_offline.h): in libsscape_offline.so only.

@@ -32,6 +32,16 @@ def _floats(values, what: str) -> np.ndarray:
     return a
 
 
+def quaternion_from_axis_angle(axis_angle) -> np.ndarray:
+    """(4,) float32 x y z w of an axis-angle vector (3,), as the library converts them."""
+    v = _floats(axis_angle, "axis_angle")
+    if v.shape != (3,):
+        raise ValueError("an axis-angle rotation has 3 values")
+    out = np.empty(4, np.float32)
+    check(lib.ssc_rotation_from_axis_angle(v.ctypes.data_as(c_float_p), out.ctypes.data_as(c_float_p)))
+    return out
+
+
 def _pointer(a: Optional[np.ndarray]):
     """A float32 array's data for C, or NULL for None."""
     return None if a is None else a.ctypes.data_as(c_float_p)
@@ -84,6 +94,14 @@ class Body(Handle):
         r, t = self._pose_arguments(rotations, translation)
         check(lib.ssc_body_set_pose(self.handle, _pointer(r), self._J, _pointer(t)))
 
+    def set_pose_axis_angle(self, rotations, translation=None) -> None:
+        """rotations: (J, 3) axis-angle vectors per joint (unit axis times radians); as set_pose otherwise."""
+        r = np.ascontiguousarray(rotations, dtype=np.float32)
+        if r.shape != (self._J, 3):
+            raise ValueError(f"rotations must have shape ({self._J}, 3), not {r.shape}")
+        _, t = self._pose_arguments(None, translation)
+        check(lib.ssc_body_set_pose_axis_angle(self.handle, _pointer(r), self._J, _pointer(t)))
+
     def set_pose_limited(self, rotations, translation=None, clamp: bool = True) -> int:
         """As set_pose, within the joints' anatomical limits: clamp (default) or refuse (SscapeError)
         rotations beyond them. Returns how many joints were outside."""
@@ -130,6 +148,17 @@ class Body(Handle):
         if name not in names:
             raise KeyError(f"the model has no slider {name!r} (it has: {', '.join(names) or 'none'})")
         check(lib.ssc_body_set_slider(self.handle, names.index(name), float(value)))
+
+    def set_sliders(self, values: Dict[str, float]) -> None:
+        """Replaces the shape by the population's typical body with these slider values: every
+        slider by name (SI units), as Model.sliders lists them."""
+        names = [s.name for s in self.model.sliders]
+        missing, unknown = [n for n in names if n not in values], [n for n in values if n not in names]
+        if missing or unknown:
+            raise KeyError(f"set_sliders needs exactly the model's sliders ({', '.join(names) or 'none'}); "
+                           f"missing: {', '.join(missing) or 'none'}, unknown: {', '.join(unknown) or 'none'}")
+        v = np.array([values[n] for n in names], np.float32)
+        check(lib.ssc_body_set_sliders(self.handle, v.ctypes.data_as(c_float_p), v.shape[0]))
 
     def make_to_measure(self, targets: Dict[str, float], sex: Optional[float] = None, age: Optional[float] = None,
                         tolerance: Optional[float] = None) -> bool:

@@ -7,7 +7,7 @@ from typing import Dict, List, NamedTuple, Union
 
 import numpy as np
 
-from ._native import BatchDesc, ContextDef, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib
+from ._native import BatchDesc, ContextDef, JointLimit, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib
 from ._handle import Handle
 from .errors import check
 
@@ -182,6 +182,38 @@ class Model(Handle):
     @property
     def landmark_names(self) -> List[str]:
         return [self._name(lib.ssc_model_get_landmark_name, i) for i in range(self.landmark_count)]
+
+    @property
+    def landmark_positions(self) -> np.ndarray:
+        """(L, 3) float32: the landmarks on the mean body in the rest pose, metres (landmark_names order)."""
+        out = np.empty((self.landmark_count, 3), np.float32)
+        check(lib.ssc_model_get_landmark_positions(self.handle, out.ctypes.data_as(c_float_p), out.shape[0], 0))
+        return out
+
+    def joint_limits(self) -> Dict[str, Union[Dict[str, np.ndarray], None]]:
+        """Each joint's anatomical range of motion by name: None for a joint without one (root,
+        fingers), else {"frame": (3, 3) rotation vector -> anatomical angles, "lower", "upper":
+        (3,) radians of flexion, axial rotation, abduction}."""
+        out: Dict[str, Union[Dict[str, np.ndarray], None]] = {}
+        for j, name in enumerate(self.joint_names):
+            limit = JointLimit()
+            check(lib.ssc_model_get_joint_limit(self.handle, j, ctypes.byref(limit)))
+            out[name] = None if not limit.limited else {
+                "frame": np.array(limit.frame, np.float32).reshape(3, 3),
+                "lower": np.array(limit.lower, np.float32), "upper": np.array(limit.upper, np.float32)}
+        return out
+
+    def segment_vertices(self, segment: Union[int, str]):
+        """A segment shape space's vertices and blend weights: ((N,) uint32 indices, (N,) float32 weights in (0, 1])."""
+        names = [s.name for s in self.segments]
+        index = names.index(segment) if isinstance(segment, str) and segment in names else segment
+        if not isinstance(index, int) or not 0 <= index < len(names):
+            raise KeyError(f"the model has no segment {segment!r} (it has: {', '.join(names) or 'none'})")
+        n = self.segments[index].vertex_count
+        vertices, weights = np.empty(n, np.uint32), np.empty(n, np.float32)
+        check(lib.ssc_model_get_segment_vertices(self.handle, index, vertices.ctypes.data_as(c_uint32_p),
+                                                 weights.ctypes.data_as(c_float_p), n))
+        return vertices, weights
 
     def _name(self, fn, index: int) -> str:
         s = ctypes.c_char_p()

@@ -97,9 +97,10 @@ def test_an_interrupted_run_resumes(scans, client, tmp_path):
 
 def test_bootstrap_equals_the_serial_command_line(scans, client, tmp_path):
     out, serial = tmp_path / "bootstrap", tmp_path / "serial"
-    rows = pipeline.bootstrap(str(scans), None, 1, str(out), client=client, components=2, progress=False, log=lambda line: None)
+    rows = pipeline.bootstrap(str(scans), None, 1, str(out), client=client, components=2, segment_components=2, progress=False,
+                              log=lambda line: None)
     assert len(rows) == 1 and int(rows[0]["failed"]) == 1 and int(rows[0]["accepted"]) >= 3
-    run("bootstrap", scans, "-o", serial, "--rounds", 1, "--components", 2)
+    run("bootstrap", scans, "-o", serial, "--rounds", 1, "--components", 2, "--segment-components", 2)
     for f in ("model.sscape", "round_0/model.sscape", "round_1/model.sscape", "round_1/decisions.csv", "round_1/contact_sheet_01.png"):
         assert filecmp.cmp(out / f, serial / f, shallow=False), f
     for i in range(1, SCANS + 1):
@@ -109,6 +110,12 @@ def test_bootstrap_equals_the_serial_command_line(scans, client, tmp_path):
     assert manifest["scans"]["broken"]["status"] == "failed"
     learned = sscape.Model.from_file(out / "model.sscape")
     assert learned.shape_count == 2
+    # Its segment shape spaces, as the package reads them.
+    assert [s.name for s in learned.segments] == ["head", "arm_l", "arm_r", "torso", "leg_l", "leg_r"]
+    vertices, weights = learned.segment_vertices("head")
+    assert vertices.dtype.name == "uint32" and weights.dtype.name == "float32"
+    assert vertices.size == learned.segments[0].vertex_count and vertices.max() < learned.vertex_count
+    assert weights.min() > 0 and weights.max() <= 1 and (weights == 1).any()
 
 
 def test_the_command_line(scans, tmp_path):

@@ -277,6 +277,49 @@ def test_every_declared_function_is_in_the_header():
     assert len(exported) > 100
     declared = set(_native._DECLARATIONS)
     assert declared <= exported, sorted(declared - exported)
+    offline = (pathlib.Path(source) / "include" / "sscape" / "sscape_offline.h").read_text()
+    exported_offline = set(re.findall(r"^SSC_(?:API|EXPERIMENTAL)\s[^;(]*?\b(ssc_\w+)\s*\(", offline, re.M))
+    assert set(_native._OFFLINE_DECLARATIONS) == exported_offline, sorted(set(_native._OFFLINE_DECLARATIONS) ^ exported_offline)
+
+
+def test_axis_angle_poses_landmarks_joint_limits_and_sliders(model):
+    # An axis-angle pose is the quaternion pose the library converts it to, to the bit.
+    J = model.joint_count
+    rng = np.random.default_rng(4)
+    aa = (rng.normal(size=(J, 3)) * 0.2).astype(np.float32)
+    q = np.stack([sscape.quaternion_from_axis_angle(v) for v in aa])
+    assert q.dtype == np.float32 and np.allclose(np.linalg.norm(q, axis=1), 1, atol=1e-6)
+    half = np.linalg.norm(aa[0]) / 2
+    assert np.isclose(q[0, 3], np.cos(half), atol=1e-6)
+    with sscape.Body(model) as a, sscape.Body(model) as b:
+        a.set_pose_axis_angle(aa, translation=[0.1, 0, 0])
+        b.set_pose(q, translation=[0.1, 0, 0])
+        assert np.array_equal(a.vertices, b.vertices)
+        with pytest.raises(ValueError):
+            a.set_pose_axis_angle(aa[:, :2])
+        with pytest.raises(sscape.SscapeError):
+            sscape.quaternion_from_axis_angle([np.nan, 0, 0])
+        # The rest landmarks are the mean body's.
+        rest = model.landmark_positions
+        assert rest.shape == (model.landmark_count, 3) and rest.dtype == np.float32
+        with sscape.Body(model) as mean:
+            assert np.allclose(mean.landmarks, rest, atol=1e-6)
+        # All sliders at once: the same body as one at a time from the population's typical body.
+        values = {s.name: s.mean for s in model.sliders}
+        values["stature"] = 1.80
+        a.set_sliders(values)
+        assert abs(a.sliders["stature"] - 1.80) < 1e-3
+        with pytest.raises(KeyError):
+            a.set_sliders({"stature": 1.8})
+    limits = model.joint_limits()
+    assert set(limits) == set(model.joint_names)
+    limited = [v for v in limits.values() if v is not None]
+    assert limited and any(v is None for v in limits.values())  # the root has none
+    for v in limited:
+        assert v["frame"].shape == (3, 3) and np.all(v["lower"] <= v["upper"])
+        assert np.allclose(v["frame"] @ v["frame"].T, np.eye(3), atol=1e-5)
+    with pytest.raises(KeyError):  # the default model has no segment shape spaces (test_pipeline learns one that has)
+        model.segment_vertices("head")
 
 
 def test_topology_skin_poses_and_matrices(model):
