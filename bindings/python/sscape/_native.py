@@ -69,6 +69,10 @@ class RegistrationReport(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("rounds", c_uint32), ("solves", c_uint32), ("valid_vertices", c_uint32),
                 ("seconds", c_float), ("fit_seconds", c_float), ("quality", RegistrationQuality), ("scan_points", c_uint32),
                 ("landmarks", c_uint32)]
+class DepthImageDef(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("width", c_uint32), ("height", c_uint32), ("format", c_int32), ("samples", c_void_p),
+                ("row_stride", c_size_t), ("mask", c_void_p), ("fx", c_float), ("fy", c_float), ("cx", c_float), ("cy", c_float),
+                ("camera_to_world", c_float_p), ("min_depth", c_float), ("max_depth", c_float)]
 class JointLimit(ctypes.Structure):
     _fields_ = [("limited", c_uint32), ("frame", c_float * 9), ("lower", c_float * 3), ("upper", c_float * 3)]
 # sscape_offline.h
@@ -189,6 +193,8 @@ _DECLARATIONS = {
     "ssc_body_set_segment_shape": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32]),
     "ssc_body_get_segment_shape": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32]),
     "ssc_model_get_joint_limit": (_STATUS, [_MODEL, c_uint32, POINTER(JointLimit)]),
+    "ssc_depth_image_def_init": (None, [POINTER(DepthImageDef), c_size_t]),
+    "ssc_fitter_add_depth_image": (_STATUS, [c_void_p, c_uint32, POINTER(DepthImageDef), c_uint32_p]),
     "ssc_model_get_landmark_positions": (_STATUS, [_MODEL, c_float_p, c_uint32, c_size_t]),
     "ssc_model_get_segment_vertices": (_STATUS, [_MODEL, c_uint32, c_uint32_p, c_float_p, c_uint32]),
     "ssc_body_set_pose_axis_angle": (_STATUS, [_BODY, c_float_p, c_uint32, c_float_p]),

@@ -6,7 +6,7 @@ from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ._native import PROGRESS_FN, FitReport, FitterDef, c_float_p, lib
+from ._native import PROGRESS_FN, DepthImageDef, FitReport, FitterDef, c_float_p, lib
 from ._handle import Handle, progress_callback
 from .errors import check
 from .model import Model
@@ -78,6 +78,46 @@ class Fitter(Handle):
         check(lib.ssc_fitter_add_points(self.handle, self._frame(frame), p.ctypes.data_as(c_float_p),
                                         None if n is None else n.ctypes.data_as(c_float_p),
                                         None if c is None else c.ctypes.data_as(c_float_p), p.shape[0], 0))
+
+    def add_depth_image(self, depth, fx: float, fy: float, cx: float, cy: float, camera_to_world=None, mask=None,
+                        min_depth: float = 0.0, max_depth: float = 0.0, frame: Optional[int] = None) -> int:
+        """A depth image through a pinhole camera (x right, y down, z forward; OpenCV's): depth (H, W)
+        uint16 millimetres (0: no reading) or float32 metres; fx, fy, cx, cy in pixels;
+        camera_to_world: (4, 4) rigid transform (None: the camera is the world frame); mask (H, W):
+        False ignores a pixel; readings outside [min_depth, max_depth] metres are ignored
+        (max_depth 0: no limit). Several cameras at one instant go in one frame. Returns the points
+        added (the usable pixels, row-major: the order of point_residuals)."""
+        d = np.asarray(depth)
+        if d.ndim != 2:
+            raise ValueError(f"depth must have shape (H, W), not {d.shape}")
+        if d.dtype == np.uint16:
+            fmt = 0
+        elif np.issubdtype(d.dtype, np.floating):
+            d, fmt = d.astype(np.float32), 1
+        else:
+            raise TypeError(f"depth must be uint16 millimetres or float metres, not {d.dtype}")
+        d = np.ascontiguousarray(d)
+        image = DepthImageDef()
+        lib.ssc_depth_image_def_init(ctypes.byref(image), ctypes.sizeof(DepthImageDef))
+        image.height, image.width = d.shape
+        image.format, image.samples = fmt, d.ctypes.data
+        m = None
+        if mask is not None:
+            m = np.ascontiguousarray(mask, dtype=np.uint8)
+            if m.shape != d.shape:
+                raise ValueError("the mask needs one entry per pixel")
+            image.mask = m.ctypes.data
+        image.fx, image.fy, image.cx, image.cy = float(fx), float(fy), float(cx), float(cy)
+        pose = None
+        if camera_to_world is not None:
+            pose = np.ascontiguousarray(np.asarray(camera_to_world, dtype=np.float32).T)  # rows -> the C API's columns
+            if pose.shape != (4, 4):
+                raise ValueError("camera_to_world must be a (4, 4) matrix")
+            image.camera_to_world = pose.ctypes.data_as(c_float_p)
+        image.min_depth, image.max_depth = float(min_depth), float(max_depth)
+        added = ctypes.c_uint32()
+        check(lib.ssc_fitter_add_depth_image(self.handle, self._frame(frame), ctypes.byref(image), ctypes.byref(added)))
+        return added.value
 
     def solve(self, progress: Optional[Callable[[int, float], bool]] = None) -> Dict[str, float]:
         """Runs the fit; returns the report as a dict. progress(iteration, cost) returning True cancels

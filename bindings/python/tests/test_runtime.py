@@ -221,6 +221,33 @@ def test_fitter_recovers_a_body_from_its_surface(model):
         sscape.Fitter(model, sigma=1)
 
 
+def test_fitter_takes_depth_images(model):
+    # A wall 2 m in front of a 64 x 48 camera: every pixel but the rim (its 5 x 5 neighbourhood) is usable.
+    depth_m = np.full((48, 64), 2.0, np.float32)
+    with sscape.Fitter(model) as fitter:
+        added = fitter.add_depth_image(depth_m, 60, 60, 31.5, 23.5)
+        assert 44 * 60 <= added <= 48 * 64
+        # The same image in millimetres, and with half of it masked out.
+        assert fitter.add_depth_image((depth_m * 1000).astype(np.uint16), 60, 60, 31.5, 23.5, frame=0) == added
+        mask = np.ones(depth_m.shape, bool)
+        mask[:, 32:] = False
+        assert fitter.add_depth_image(depth_m, 60, 60, 31.5, 23.5, mask=mask, frame=0) < added * 0.6
+        # Beyond the depth limit nothing is usable; a camera pose must be rigid.
+        with pytest.raises(sscape.SscapeError):
+            fitter.add_depth_image(depth_m, 60, 60, 31.5, 23.5, max_depth=1.5, frame=0)
+        with pytest.raises(sscape.SscapeError):
+            fitter.add_depth_image(depth_m, 60, 60, 31.5, 23.5, camera_to_world=np.diag([2, 1, 1, 1]), frame=0)
+        with pytest.raises(sscape.SscapeError):
+            fitter.add_depth_image(depth_m, -1, 60, 31.5, 23.5, frame=0)
+        with pytest.raises(TypeError):
+            fitter.add_depth_image(depth_m.astype(np.int32), 60, 60, 31.5, 23.5)
+        # A rigid camera pose (moved 1 m along x) is taken; the C++ tests check where its points land.
+        pose = np.eye(4, dtype=np.float32)
+        pose[0, 3] = 1.0
+        assert fitter.add_depth_image(depth_m, 60, 60, 31.5, 23.5, camera_to_world=pose) == added
+        assert fitter.frame_count == 1
+
+
 def test_registration_brings_the_template_onto_a_scan(model):
     # A "scan": a body's surface with a hole, points only.
     with sscape.Body(model) as body:
