@@ -201,6 +201,53 @@ TEST_CASE("a scan file is registered into its record, reused while current, and 
     ssc_model_release(model);
 }
 
+TEST_CASE("a fitter reads scan and landmark files as sscape fit does and writes its parameters", "[capi][offline]") {
+    const std::string dir = fresh_folder("fit_files");
+    write_points(dir + "/scan.ply", scan_points(7), 100.0);  // centimetres
+    std::ofstream(dir + "/few.lnd") << "AUX =\n1 0 1 0.00 10 20 30 Sellion\nEND =\n";  // one landmark
+    ssc_model* model = nullptr;
+    REQUIRE(ssc_model_load_default(nullptr, &model) == SSC_OK);
+    ssc_fitter* fitter = nullptr;
+    REQUIRE(ssc_fitter_create(model, nullptr, &fitter) == SSC_OK);
+    ssc_fit_file_def def;
+    ssc_fit_file_def_init(&def, sizeof def);
+    ssc_fit_file_info info;
+    info.struct_size = sizeof info;
+    CHECK(ssc_fitter_add_points_file(fitter, 0, &def, &info) == SSC_ERROR_INVALID_ARGUMENT);  // no path
+    CHECK(ssc_fitter_add_points_file(nullptr, 0, &def, &info) == SSC_ERROR_INVALID_ARGUMENT);
+    const std::string scan = dir + "/scan.ply", few = dir + "/few.lnd", missing = dir + "/none.ply";
+    def.path = missing.c_str();
+    CHECK(ssc_fitter_add_points_file(fitter, 0, &def, &info) == SSC_ERROR_IO);
+    def.path = scan.c_str();
+    def.units_option = "--units";
+    CHECK(ssc_fitter_add_points_file(fitter, 0, &def, &info) == SSC_ERROR_INVALID_ARGUMENT);  // centimetres read as metres
+    CHECK(last_error().find("with --units cm it would span") != std::string::npos);
+    def.units = "cm";
+    REQUIRE(ssc_fitter_add_points_file(fitter, 0, &def, &info) == SSC_OK);
+    CHECK(info.used == 6000);
+    CHECK(info.left_out == 6000);  // an ASCII PLY without normals: every normal estimated
+    CHECK((info.span > 1.0f && info.span < 2.5f));
+    def.path = few.c_str();
+    def.units = nullptr;
+    CHECK(ssc_fitter_add_landmarks_file(fitter, 0, &def, &info) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(last_error().find("fewer than 3 usable landmarks") != std::string::npos);
+    ssc_fit_report report;
+    report.struct_size = sizeof report;
+    const std::string params = dir + "/params.json";
+    CHECK(ssc_fitter_write_params(fitter, &report, params.c_str()) == SSC_ERROR_INVALID_ARGUMENT);  // not solved
+    CHECK(!fs::exists(params));
+    REQUIRE(ssc_fitter_solve(fitter, nullptr, nullptr, &report) == SSC_OK);
+    // Read right (centimetres as such): the fit explains the scan (a body with bumps it cannot take on).
+    CHECK(report.unexplained_fraction < SSC_FIT_UNEXPLAINED_LIMIT);
+    CHECK(report.point_mean < 0.015f);
+    REQUIRE(ssc_fitter_write_params(fitter, &report, params.c_str()) == SSC_OK);
+    const std::string json = read_regular_file(params, 1u << 20);
+    CHECK(json.find("\"format\": \"sscape fit parameters 1\"") != std::string::npos);
+    CHECK(json.find("\"upperarm_l\"") != std::string::npos);
+    ssc_fitter_destroy(fitter);
+    ssc_model_release(model);
+}
+
 TEST_CASE("bootstrapping refuses bad settings before writing, and gives each round's registration jobs", "[capi][offline]") {
     const std::string dir = fresh_folder("bootstrap"), scans = dir + "/scans", out = dir + "/out";
     fs::create_directories(scans);

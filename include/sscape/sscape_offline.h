@@ -74,6 +74,56 @@ SSC_EXPERIMENTAL ssc_status ssc_registration_run_file(ssc_registration* registra
                                                       uint32_t* out_reused);
 
 /* ---------------------------------------------------------------------------------------------- */
+/* Fitting to files (what `sscape fit` reads and writes)                                          */
+
+/** A measurement file for a fitter. */
+typedef struct ssc_fit_file_def {
+    uint32_t struct_size;        /**< sizeof(ssc_fit_file_def), set by ssc_fit_file_def_init. */
+    const char* path;            /**< A PLY or OBJ scan, or a CAESAR .lnd. Required. */
+    const char* units;           /**< "m", "cm" or "mm"; NULL: metres for scans, millimetres for .lnd. */
+    uint32_t use_hands;          /**< .lnd: use the hand landmarks too (left out by default: scanned hands are
+                                      rarely posed like the model's). Default 0. */
+    const char* units_option;    /**< How messages name the setting of the units (the command line's
+                                      "--units"); NULL: they say "units". */
+} ssc_fit_file_def;
+
+/** What a file gave. Fill struct_size (sizeof) before the call. */
+typedef struct ssc_fit_file_info {
+    uint32_t struct_size;  /**< sizeof(ssc_fit_file_info), set by the caller. */
+    uint32_t used;         /**< Points or landmarks added. */
+    uint32_t left_out;     /**< Scans: points whose normals are estimated; .lnd: hand landmarks left out. */
+    uint32_t unknown;      /**< .lnd: landmarks whose names are not the model's (ignored). */
+    float span;            /**< Metres: the largest extent of what was read. */
+} ssc_fit_file_info;
+
+/** Fills def with defaults; size = sizeof(*def). Threads: any. */
+SSC_EXPERIMENTAL void ssc_fit_file_def_init(ssc_fit_file_def* def, size_t size);
+
+/**
+ * Adds a scan file's points (normals where the file gives them, estimated elsewhere) to a frame.
+ * @param frame  an existing frame or ssc_fitter_frame_count (a new frame).
+ * @param info   NULL or what the file gave.
+ * @return SSC_ERROR_INVALID_ARGUMENT for a malformed file, one that read in its units spans no body
+ *         (5 cm to 3 m; the message names the units that would fit), unknown units; SSC_ERROR_IO.
+ * Threads: the fitter's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_fitter_add_points_file(ssc_fitter* fitter, uint32_t frame, const ssc_fit_file_def* def,
+                                                       ssc_fit_file_info* info);
+
+/** Adds a .lnd file's landmarks, matched to the model's by name as CAESAR files spell them, to a
+ *  frame; as ssc_fitter_add_points_file, and SSC_ERROR_INVALID_ARGUMENT with fewer than 3 usable. */
+SSC_EXPERIMENTAL ssc_status ssc_fitter_add_landmarks_file(ssc_fitter* fitter, uint32_t frame, const ssc_fit_file_def* def,
+                                                          ssc_fit_file_info* info);
+
+/**
+ * Writes a solved fit's parameters as JSON, atomically: the model's name, the shape, each frame's
+ * per-joint rotations (by joint name), translation and scale, and the report given (as
+ * ssc_fitter_solve filled it): what `sscape fit --params` writes and `sscape synth --params` reads.
+ * @return SSC_ERROR_INVALID_ARGUMENT for NULL or a fitter not solved; SSC_ERROR_IO.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_fitter_write_params(ssc_fitter* fitter, const ssc_fit_report* report, const char* path);
+
+/* ---------------------------------------------------------------------------------------------- */
 /* Bootstrapping: rounds of registration, inspection and learning over a folder of scans          */
 
 typedef enum ssc_posture_normalization {

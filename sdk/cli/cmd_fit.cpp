@@ -4,7 +4,6 @@
 #include "progress.hpp"
 
 #include "capi/cpp_access.hpp"
-#include "common/files.hpp"
 #include "export/body_export.hpp"
 #include "export/mesh_writers.hpp"
 #include "fitting/depth_image.hpp"
@@ -12,10 +11,9 @@
 #include "io/units.hpp"
 #include "render/fit_picture.hpp"
 
-#include <nlohmann/json.hpp>
+#include <sscape/sscape_offline.h>
 
 #include <cstdio>
-#include <unordered_map>
 
 namespace ssc::cli {
 namespace {
@@ -54,72 +52,46 @@ int run_fit(Options o) {
     if (o.iterations) def.max_iterations = o.iterations;
     check(ssc_fitter_create(model, &def, &guard.fitter), "fitter");
 
-    // Landmarks matched by name, as CAESAR files spell them.
-    std::unordered_map<std::string, uint32_t> by_name;
-    for (uint32_t l = 0; l < ssc_model_landmark_count(model); ++l) {
-        const char* name = "";
-        check(ssc_model_get_landmark_name(model, l, &name), "landmark name");
-        by_name[io::normalized_landmark_name(name)] = l;
-    }
+    // Landmark and scan files are read by the library (ssc_fitter_add_*_file), as the Python
+    // pipeline reads them; the picture reads them again for what it shows.
     std::vector<Eigen::Vector3d> shown;  // input of frame 0, drawn in the picture
     // With --frames each file is a frame of its own (the person moved between them); otherwise all
     // observe one pose.
     uint32_t next_frame = 0;
     auto frame_for = [&]() { return o.frames ? next_frame++ : 0u; };
+    auto file_def = [&](const std::string& path) {
+        ssc_fit_file_def d;
+        ssc_fit_file_def_init(&d, sizeof d);
+        d.path = path.c_str();
+        d.units = o.units.empty() ? nullptr : o.units.c_str();
+        d.use_hands = o.hands;
+        d.units_option = "--units";
+        return d;
+    };
     for (const auto& path : o.landmarks) {
         const uint32_t frame = frame_for();
-        std::vector<uint32_t> indices;
-        std::vector<float> positions;
-        uint32_t skipped_hands = 0;
-        for (const auto& r : io::read_lnd(path)) {
-            const std::string key = io::normalized_landmark_name(r.name);
-            const auto it = by_name.find(key);
-            if (it == by_name.end()) {
-                std::fprintf(stderr, "%s: landmark '%s' is not one of the model's; ignored\n", path.c_str(), r.name.c_str());
-                continue;
-            }
-            if (!o.hands && fitting::is_hand_landmark(r.name)) {
-                ++skipped_hands;
-                continue;
-            }
-            indices.push_back(it->second);
-            for (int a = 0; a < 3; ++a) positions.push_back(float(r.position[a]));
-        }
-        if (indices.size() < 3) throw UsageError(path + ": fewer than 3 usable landmarks");
-        // read_lnd applies the format's millimetres; --units overrides them.
-        const std::string units = o.units.empty() ? "mm" : o.units;
-        const double to_given = o.units.empty() ? 1.0 : o.units_scale / 1e-3;
-        std::vector<Eigen::Vector3d> metres;
-        for (std::size_t i = 0; i < indices.size(); ++i) {
-            for (int a = 0; a < 3; ++a) positions[3 * i + std::size_t(a)] = float(positions[3 * i + std::size_t(a)] * to_given);
-            metres.emplace_back(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
-        }
-        if (frame == 0) shown.insert(shown.end(), metres.begin(), metres.end());
-        const double span = io::checked_body_span(path, metres, o.units.empty() ? 1e-3 : o.units_scale, !o.units.empty(), "--units");
-        check(ssc_fitter_add_landmarks(guard.fitter, frame, indices.data(), positions.data(), nullptr, uint32_t(indices.size())), path);
-        std::printf("%s: %zu landmarks in %s%s, spanning %.2f m (%u hand landmarks left out; --hands uses them)\n", path.c_str(),
-                    indices.size(), units.c_str(), o.units.empty() ? " (the .lnd convention; --units sets it)" : "", span, skipped_hands);
+        const ssc_fit_file_def d = file_def(path);
+        ssc_fit_file_info info;
+        info.struct_size = sizeof info;
+        check(ssc_fitter_add_landmarks_file(guard.fitter, frame, &d, &info), path);
+        if (info.unknown) std::fprintf(stderr, "%s: %u landmarks are not the model's (by name); ignored\n", path.c_str(), info.unknown);
+        if (frame == 0 && !o.png.empty())
+            for (const auto& r : io::read_lnd(path)) shown.push_back(r.position * (o.units.empty() ? 1.0 : o.units_scale / 1e-3));
+        std::printf("%s: %u landmarks in %s%s, spanning %.2f m (%u hand landmarks left out; --hands uses them)\n", path.c_str(), info.used,
+                    o.units.empty() ? "mm" : o.units.c_str(), o.units.empty() ? " (the .lnd convention; --units sets it)" : "", double(info.span),
+                    info.left_out);
     }
     for (const auto& path : o.points) {
-        const io::PointFile pf = io::read_points(path);
         const uint32_t frame = frame_for();
-        const std::string units = o.units.empty() ? "m" : o.units;
-        std::vector<Eigen::Vector3d> metres;
-        for (const auto& p : pf.points) metres.push_back(p * o.units_scale);
-        const double span = io::checked_body_span(path, metres, o.units_scale, !o.units.empty(), "--units");
-        std::vector<float> pts, nrm;
-        for (const auto& p : metres) {
-            for (int a = 0; a < 3; ++a) pts.push_back(float(p[a]));
-            if (frame == 0) shown.push_back(p);
-        }
-        std::size_t unknown = pf.normals.empty() ? pf.points.size() : 0;
-        for (const auto& n : pf.normals) {
-            for (int a = 0; a < 3; ++a) nrm.push_back(float(n[a]));
-            unknown += n.squaredNorm() == 0;
-        }
-        check(ssc_fitter_add_points(guard.fitter, frame, pts.data(), nrm.empty() ? nullptr : nrm.data(), nullptr, uint32_t(pf.points.size()), 0), path);
-        std::printf("%s: %zu points in %s%s, spanning %.2f m; %zu normals estimated\n", path.c_str(), pf.points.size(), units.c_str(),
-                    o.units.empty() ? " (the default; --units sets it)" : "", span, unknown);
+        const ssc_fit_file_def d = file_def(path);
+        ssc_fit_file_info info;
+        info.struct_size = sizeof info;
+        check(ssc_fitter_add_points_file(guard.fitter, frame, &d, &info), path);
+        if (frame == 0 && !o.png.empty())
+            for (const auto& p : io::read_points(path).points) shown.push_back(p * o.units_scale);
+        std::printf("%s: %u points in %s%s, spanning %.2f m; %u normals estimated\n", path.c_str(), info.used,
+                    o.units.empty() ? "m" : o.units.c_str(), o.units.empty() ? " (the default; --units sets it)" : "", double(info.span),
+                    info.left_out);
     }
     for (const auto& path : o.depth) {
         const io::DepthImage img = io::read_pgm_depth(path);
@@ -210,7 +182,6 @@ int run_fit(Options o) {
     // with normals (OBJ with UVs), glTF rigged. A fitted scale is no part of a body: those fits are
     // written as meshes from the fitter's vertices.
     const uint32_t F = ssc_fitter_frame_count(guard.fitter);
-    nlohmann::ordered_json params_frames = nlohmann::ordered_json::array();
     std::vector<float> more(3ull * V), frame_rot(4ull * J), frame_t(3);
     for (uint32_t f = 0; f < F; ++f) {
         const std::string path = f == 0 ? o.out : with_suffix(o.out, "_frame" + std::to_string(f));
@@ -234,29 +205,9 @@ int run_fit(Options o) {
             exporters::write_mesh(path, mesh);
         }
         std::printf("wrote %s\n", path.c_str());
-        nlohmann::ordered_json rotations_by_joint = nlohmann::ordered_json::object();
-        for (uint32_t j = 0; j < J; ++j) {
-            const char* name = "";
-            check(ssc_model_get_joint_name(model, j, &name), "joint name");
-            rotations_by_joint[name] = {frame_rot[4 * j], frame_rot[4 * j + 1], frame_rot[4 * j + 2], frame_rot[4 * j + 3]};
-        }
-        params_frames.push_back({{"rotations_xyzw", rotations_by_joint}, {"translation_m", frame_t}, {"scale", frame_scale}});
     }
-    if (!o.params.empty()) {
-        // The fit's parameters, for `sscape synth --params` and for scripts.
-        const char* name = "";
-        ssc_model_get_metadata(model, SSC_METADATA_NAME, &name);
-        nlohmann::ordered_json j;
-        j["format"] = "sscape fit parameters 1";
-        j["model"] = name;
-        j["shape"] = shape;
-        j["frames"] = params_frames;
-        j["report"] = {{"converged", bool(report.converged)},   {"iterations", report.iterations},
-                       {"restarts", report.restarts},            {"landmark_rms_m", report.landmark_rms},
-                       {"point_mean_m", report.point_mean},      {"inlier_fraction", report.inlier_fraction},
-                       {"unexplained_fraction", report.unexplained_fraction}, {"seconds", report.seconds}};
-        const std::string text = j.dump(2) + "\n";
-        write_file_atomically(o.params, text.data(), text.size());
+    if (!o.params.empty()) {  // the fit's parameters, for `sscape synth --params` and for scripts
+        check(ssc_fitter_write_params(guard.fitter, &report, o.params.c_str()), o.params);
         std::printf("wrote %s (shape, per-joint rotations, translation, scale and the report)\n", o.params.c_str());
     }
     if (!o.png.empty()) {

@@ -79,6 +79,10 @@ class JointLimit(ctypes.Structure):
 class ScanFileJob(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("scan_path", c_char_p), ("landmarks_path", c_char_p), ("units", c_char_p), ("up", c_char_p),
                 ("mesh_path", c_char_p), ("write_report", c_uint32), ("reuse", c_uint32), ("picture_path", c_char_p)]
+class FitFileDef(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("path", c_char_p), ("units", c_char_p), ("use_hands", c_uint32), ("units_option", c_char_p)]
+class FitFileInfo(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("used", c_uint32), ("left_out", c_uint32), ("unknown", c_uint32), ("span", c_float)]
 class BootstrapDef(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("scans_dir", c_char_p), ("out_dir", c_char_p), ("init_model_path", c_char_p),
                 ("template_only", c_uint32), ("components", c_uint32), ("posture", c_int32), ("scale", c_uint32),
@@ -211,6 +215,10 @@ _OFFLINE_DECLARATIONS = {
     "ssc_scan_file_job_init": (None, [POINTER(ScanFileJob), c_size_t]),
     "ssc_registration_run_file": (_STATUS, [c_void_p, POINTER(ScanFileJob), STAGE_PROGRESS_FN, c_void_p, POINTER(RegistrationReport),
                                             c_uint32_p]),
+    "ssc_fit_file_def_init": (None, [POINTER(FitFileDef), c_size_t]),
+    "ssc_fitter_add_points_file": (_STATUS, [c_void_p, c_uint32, POINTER(FitFileDef), POINTER(FitFileInfo)]),
+    "ssc_fitter_add_landmarks_file": (_STATUS, [c_void_p, c_uint32, POINTER(FitFileDef), POINTER(FitFileInfo)]),
+    "ssc_fitter_write_params": (_STATUS, [c_void_p, POINTER(FitReport), c_char_p]),
     "ssc_bootstrap_def_init": (None, [POINTER(BootstrapDef), c_size_t]),
     "ssc_bootstrap_create": (_STATUS, [c_void_p, POINTER(BootstrapDef), POINTER(c_void_p)]),
     "ssc_bootstrap_destroy": (None, [c_void_p]),

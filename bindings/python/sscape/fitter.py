@@ -2,11 +2,12 @@
 from __future__ import annotations
 
 import ctypes
+import os
 from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ._native import PROGRESS_FN, DepthImageDef, FitReport, FitterDef, c_float_p, lib
+from ._native import PROGRESS_FN, DepthImageDef, FitFileDef, FitFileInfo, FitReport, FitterDef, c_float_p, lib, need_offline
 from ._handle import Handle, progress_callback
 from .errors import check
 from .model import Model
@@ -119,6 +120,32 @@ class Fitter(Handle):
         check(lib.ssc_fitter_add_depth_image(self.handle, self._frame(frame), ctypes.byref(image), ctypes.byref(added)))
         return added.value
 
+    def _add_file(self, fn, path, units, hands: bool, frame: Optional[int]) -> Dict[str, float]:
+        need_offline("Fitter file inputs")
+        d = FitFileDef()
+        lib.ssc_fit_file_def_init(ctypes.byref(d), ctypes.sizeof(FitFileDef))
+        d.path, d.units, d.use_hands = os.fsencode(path), None if units is None else units.encode(), int(hands)
+        info = FitFileInfo(struct_size=ctypes.sizeof(FitFileInfo))
+        check(fn(self.handle, self._frame(frame), ctypes.byref(d), ctypes.byref(info)))
+        return {"used": info.used, "left_out": info.left_out, "unknown": info.unknown, "span": info.span}
+
+    def add_points_file(self, path, units: Optional[str] = None, frame: Optional[int] = None) -> Dict[str, float]:
+        """A PLY or OBJ scan as `sscape fit --points` reads it (units "m" (None), "cm", "mm"; needs
+        libsscape_offline). Returns used (points), left_out (normals estimated), span (metres)."""
+        return self._add_file(lib.ssc_fitter_add_points_file, path, units, False, frame)
+
+    def add_landmarks_file(self, path, units: Optional[str] = None, hands: bool = False, frame: Optional[int] = None) -> Dict[str, float]:
+        """A CAESAR .lnd as `sscape fit --landmarks` reads it (units None: the format's millimetres;
+        hand landmarks only with hands). Returns used, left_out (hand landmarks), unknown (names), span."""
+        return self._add_file(lib.ssc_fitter_add_landmarks_file, path, units, hands, frame)
+
+    def write_params(self, path) -> None:
+        """The last solve's parameters as JSON, as `sscape fit --params` writes them (needs libsscape_offline)."""
+        need_offline("Fitter.write_params")
+        if getattr(self, "_report", None) is None:
+            raise ValueError("write_params needs a solved fit")
+        check(lib.ssc_fitter_write_params(self.handle, ctypes.byref(self._report), os.fsencode(path)))
+
     def solve(self, progress: Optional[Callable[[int, float], bool]] = None) -> Dict[str, float]:
         """Runs the fit; returns the report as a dict. progress(iteration, cost) returning True cancels
         (SscapeError SSC_ERROR_CANCELLED; the results hold the state reached)."""
@@ -128,6 +155,7 @@ class Fitter(Handle):
         if errors:
             raise errors[0]
         check(status)
+        self._report = report
         return {name: getattr(report, name) for name, _ in FitReport._fields_ if name not in ("struct_size", "reserved")}
 
     @property

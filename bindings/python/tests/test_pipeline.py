@@ -2,8 +2,10 @@
 line for a handful of simulated scans, a broken scan failing alone, an interrupted run resumed,
 and bootstrapping. Needs libsscape_offline, Debian's python3-distributed and the sscape command
 line (SSCAPE_CLI) that makes the scans and the serial reference."""
+import csv
 import filecmp
 import json
+import struct
 import os
 import shutil
 import subprocess
@@ -116,6 +118,35 @@ def test_bootstrap_equals_the_serial_command_line(scans, client, tmp_path):
     assert vertices.dtype.name == "uint32" and weights.dtype.name == "float32"
     assert vertices.size == learned.segments[0].vertex_count and vertices.max() < learned.vertex_count
     assert weights.min() > 0 and weights.max() <= 1 and (weights == 1).any()
+
+
+def test_fit_and_measure_collections_equal_the_serial_command_line(scans, client, tmp_path):
+    out, serial = tmp_path / "fits", tmp_path / "serial"
+    serial.mkdir()
+    fits = pipeline.fit_collection(scans, out_dir=out, client=client, iterations=60, progress=False)
+    assert fits["broken"]["status"] == "failed" and "not a PLY file" in fits["broken"]["error"]
+    assert not (out / "broken.obj").exists() and not (out / "broken.json").exists()
+    for i in (1, 4):  # two of them against sscape fit
+        name = f"p{i}_scan"
+        assert fits[name]["status"] == "fitted", fits[name]
+        run("fit", "--points", scans / f"{name}.ply", "--landmarks", scans / f"p{i}.lnd", "--iterations", 60, "-o", serial / f"{name}.obj",
+            "--params", serial / f"{name}.json")
+        assert filecmp.cmp(out / f"{name}.obj", serial / f"{name}.obj", shallow=False), name
+        ours, theirs = json.loads((out / f"{name}.json").read_text()), json.loads((serial / f"{name}.json").read_text())
+        ours["report"].pop("seconds"), theirs["report"].pop("seconds")
+        assert ours == theirs, name
+    measured = pipeline.measure_collection(str(out), client=client, progress=False)
+    assert sorted(measured) == [f"p{i}_scan" for i in range(1, SCANS + 1)]  # the failed fit wrote no parameters
+    rows = list(csv.DictReader((out / "measurements.csv").open()))
+    assert [r["scan"] for r in rows] == sorted(measured)
+    shape = json.loads((out / "p4_scan.json").read_text())["shape"]
+    values = json.loads(run("measure", "--shape", ",".join(repr(x) for x in shape), "--json"))["bodies"][0]["values"]
+    row = next(r for r in rows if r["scan"] == "p4_scan")
+    f32 = lambda x: struct.unpack("f", struct.pack("f", float(x)))[0]
+    for name, value in values.items():
+        column = next(c for c in row if c.startswith(name + "_"))
+        assert f32(row[column]) == f32(value), name
+    assert 1.4 < float(row["stature_m"]) < 2.1
 
 
 def test_the_command_line(scans, tmp_path):

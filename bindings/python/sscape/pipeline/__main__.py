@@ -39,8 +39,23 @@ def main(argv=None) -> int:
     b.add_argument("--name")
     b.add_argument("--license")
     _cluster_options(b)
+    f = sub.add_parser("fit", help="fit the model to every scan of a folder (as sscape fit --points --landmarks --params)")
+    f.add_argument("scans", metavar="SCANS_DIR")
+    f.add_argument("-o", "--output", required=True, metavar="OUT_DIR")
+    f.add_argument("--model", metavar="MODEL.sscape", help="default: the built-in model")
+    f.add_argument("--hands", action="store_true", help="use the hand landmarks too")
+    f.add_argument("--components", type=int, default=0, help="shape components fitted (default: all)")
+    f.add_argument("--format", choices=["obj", "ply", "glb"], default="obj", help="the fitted bodies' files (default obj)")
+    _cluster_options(f)
+    m = sub.add_parser("measure", help="measure every fitted body of a folder (as sscape measure --shape)")
+    m.add_argument("fits", metavar="FITS_DIR", help="what fit wrote (NAME.json parameters)")
+    m.add_argument("-o", "--output", metavar="OUT.csv", help="default: FITS_DIR/measurements.csv")
+    m.add_argument("--model", metavar="MODEL.sscape", help="the model the fits were made with (default: the built-in model)")
+    m.add_argument("--scheduler", metavar="tcp://HOST:8786")
+    m.add_argument("--workers", type=int, metavar="N")
+    m.add_argument("--quiet", action="store_true")
     a = parser.parse_args(argv)
-    from . import bootstrap, register_collection
+    from . import bootstrap, fit_collection, measure_collection, register_collection
     try:
         if a.command == "register":
             scans = register_collection(a.scans, a.model, a.output, units=a.units, up=a.up, pictures=a.png, scheduler=a.scheduler,
@@ -49,6 +64,19 @@ def main(argv=None) -> int:
             done = sum(s["status"] == "registered" for s in scans.values())
             print(f"{len(scans)} scans: {done} registered, {len(scans) - done - len(failed)} reused, {len(failed)} failed; "
                   f"{a.output}/manifest.json")
+            for name, s in failed.items():
+                print(f"failed: {name}: {s['error']}", file=sys.stderr)
+            return 1 if failed else 0
+        if a.command in ("fit", "measure"):
+            if a.command == "fit":
+                scans = fit_collection(a.scans, a.model, a.output, units=a.units, hands=a.hands, components=a.components,
+                                       body_format=a.format, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet)
+                where = f"{a.output}/manifest.json"
+            else:
+                scans = measure_collection(a.fits, a.model, a.output, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet)
+                where = a.output or f"{a.fits}/measurements.csv"
+            failed = {n: s for n, s in scans.items() if s["status"] == "failed"}
+            print(f"{len(scans)} scans: {len(scans) - len(failed)} {a.command == 'fit' and 'fitted' or 'measured'}, {len(failed)} failed; {where}")
             for name, s in failed.items():
                 print(f"failed: {name}: {s['error']}", file=sys.stderr)
             return 1 if failed else 0

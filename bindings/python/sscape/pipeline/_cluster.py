@@ -62,8 +62,8 @@ def run_tasks(client, function: Callable, jobs: List[dict], on_result: Callable[
             try:
                 result = future.result()
             except Exception as e:  # the worker died or the task could not run
-                result = {"name": job["name"], "scan": job["scan"], "mesh": job["mesh"], "status": "failed",
-                          "error": f"{type(e).__name__}: {e}"}
+                result = {k: job[k] for k in ("name", "scan", "mesh", "body", "params") if k in job}
+                result.update(status="failed", error=f"{type(e).__name__}: {e}")
             on_result(result)
             if bar is not None:
                 bar.update(1)

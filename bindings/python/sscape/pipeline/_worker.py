@@ -8,7 +8,13 @@ import threading
 import time
 from typing import Dict, Optional, Tuple
 
+import json
+
+import numpy as np
+
+from ..body import Body
 from ..errors import SscapeError
+from ..fitter import Fitter
 from ..model import Context, Model
 from ..registration import Registration
 
@@ -69,6 +75,65 @@ def register_job(job: dict) -> dict:
     except Exception as e:  # a bug or a full disk: reported with the scan, the others go on
         out["error"] = f"{type(e).__name__}: {e}"
     out["seconds"] = time.perf_counter() - t0
+    return out
+
+
+# SSC_FIT_UNEXPLAINED_LIMIT: above it a fit has not found the person (sscape fit refuses it too).
+_FIT_UNEXPLAINED_LIMIT = np.float32(0.1)
+
+
+def fit_job(job: dict) -> dict:
+    """Fits the model at job["model"] to job["scan"] (and job["landmarks"]) as `sscape fit --points
+    SCAN --landmarks LND -o BODY --params PARAMS` does: the body file and the parameters, or status
+    "failed" with the reason (nothing written)."""
+    t0 = time.perf_counter()
+    out = {"name": job["name"], "scan": job["scan"], "body": job["body"], "params": job["params"], "status": "failed", "error": None,
+           "pid": os.getpid()}
+    try:
+        model = model_for(job.get("model"), job.get("threads", 1))
+        options = {k: job[k] for k in ("shape_count", "max_iterations") if job.get(k)}
+        with Fitter(model, **options) as fitter:
+            if job.get("landmarks"):
+                fitter.add_landmarks_file(job["landmarks"], units=job.get("units"), hands=job.get("hands", False), frame=0)
+            fitter.add_points_file(job["scan"], units=job.get("units"), frame=0)
+            report = fitter.solve()
+            if np.float32(report["unexplained_fraction"]) > _FIT_UNEXPLAINED_LIMIT:
+                raise ValueError(f"{100 * report['unexplained_fraction']:.0f} % of the scan lies farther than 5 cm from the fitted body: "
+                                 "a limb or the whole body is in the wrong place, or the scan holds clutter")
+            if report["implausible"]:
+                raise ValueError("the best fit has joints far past their anatomical limits: a limb or the body is in the wrong place")
+            rotations, translation, _ = fitter.pose(0)
+            with Body(model) as body:
+                body.shape = fitter.shape
+                body.set_pose(rotations, translation)
+                body.write(job["body"])
+            fitter.write_params(job["params"])
+        out["status"] = "fitted"
+        out["report"] = {k: (bool(v) if k in ("converged", "implausible") else v) for k, v in report.items()}
+    except SscapeError as e:
+        out["error"] = str(e)
+    except Exception as e:  # a bug or a full disk: reported with the scan, the others go on
+        out["error"] = f"{type(e).__name__}: {e}"
+    out["seconds"] = time.perf_counter() - t0
+    return out
+
+
+def measure_job(job: dict) -> dict:
+    """Measures the body of the shape in job["params"] (a fit's parameters) with the model at
+    job["model"], as `sscape measure --shape ...` does: every measurement by name, SI units."""
+    out = {"name": job["name"], "params": job["params"], "status": "failed", "error": None}
+    try:
+        with open(job["params"]) as f:
+            shape = np.asarray(json.load(f)["shape"], np.float32)
+        model = model_for(job.get("model"), job.get("threads", 1))
+        with Body(model) as body:
+            body.shape = shape
+            out["measurements"] = body.measure()
+        out["status"] = "measured"
+    except SscapeError as e:
+        out["error"] = str(e)
+    except Exception as e:
+        out["error"] = f"{type(e).__name__}: {e}"
     return out
 
 

@@ -1,0 +1,158 @@
+// Fitting to files (sscape_offline.h): scan and landmark files read into a fitter, and a solved
+// fit's parameters written, as `sscape fit` does. Built on the public fitter functions with the
+// same float arrays the command line gave them, so the command line and callers of these functions
+// (the Python pipeline) fit the same way.
+#include "capi/guard.hpp"
+#include "capi/handles.hpp"
+#include "common/files.hpp"
+#include "fitting/solver.hpp"
+#include "io/readers.hpp"
+#include "io/units.hpp"
+
+#include <sscape/sscape_offline.h>
+
+#include <nlohmann/json.hpp>
+
+#include <unordered_map>
+
+using namespace ssc;
+using namespace ssc::capi;
+
+namespace {
+
+void ok(ssc_status status) {
+    if (status != SSC_OK) fail(status, ssc_last_error());
+}
+
+ssc_fit_file_def read_file_def(const ssc_fit_file_def* def) {
+    need(def, "def");
+    const ssc_fit_file_def d = read_def(def, ssc_fit_file_def_init, "def");
+    need(d.path, "def->path");
+    return d;
+}
+
+void write_info(ssc_fit_file_info* info, uint32_t used, uint32_t left_out, uint32_t unknown, double span) {
+    if (!info) return;
+    SSC_REQUIRE_ARG(info->struct_size >= sizeof(uint32_t), "info->struct_size must be set to sizeof(ssc_fit_file_info)");
+    ssc_fit_file_info out{sizeof out, used, left_out, unknown, float(span)};
+    const uint32_t n = info->struct_size < sizeof out ? info->struct_size : uint32_t(sizeof out);
+    std::memcpy(info, &out, n);
+    info->struct_size = n;
+}
+
+std::string option_of(const ssc_fit_file_def& d) { return d.units_option ? d.units_option : ""; }
+
+}  // namespace
+
+extern "C" {
+
+void ssc_fit_file_def_init(ssc_fit_file_def* def, size_t size) {
+    if (!def || size < sizeof(uint32_t)) return;
+    ssc_fit_file_def d{};
+    d.struct_size = static_cast<uint32_t>(size < sizeof d ? size : sizeof d);
+    std::memcpy(def, &d, d.struct_size);
+}
+
+ssc_status ssc_fitter_add_points_file(ssc_fitter* fitter, uint32_t frame, const ssc_fit_file_def* def, ssc_fit_file_info* info) {
+    return guarded(__func__, [&] {
+        need(fitter, "fitter");
+        const ssc_fit_file_def d = read_file_def(def);
+        const double to_metres = d.units ? io::units_to_metres(d.units) : 1.0;
+        const io::PointFile pf = io::read_points(d.path);
+        std::vector<Eigen::Vector3d> metres;
+        for (const auto& p : pf.points) metres.push_back(p * to_metres);
+        const double span = io::checked_body_span(d.path, metres, to_metres, d.units != nullptr, option_of(d));
+        std::vector<float> pts, nrm;
+        for (const auto& p : metres)
+            for (int a = 0; a < 3; ++a) pts.push_back(float(p[a]));
+        std::size_t unknown = pf.normals.empty() ? pf.points.size() : 0;
+        for (const auto& n : pf.normals) {
+            for (int a = 0; a < 3; ++a) nrm.push_back(float(n[a]));
+            unknown += n.squaredNorm() == 0;
+        }
+        ok(ssc_fitter_add_points(fitter, frame, pts.data(), nrm.empty() ? nullptr : nrm.data(), nullptr, uint32_t(pf.points.size()), 0));
+        write_info(info, uint32_t(pf.points.size()), uint32_t(unknown), 0, span);
+    });
+}
+
+ssc_status ssc_fitter_add_landmarks_file(ssc_fitter* fitter, uint32_t frame, const ssc_fit_file_def* def, ssc_fit_file_info* info) {
+    return guarded(__func__, [&] {
+        need(fitter, "fitter");
+        const ssc_fit_file_def d = read_file_def(def);
+        const double to_metres = d.units ? io::units_to_metres(d.units) : 1e-3;  // the .lnd format's millimetres
+        const ssc_model* model = fitter->model;
+        std::unordered_map<std::string, uint32_t> by_name;
+        for (uint32_t l = 0; l < ssc_model_landmark_count(model); ++l) {
+            const char* name = "";
+            ok(ssc_model_get_landmark_name(model, l, &name));
+            by_name[io::normalized_landmark_name(name)] = l;
+        }
+        std::vector<uint32_t> indices;
+        std::vector<float> positions;
+        uint32_t hands = 0, unknown = 0;
+        for (const auto& r : io::read_lnd(d.path)) {  // positions: the file's numbers / 1000
+            const auto it = by_name.find(io::normalized_landmark_name(r.name));
+            if (it == by_name.end()) {
+                ++unknown;
+                continue;
+            }
+            if (!d.use_hands && fitting::is_hand_landmark(r.name)) {
+                ++hands;
+                continue;
+            }
+            indices.push_back(it->second);
+            for (int a = 0; a < 3; ++a) positions.push_back(float(r.position[a]));
+        }
+        SSC_REQUIRE_ARG(indices.size() >= 3, std::string(d.path) + ": fewer than 3 usable landmarks");
+        const double to_given = to_metres / 1e-3;
+        std::vector<Eigen::Vector3d> metres;
+        for (std::size_t i = 0; i < indices.size(); ++i) {
+            for (int a = 0; a < 3; ++a) positions[3 * i + std::size_t(a)] = float(positions[3 * i + std::size_t(a)] * to_given);
+            metres.emplace_back(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+        }
+        const double span = io::checked_body_span(d.path, metres, to_metres, d.units != nullptr, option_of(d));
+        ok(ssc_fitter_add_landmarks(fitter, frame, indices.data(), positions.data(), nullptr, uint32_t(indices.size())));
+        write_info(info, uint32_t(indices.size()), hands, unknown, span);
+    });
+}
+
+ssc_status ssc_fitter_write_params(ssc_fitter* fitter, const ssc_fit_report* report, const char* path) {
+    return guarded(__func__, [&] {
+        need(fitter, "fitter");
+        need(report, "report");
+        need(path, "path");
+        SSC_REQUIRE_ARG(report->struct_size >= sizeof(ssc_fit_report), "report->struct_size must be sizeof(ssc_fit_report), as solve filled it");
+        const ssc_model* model = fitter->model;
+        const uint32_t K = ssc_model_shape_count(model), J = ssc_model_joint_count(model), F = ssc_fitter_frame_count(fitter);
+        std::vector<float> shape(K), rotations(4ull * J), translation(3);
+        ok(ssc_fitter_get_shape(fitter, shape.data(), K));  // INVALID_ARGUMENT before a solve
+        nlohmann::ordered_json frames = nlohmann::ordered_json::array();
+        for (uint32_t f = 0; f < F; ++f) {
+            float scale = 1;
+            ok(ssc_fitter_get_pose(fitter, f, rotations.data(), J, translation.data(), &scale));
+            nlohmann::ordered_json by_joint = nlohmann::ordered_json::object();
+            for (uint32_t j = 0; j < J; ++j) {
+                const char* name = "";
+                ok(ssc_model_get_joint_name(model, j, &name));
+                by_joint[name] = {rotations[4 * j], rotations[4 * j + 1], rotations[4 * j + 2], rotations[4 * j + 3]};
+            }
+            frames.push_back({{"rotations_xyzw", by_joint}, {"translation_m", translation}, {"scale", scale}});
+        }
+        const char* name = "";
+        ok(ssc_model_get_metadata(model, SSC_METADATA_NAME, &name));
+        nlohmann::ordered_json j;
+        j["format"] = "sscape fit parameters 1";
+        j["model"] = name;
+        j["shape"] = shape;
+        j["frames"] = frames;
+        const ssc_fit_report& r = *report;
+        j["report"] = {{"converged", bool(r.converged)},   {"iterations", r.iterations},
+                       {"restarts", r.restarts},            {"landmark_rms_m", r.landmark_rms},
+                       {"point_mean_m", r.point_mean},      {"inlier_fraction", r.inlier_fraction},
+                       {"unexplained_fraction", r.unexplained_fraction}, {"seconds", r.seconds}};
+        const std::string text = j.dump(2) + "\n";
+        write_file_atomically(path, text.data(), text.size());
+    });
+}
+
+}  // extern "C"
