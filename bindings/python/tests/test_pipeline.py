@@ -97,6 +97,34 @@ def test_an_interrupted_run_resumes(scans, client, tmp_path):
         assert (out / f"{name}.ply").read_bytes() == data, name
 
 
+def test_a_killed_run_resumes(scans, client, tmp_path):
+    """The command line killed (with its cluster) once two scans are done; run again, it reuses them."""
+    import signal
+    import time
+    out = tmp_path / "killed"
+    proc = subprocess.Popen([sys.executable, "-m", "sscape.pipeline", "register", str(scans), "-o", str(out), "--workers", "2", "--quiet"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    done = []
+    deadline = time.time() + 300
+    while time.time() < deadline and proc.poll() is None:
+        try:
+            manifest = json.loads((out / "manifest.json").read_text())
+            done = [n for n, s in manifest["scans"].items() if s["status"] == "registered"]
+        except (OSError, ValueError):
+            pass
+        if len(done) >= 2:
+            break
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    assert len(done) >= 2, "the run ended before it could be killed"
+    again = pipeline.register_collection(scans, out_dir=out, client=client, progress=False)
+    reused = {n for n, s in again.items() if s["status"] == "reused"}
+    assert set(done) <= reused
+    assert all(s["status"] in ("reused", "registered") for n, s in again.items() if n != "broken")
+    assert not [p for p in out.iterdir() if p.name.startswith(".")], "a partial file was left"
+
+
 def test_bootstrap_equals_the_serial_command_line(scans, client, tmp_path):
     out, serial = tmp_path / "bootstrap", tmp_path / "serial"
     rows = pipeline.bootstrap(str(scans), None, 1, str(out), client=client, components=2, segment_components=2, progress=False,

@@ -28,6 +28,15 @@ def client_for(client=None, scheduler: Optional[str] = None, workers: Optional[i
         yield c
 
 
+def remove_stale_temporaries(folder: str) -> None:
+    """Manifest temporaries a killed run left (it stopped between writing one and renaming it)."""
+    with contextlib.suppress(OSError):
+        for name in os.listdir(folder):
+            if name.startswith(".manifest."):
+                with contextlib.suppress(OSError):
+                    os.unlink(os.path.join(folder, name))
+
+
 def write_json_atomically(path: str, value) -> None:
     """The manifest is replaced whole: a reader (or a killed run) never sees half of it."""
     folder = os.path.dirname(os.path.abspath(path))

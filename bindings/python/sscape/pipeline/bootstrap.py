@@ -14,7 +14,7 @@ from .._handle import Handle, progress_callback
 from .._native import LINE_FN, BootstrapDef, ScanFileJob, lib, need_offline
 from ..errors import check
 from . import _worker
-from ._cluster import client_for, run_tasks, write_json_atomically
+from ._cluster import client_for, remove_stale_temporaries, run_tasks, write_json_atomically
 
 _POSTURES = {"skeleton": 0, "none": 1}
 
@@ -106,6 +106,7 @@ def bootstrap(scans_dir: str, init_model: Optional[str] = None, rounds: int = 3,
             manifest = {"command": "bootstrap", "round": r, "model": jobs[0]["model"], "started": time.time(), "finished": None, "scans": {}}
             path = os.path.join(out_dir, f"round_{r}", "manifest.json")
             os.makedirs(os.path.dirname(path), exist_ok=True)
+            remove_stale_temporaries(os.path.dirname(path))
 
             def record(result: dict) -> None:
                 manifest["scans"][result["name"]] = result

@@ -13,13 +13,14 @@ from .._native import lib
 from ..body import measurement_names
 from ..errors import check
 from . import _worker
-from ._cluster import client_for, run_tasks, write_json_atomically
+from ._cluster import client_for, remove_stale_temporaries, run_tasks, write_json_atomically
 from .scans import as_scans
 
 _SI = {0: "m", 1: "m2", 2: "m3", 3: "kg"}
 
 
 def _collect(out_dir: str, command: str, model: Optional[str], jobs, function, client, scheduler, workers, progress, extra) -> Dict[str, dict]:
+    remove_stale_temporaries(out_dir)
     manifest = {"command": command, "model": model or "built-in", **extra, "started": time.time(), "finished": None, "scans": {}}
     path = os.path.join(out_dir, "manifest.json")
 

@@ -7,7 +7,7 @@ import time
 from typing import Dict, Optional
 
 from . import _worker
-from ._cluster import client_for, run_tasks, write_json_atomically
+from ._cluster import client_for, remove_stale_temporaries, run_tasks, write_json_atomically
 from .scans import as_scans
 
 MANIFEST = "manifest.json"
@@ -42,6 +42,7 @@ def register_collection(scans, model: Optional[str] = None, out_dir: str = "regi
         jobs.append({"name": s.name, "scan": os.path.abspath(s.path), "landmarks": s.landmarks and os.path.abspath(s.landmarks),
                      "mesh": mesh, "model": model_path, "units": units, "up": up, "reuse": True, "threads": threads_per_task,
                      "picture": mesh[:-4] + ".png" if pictures else None})
+    remove_stale_temporaries(out_dir)
     manifest = {"command": "register", "model": model_path or "built-in", "units": units, "up": up, "started": time.time(),
                 "finished": None, "scans": {}}
     path = os.path.join(out_dir, MANIFEST)
