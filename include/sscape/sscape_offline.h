@@ -6,7 +6,9 @@
  * These functions live in libsscape_offline.so, which holds the whole C API of sscape.h as well
  * (one library: handles from it work with every function of both headers). libsscape.so, the
  * runtime, stays without them: it neither reads scan files nor learns models. Conventions are
- * sscape.h's. Everything here is SSC_EXPERIMENTAL.
+ * sscape.h's. Everything here is SSC_EXPERIMENTAL. The objects made here (scan lists,
+ * bootstrappings) and the work of these functions use the process heap, not a context's allocator:
+ * these are tools for machines that process scans, not for engines that place their memory.
  *
  * Files written here are written atomically (a file on disk is complete) and a run that stops
  * resumes: a registration whose report names the same model, scan, landmarks, units and up axis is
