@@ -69,6 +69,8 @@ class RegistrationReport(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("rounds", c_uint32), ("solves", c_uint32), ("valid_vertices", c_uint32),
                 ("seconds", c_float), ("fit_seconds", c_float), ("quality", RegistrationQuality), ("scan_points", c_uint32),
                 ("landmarks", c_uint32)]
+class BodyDef(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("reserved", c_uint32)]
 class DepthImageDef(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("width", c_uint32), ("height", c_uint32), ("format", c_int32), ("samples", c_void_p),
                 ("row_stride", c_size_t), ("mask", c_void_p), ("fx", c_float), ("fy", c_float), ("cx", c_float), ("cy", c_float),
@@ -134,7 +136,7 @@ _DECLARATIONS = {
     "ssc_model_get_landmark_name": (_STATUS, [_MODEL, c_uint32, POINTER(c_char_p)]),
     "ssc_model_get_shape_stddevs": (_STATUS, [_MODEL, c_float_p, c_uint32]),
     "ssc_model_get_metadata": (_STATUS, [_MODEL, c_int32, POINTER(c_char_p)]),
-    "ssc_body_create": (_STATUS, [_MODEL, c_void_p, POINTER(_BODY)]),
+    "ssc_body_create": (_STATUS, [_MODEL, c_void_p, POINTER(_BODY)]),  # def: a BodyDef by reference
     "ssc_body_destroy": (None, [_BODY]),
     "ssc_body_set_shape": (_STATUS, [_BODY, c_float_p, c_uint32]),
     "ssc_body_get_shape": (_STATUS, [_BODY, c_float_p, c_uint32]),
@@ -197,6 +199,14 @@ _DECLARATIONS = {
     "ssc_body_set_segment_shape": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32]),
     "ssc_body_get_segment_shape": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32]),
     "ssc_model_get_joint_limit": (_STATUS, [_MODEL, c_uint32, POINTER(JointLimit)]),
+    "ssc_body_def_init": (None, [POINTER(BodyDef), c_size_t]),
+    "ssc_model_retain": (None, [_MODEL]),  # declared for completeness: Python's references keep models alive
+    "ssc_model_find_joint": (_STATUS, [_MODEL, c_char_p, c_uint32_p]),
+    "ssc_model_find_landmark": (_STATUS, [_MODEL, c_char_p, c_uint32_p]),
+    "ssc_model_find_slider": (_STATUS, [_MODEL, c_char_p, c_uint32_p]),
+    "ssc_model_find_segment": (_STATUS, [_MODEL, c_char_p, c_uint32_p]),
+    "ssc_body_measure_by_name": (_STATUS, [_BODY, c_char_p, c_float_p]),
+    "ssc_fitter_add_landmarks": (_STATUS, [c_void_p, c_uint32, c_uint32_p, c_float_p, c_float_p, c_uint32]),
     "ssc_depth_image_def_init": (None, [POINTER(DepthImageDef), c_size_t]),
     "ssc_fitter_add_depth_image": (_STATUS, [c_void_p, c_uint32, POINTER(DepthImageDef), c_uint32_p]),
     "ssc_model_get_landmark_positions": (_STATUS, [_MODEL, c_float_p, c_uint32, c_size_t]),

@@ -7,7 +7,7 @@ from typing import Dict, List, Optional, Union
 
 import numpy as np
 
-from ._native import MadeToMeasureDef, c_float_p, c_uint32_p, lib
+from ._native import BodyDef, MadeToMeasureDef, c_float_p, c_uint32_p, lib
 from ._handle import Handle, progress_callback
 from .errors import check
 from .model import Model
@@ -60,7 +60,9 @@ class Body(Handle):
 
     def __init__(self, model: Model):
         handle = ctypes.c_void_p()
-        check(lib.ssc_body_create(model.handle, None, ctypes.byref(handle)))
+        d = BodyDef()
+        lib.ssc_body_def_init(ctypes.byref(d), ctypes.sizeof(BodyDef))
+        check(lib.ssc_body_create(model.handle, ctypes.byref(d), ctypes.byref(handle)))
         self.model = model
         self._own(handle, lib.ssc_body_destroy)
         self._V = model.vertex_count
@@ -240,6 +242,12 @@ class Body(Handle):
         out = np.empty(len(names), np.float32)
         check(lib.ssc_body_measure(self.handle, out.ctypes.data_as(c_float_p), out.shape[0]))
         return dict(zip(names, (float(v) for v in out)))
+
+    def measure_one(self, name: str) -> float:
+        """One measurement by name (as measurement_names lists them), SI units."""
+        out = ctypes.c_float()
+        check(lib.ssc_body_measure_by_name(self.handle, name.encode(), ctypes.byref(out)))
+        return out.value
 
     def write(self, path: Union[str, os.PathLike], format: Optional[str] = None) -> None:
         """Writes the body as OBJ, PLY or rigged glTF (.glb); format None: from the extension."""

@@ -69,6 +69,18 @@ class Fitter(Handle):
         check(lib.ssc_fitter_add_landmarks_by_name(self.handle, self._frame(frame), c_names, p.ctypes.data_as(c_float_p),
                                                    None if w is None else w.ctypes.data_as(c_float_p), p.shape[0]))
 
+    def add_landmark_indices(self, indices, positions, weights=None, frame: Optional[int] = None) -> None:
+        """Landmarks by the model's landmark indices (N,), (N, 3) metres; as add_landmarks otherwise."""
+        i = np.ascontiguousarray(indices, dtype=np.uint32)
+        p = _points(positions, "positions")
+        if i.shape != (p.shape[0],):
+            raise ValueError(f"{i.shape[0] if i.ndim == 1 else i.shape} indices for {p.shape[0]} positions")
+        w = None if weights is None else np.ascontiguousarray(weights, dtype=np.float32)
+        if w is not None and w.shape != (p.shape[0],):
+            raise ValueError(f"weights must have shape ({p.shape[0]},)")
+        check(lib.ssc_fitter_add_landmarks(self.handle, self._frame(frame), i.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32)),
+                                           p.ctypes.data_as(c_float_p), None if w is None else w.ctypes.data_as(c_float_p), p.shape[0]))
+
     def add_points(self, points, normals=None, confidence=None, frame: Optional[int] = None) -> None:
         """A point cloud, (N, 3) metres, with optional outward normals (N, 3) and confidences (N,) in [0, 1]."""
         p = _points(points, "points")

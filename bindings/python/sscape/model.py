@@ -12,6 +12,9 @@ from ._handle import Handle
 from .errors import check
 
 
+_NOT_FOUND = -7  # SSC_ERROR_NOT_FOUND
+
+
 class Slider(NamedTuple):
     name: str
     unit: str
@@ -182,6 +185,19 @@ class Model(Handle):
     @property
     def landmark_names(self) -> List[str]:
         return [self._name(lib.ssc_model_get_landmark_name, i) for i in range(self.landmark_count)]
+
+    def index(self, kind: str, name: str) -> int:
+        """The index of a "joint", "landmark", "slider" or "segment" by its exact name; KeyError if none."""
+        fn = {"joint": lib.ssc_model_find_joint, "landmark": lib.ssc_model_find_landmark, "slider": lib.ssc_model_find_slider,
+              "segment": lib.ssc_model_find_segment}.get(kind)
+        if fn is None:
+            raise ValueError(f"kind must be joint, landmark, slider or segment, not {kind!r}")
+        out = ctypes.c_uint32()
+        status = fn(self.handle, name.encode(), ctypes.byref(out))
+        if status == _NOT_FOUND:
+            raise KeyError(f"the model has no {kind} named {name!r}")
+        check(status)
+        return out.value
 
     @property
     def landmark_positions(self) -> np.ndarray:
