@@ -13,3 +13,12 @@ cp -r "$src/bindings/python/tests" "$out/tests"
 cd "$out"
 env -u SSCAPE_LIBRARY SSCAPE_SOURCE_DIR="$src" "$out/venv/bin/python" -m pytest -q -p no:cacheprovider tests
 "$out/venv/bin/python" -c "import sscape, sys; assert sscape.library_path.startswith('$out/venv'), sscape.library_path; print('installed:', sscape.library_path)"
+# The README's Python example, as written there.
+"$out/venv/bin/python" - <<'PY'
+import sscape
+with sscape.Body(sscape.Model()) as body:
+    body.set_slider("stature", 1.80)
+    vertices, girths = body.vertices, body.measure()   # (13380, 3) float32; a dict, SI units
+assert vertices.shape == (13380, 3) and abs(girths["stature"] - 1.80) < 0.01, girths["stature"]
+print("the README's example ran")
+PY

@@ -163,6 +163,14 @@ def test_fit_and_measure_collections_equal_the_serial_command_line(scans, client
         ours, theirs = json.loads((out / f"{name}.json").read_text()), json.loads((serial / f"{name}.json").read_text())
         ours["report"].pop("seconds"), theirs["report"].pop("seconds")
         assert ours == theirs, name
+    # Again: every fit kept (the same files and settings), the broken scan tried and failed again.
+    bodies = {n: (out / f"{n}.obj").read_bytes() for n in fits if n != "broken"}
+    again = pipeline.fit_collection(scans, out_dir=out, client=client, iterations=60, progress=False)
+    assert {n for n, r in again.items() if r["status"] == "reused"} == set(bodies)
+    assert again["broken"]["status"] == "failed"
+    assert all((out / f"{n}.obj").read_bytes() == b for n, b in bodies.items())
+    # Other settings fit again.
+    assert pipeline.fit_collection([scans / "p1_scan.ply"], out_dir=out, client=client, iterations=61, progress=False)["p1_scan"]["status"] == "fitted"
     measured = pipeline.measure_collection(str(out), client=client, progress=False)
     assert sorted(measured) == [f"p{i}_scan" for i in range(1, SCANS + 1)]  # the failed fit wrote no parameters
     rows = list(csv.DictReader((out / "measurements.csv").open()))

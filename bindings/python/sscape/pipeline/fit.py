@@ -5,10 +5,13 @@ from __future__ import annotations
 
 import csv
 import ctypes
+import hashlib
+import json
 import os
 import time
 from typing import Dict, Optional
 
+from .. import library_version
 from .._native import lib
 from ..body import measurement_names
 from ..errors import check
@@ -19,12 +22,39 @@ from .scans import as_scans
 _SI = {0: "m", 1: "m2", 2: "m3", 3: "kg"}
 
 
+def _digest(*paths: Optional[str]) -> str:
+    """What a fit was made from: the bytes of its files (a changed scan is fitted again)."""
+    h = hashlib.sha256()
+    for p in paths:
+        h.update(b"\0" if p is None else open(p, "rb").read())
+    return h.hexdigest()[:32]
+
+
 def _collect(out_dir: str, command: str, model: Optional[str], jobs, function, client, scheduler, workers, progress, extra) -> Dict[str, dict]:
     remove_stale_temporaries(out_dir)
-    manifest = {"command": command, "model": model or "built-in", **extra, "started": time.time(), "finished": None, "scans": {}}
     path = os.path.join(out_dir, "manifest.json")
+    manifest = {"command": command, "model": model or "built-in", **extra, "started": time.time(), "finished": None, "scans": {}}
+    # Scans fitted before from the same files and settings (the manifest says so and the files are
+    # there) are kept; the rest is fitted.
+    try:
+        with open(path) as f:
+            old = json.load(f).get("scans", {})
+    except (OSError, ValueError):
+        old = {}
+    todo = []
+    for job in jobs:
+        before = old.get(job["name"], {})
+        if job["key"] is not None and before.get("status") in ("fitted", "reused") and before.get("key") == job["key"] and \
+                os.path.exists(job["body"]) and os.path.exists(job["params"]):
+            manifest["scans"][job["name"]] = dict(before, status="reused", error=None)
+        else:
+            todo.append(job)
+    jobs = todo
+
+    keys = {job["name"]: job["key"] for job in jobs}
 
     def record(result: dict) -> None:
+        result["key"] = keys.get(result["name"])
         manifest["scans"][result["name"]] = result
         write_json_atomically(path, manifest)
 
@@ -47,16 +77,26 @@ def fit_collection(scans, model: Optional[str] = None, out_dir: str = "fits", cl
     reason and writes nothing. Scans, model, units and the cluster as register_collection's; hands:
     use hand landmarks; components: shape components fitted (0: all); iterations: the solver's limit
     (0: its default). out_dir/manifest.json: each scan's status ("fitted" or "failed"), error and
-    report. Every run fits every scan again (a fit takes about a second)."""
+    report. Running again keeps the fits made from the same scan and landmark files, model and
+    settings (status "reused")."""
     if body_format not in ("obj", "ply", "glb"):
         raise ValueError(f"body_format must be obj, ply or glb, not {body_format!r}")
     scan_list = as_scans(scans)
     os.makedirs(out_dir, exist_ok=True)
     model_path = os.path.abspath(model) if model else None
-    jobs = [{"name": s.name, "scan": os.path.abspath(s.path), "landmarks": s.landmarks and os.path.abspath(s.landmarks), "model": model_path,
-             "units": units, "hands": hands, "shape_count": components, "max_iterations": iterations, "threads": threads_per_task,
-             "body": os.path.abspath(os.path.join(out_dir, f"{s.name}.{body_format}")),
-             "params": os.path.abspath(os.path.join(out_dir, f"{s.name}.json"))} for s in scan_list]
+    settings = json.dumps([units, hands, components, iterations, body_format, library_version(),
+                           _digest(model_path) if model_path else "built-in"])
+    jobs = []
+    for s in scan_list:
+        try:
+            key = _digest(s.path, s.landmarks) + settings
+        except OSError:
+            key = None  # unreadable: the task reports why
+        jobs.append({"name": s.name, "scan": os.path.abspath(s.path), "landmarks": s.landmarks and os.path.abspath(s.landmarks),
+                     "model": model_path, "units": units, "hands": hands, "shape_count": components, "max_iterations": iterations,
+                     "threads": threads_per_task, "key": key,
+                     "body": os.path.abspath(os.path.join(out_dir, f"{s.name}.{body_format}")),
+                     "params": os.path.abspath(os.path.join(out_dir, f"{s.name}.json"))})
     return _collect(out_dir, "fit", model_path, jobs, _worker.fit_job, client, scheduler, workers, progress, {"units": units})
 
 
