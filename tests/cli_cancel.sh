@@ -9,8 +9,14 @@ for i in 1 2 3 4 5 6 7 8 9 10 11 12; do args="$args --points $scan"; done
 # shellcheck disable=SC2086
 "$sscape" fit $args --frames -o "$out" > "$3/cancel.out" 2> "$3/cancel.err" &
 pid=$!
-sleep 0.5
-kill -INT "$pid"
+# A background job starts with SIGINT ignored until the fit installs its handler (after reading the
+# files, which takes longer under the sanitizers): Ctrl-C again every 0.2 s until it stops.
+tries=0
+while kill -0 "$pid" 2> /dev/null && [ "$tries" -lt 300 ]; do
+    sleep 0.2
+    kill -INT "$pid" 2> /dev/null
+    tries=$((tries + 1))
+done
 wait "$pid"
 status=$?
 cat "$3/cancel.err"
