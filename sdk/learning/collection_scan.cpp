@@ -166,8 +166,6 @@ ScanFileResult register_scan_file(registration::Registrar& registrar, const std:
     rec.quality = r.report.quality;
     rec.model_digest = model_digest;
     rec.scan_digest = digest;
-    out.rounds = r.report.rounds;
-    out.solves = r.report.solves;
     write_registration_record(job.mesh_path, model, rec, job.write_report);
     if (!job.picture_path.empty()) {
         const render::PictureFrame frame = rec.registered.has_fit ? render::fit_picture_frame(model, rec.registered.fit) : render::PictureFrame();

@@ -62,7 +62,6 @@ struct ScanFileJob {
 struct ScanFileResult {
     RegistrationRecord record;
     bool reused = false;
-    uint32_t rounds = 0, solves = 0;
     std::size_t points = 0, landmarks = 0;  // read from the files (0 when reused)
     std::vector<std::string> ignored_landmarks;
 };

@@ -8,6 +8,7 @@ import json
 import os
 import sys
 import tempfile
+import time
 from typing import Callable, Iterator, List, Optional
 
 
@@ -80,3 +81,23 @@ def run_tasks(client, function: Callable, jobs: List[dict], on_result: Callable[
         if bar is not None:
             bar.close()
         client.cancel(futures)
+
+
+def run_into_manifest(client, function, jobs: List[dict], folder: str, header: dict, label: str, progress: bool,
+                      kept: Optional[dict] = None) -> dict:
+    """Runs function(job) for every job, each result recorded by scan name in folder/manifest.json
+    as it comes (header: what the run is; kept: results carried over without running). Returns the
+    manifest's scans, sorted by name."""
+    remove_stale_temporaries(folder)
+    path = os.path.join(folder, "manifest.json")
+    manifest = {**header, "started": time.time(), "finished": None, "scans": dict(kept or {})}
+
+    def record(result: dict) -> None:
+        manifest["scans"][result["name"]] = result
+        write_json_atomically(path, manifest)
+
+    run_tasks(client, function, jobs, record, label, progress)
+    manifest["finished"] = time.time()
+    manifest["scans"] = dict(sorted(manifest["scans"].items()))
+    write_json_atomically(path, manifest)
+    return manifest["scans"]

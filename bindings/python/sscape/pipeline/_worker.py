@@ -58,24 +58,32 @@ def registration_for(path: Optional[str], threads: int = 1) -> Registration:
     return _local.registration[1]
 
 
-def register_job(job: dict) -> dict:
-    """Registers job["scan"] into job["mesh"] (report beside it) with the model at job["model"]:
-    a dict with the scan's name, status "registered", "reused" or "failed", error, seconds, quality."""
+def _failing_alone(out: dict, work) -> dict:
+    """out updated with what work() returns; a failure of this scan (the library's, a bug's, a full
+    disk's) goes into out["error"] instead, so the others go on. out["seconds"]: the task's time."""
     t0 = time.perf_counter()
-    out = {"name": job["name"], "scan": job["scan"], "mesh": job["mesh"], "status": "failed", "error": None, "pid": os.getpid()}
     try:
-        reg = registration_for(job.get("model"), job.get("threads", 1))
-        report = reg.run_file(job["scan"], job["mesh"], landmarks=job.get("landmarks"), units=job.get("units"), up=job.get("up"),
-                              report=True, reuse=job.get("reuse", True), picture=job.get("picture"))
-        out["status"] = "reused" if report["reused"] else "registered"
-        out["registration_seconds"] = report["seconds"]
-        out["quality"] = report["quality"]
+        out.update(work())
     except SscapeError as e:
         out["error"] = str(e)
-    except Exception as e:  # a bug or a full disk: reported with the scan, the others go on
+    except Exception as e:
         out["error"] = f"{type(e).__name__}: {e}"
     out["seconds"] = time.perf_counter() - t0
     return out
+
+
+def register_job(job: dict) -> dict:
+    """Registers job["scan"] into job["mesh"] (report beside it) with the model at job["model"]:
+    a dict with the scan's name, status "registered", "reused" or "failed", error, seconds, quality."""
+    def work():
+        reg = registration_for(job.get("model"), job.get("threads", 1))
+        report = reg.run_file(job["scan"], job["mesh"], landmarks=job.get("landmarks"), units=job.get("units"), up=job.get("up"),
+                              report=True, reuse=job.get("reuse", True), picture=job.get("picture"))
+        return {"status": "reused" if report["reused"] else "registered", "registration_seconds": report["seconds"],
+                "quality": report["quality"]}
+
+    return _failing_alone({"name": job["name"], "scan": job["scan"], "mesh": job["mesh"], "status": "failed", "error": None,
+                           "pid": os.getpid()}, work)
 
 
 # SSC_FIT_UNEXPLAINED_LIMIT: above it a fit has not found the person (sscape fit refuses it too).
@@ -85,11 +93,8 @@ _FIT_UNEXPLAINED_LIMIT = np.float32(0.1)
 def fit_job(job: dict) -> dict:
     """Fits the model at job["model"] to job["scan"] (and job["landmarks"]) as `sscape fit --points
     SCAN --landmarks LND -o BODY --params PARAMS` does: the body file and the parameters, or status
-    "failed" with the reason (nothing written)."""
-    t0 = time.perf_counter()
-    out = {"name": job["name"], "scan": job["scan"], "body": job["body"], "params": job["params"], "status": "failed", "error": None,
-           "pid": os.getpid()}
-    try:
+    "failed" with the reason (nothing written). job["key"] (what the fit is made from) is kept."""
+    def work():
         model = model_for(job.get("model"), job.get("threads", 1))
         options = {k: job[k] for k in ("shape_count", "max_iterations") if job.get(k)}
         with Fitter(model, **options) as fitter:
@@ -108,33 +113,24 @@ def fit_job(job: dict) -> dict:
                 body.set_pose(rotations, translation)
                 body.write(job["body"])
             fitter.write_params(job["params"])
-        out["status"] = "fitted"
-        out["report"] = {k: (bool(v) if k in ("converged", "implausible") else v) for k, v in report.items()}
-    except SscapeError as e:
-        out["error"] = str(e)
-    except Exception as e:  # a bug or a full disk: reported with the scan, the others go on
-        out["error"] = f"{type(e).__name__}: {e}"
-    out["seconds"] = time.perf_counter() - t0
-    return out
+        return {"status": "fitted", "report": {k: (bool(v) if k in ("converged", "implausible") else v) for k, v in report.items()}}
+
+    return _failing_alone({"name": job["name"], "scan": job["scan"], "body": job["body"], "params": job["params"], "key": job.get("key"),
+                           "status": "failed", "error": None, "pid": os.getpid()}, work)
 
 
 def measure_job(job: dict) -> dict:
     """Measures the body of the shape in job["params"] (a fit's parameters) with the model at
     job["model"], as `sscape measure --shape ...` does: every measurement by name, SI units."""
-    out = {"name": job["name"], "params": job["params"], "status": "failed", "error": None}
-    try:
+    def work():
         with open(job["params"]) as f:
             shape = np.asarray(json.load(f)["shape"], np.float32)
         model = model_for(job.get("model"), job.get("threads", 1))
         with Body(model) as body:
             body.shape = shape
-            out["measurements"] = body.measure()
-        out["status"] = "measured"
-    except SscapeError as e:
-        out["error"] = str(e)
-    except Exception as e:
-        out["error"] = f"{type(e).__name__}: {e}"
-    return out
+            return {"status": "measured", "measurements": body.measure()}
+
+    return _failing_alone({"name": job["name"], "params": job["params"], "status": "failed", "error": None}, work)
 
 
 def no_op(x):

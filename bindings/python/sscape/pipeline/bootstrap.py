@@ -7,14 +7,13 @@ from __future__ import annotations
 import ctypes
 import os
 import sys
-import time
 from typing import Callable, Dict, List, Optional
 
 from .._handle import Handle, progress_callback
 from .._native import LINE_FN, BootstrapDef, ScanFileJob, lib, need_offline
 from ..errors import check
 from . import _worker
-from ._cluster import client_for, remove_stale_temporaries, run_tasks, write_json_atomically
+from ._cluster import client_for, run_into_manifest
 
 _POSTURES = {"skeleton": 0, "none": 1}
 
@@ -103,20 +102,11 @@ def bootstrap(scans_dir: str, init_model: Optional[str] = None, rounds: int = 3,
             jobs = b.jobs(r)
             for job in jobs:
                 job["threads"] = threads_per_task
-            manifest = {"command": "bootstrap", "round": r, "model": jobs[0]["model"], "started": time.time(), "finished": None, "scans": {}}
-            path = os.path.join(out_dir, f"round_{r}", "manifest.json")
-            os.makedirs(os.path.dirname(path), exist_ok=True)
-            remove_stale_temporaries(os.path.dirname(path))
-
-            def record(result: dict) -> None:
-                manifest["scans"][result["name"]] = result
-                write_json_atomically(path, manifest)
-
-            run_tasks(c, _worker.register_job, jobs, record, f"round {r}", progress)
-            manifest["finished"] = time.time()
-            manifest["scans"] = dict(sorted(manifest["scans"].items()))
-            write_json_atomically(path, manifest)
-            failed = [n for n, s in manifest["scans"].items() if s["status"] == "failed"]
+            header = {"command": "bootstrap", "round": r, "model": jobs[0]["model"]}
+            folder = os.path.join(out_dir, f"round_{r}")
+            os.makedirs(folder, exist_ok=True)
+            scans = run_into_manifest(c, _worker.register_job, jobs, folder, header, f"round {r}", progress)
+            failed = [n for n, s in scans.items() if s["status"] == "failed"]
             say(f"round {r}: {len(jobs) - len(failed)} of {len(jobs)} scans registered on the cluster"
                 + (f"; failed: {', '.join(failed)}" if failed else ""))
             # Inspection and learning here; the registrations are all on disk, so nothing registers

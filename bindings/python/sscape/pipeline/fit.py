@@ -8,7 +8,6 @@ import ctypes
 import hashlib
 import json
 import os
-import time
 from typing import Dict, Optional
 
 from .. import library_version
@@ -16,7 +15,7 @@ from .._native import lib
 from ..body import measurement_names
 from ..errors import check
 from . import _worker
-from ._cluster import client_for, remove_stale_temporaries, run_tasks, write_json_atomically
+from ._cluster import client_for, run_into_manifest, run_tasks
 from .scans import as_scans
 
 _SI = {0: "m", 1: "m2", 2: "m3", 3: "kg"}
@@ -30,40 +29,23 @@ def _digest(*paths: Optional[str]) -> str:
     return h.hexdigest()[:32]
 
 
-def _collect(out_dir: str, command: str, model: Optional[str], jobs, function, client, scheduler, workers, progress, extra) -> Dict[str, dict]:
-    remove_stale_temporaries(out_dir)
-    path = os.path.join(out_dir, "manifest.json")
-    manifest = {"command": command, "model": model or "built-in", **extra, "started": time.time(), "finished": None, "scans": {}}
-    # Scans fitted before from the same files and settings (the manifest says so and the files are
-    # there) are kept; the rest is fitted.
+def _kept_fits(out_dir: str, jobs):
+    """The jobs still to run, and the fits kept: made before from the same files and settings (the
+    manifest says so) whose files are still there."""
     try:
-        with open(path) as f:
+        with open(os.path.join(out_dir, "manifest.json")) as f:
             old = json.load(f).get("scans", {})
     except (OSError, ValueError):
         old = {}
-    todo = []
+    todo, kept = [], {}
     for job in jobs:
         before = old.get(job["name"], {})
         if job["key"] is not None and before.get("status") in ("fitted", "reused") and before.get("key") == job["key"] and \
                 os.path.exists(job["body"]) and os.path.exists(job["params"]):
-            manifest["scans"][job["name"]] = dict(before, status="reused", error=None)
+            kept[job["name"]] = dict(before, status="reused", error=None)
         else:
             todo.append(job)
-    jobs = todo
-
-    keys = {job["name"]: job["key"] for job in jobs}
-
-    def record(result: dict) -> None:
-        result["key"] = keys.get(result["name"])
-        manifest["scans"][result["name"]] = result
-        write_json_atomically(path, manifest)
-
-    with client_for(client, scheduler, workers) as c:
-        run_tasks(c, function, jobs, record, command, progress)
-    manifest["finished"] = time.time()
-    manifest["scans"] = dict(sorted(manifest["scans"].items()))
-    write_json_atomically(path, manifest)
-    return manifest["scans"]
+    return todo, kept
 
 
 def fit_collection(scans, model: Optional[str] = None, out_dir: str = "fits", client=None, *, units: Optional[str] = None,
@@ -97,7 +79,10 @@ def fit_collection(scans, model: Optional[str] = None, out_dir: str = "fits", cl
                      "threads": threads_per_task, "key": key,
                      "body": os.path.abspath(os.path.join(out_dir, f"{s.name}.{body_format}")),
                      "params": os.path.abspath(os.path.join(out_dir, f"{s.name}.json"))})
-    return _collect(out_dir, "fit", model_path, jobs, _worker.fit_job, client, scheduler, workers, progress, {"units": units})
+    todo, kept = _kept_fits(out_dir, jobs)
+    header = {"command": "fit", "model": model_path or "built-in", "units": units}
+    with client_for(client, scheduler, workers) as c:
+        return run_into_manifest(c, _worker.fit_job, todo, out_dir, header, "fit", progress, kept)
 
 
 def measure_collection(fits_dir: str, model: Optional[str] = None, out_csv: Optional[str] = None, client=None, *,

@@ -3,15 +3,11 @@ task per scan, as `sscape register` registers each (the same library call, the s
 from __future__ import annotations
 
 import os
-import time
 from typing import Dict, Optional
 
 from . import _worker
-from ._cluster import client_for, remove_stale_temporaries, run_tasks, write_json_atomically
+from ._cluster import client_for, run_into_manifest
 from .scans import as_scans
-
-MANIFEST = "manifest.json"
-
 
 def register_collection(scans, model: Optional[str] = None, out_dir: str = "registrations", client=None, *,
                         units: Optional[str] = None, up: Optional[str] = None, pictures: bool = False, scheduler: Optional[str] = None,
@@ -42,18 +38,6 @@ def register_collection(scans, model: Optional[str] = None, out_dir: str = "regi
         jobs.append({"name": s.name, "scan": os.path.abspath(s.path), "landmarks": s.landmarks and os.path.abspath(s.landmarks),
                      "mesh": mesh, "model": model_path, "units": units, "up": up, "reuse": True, "threads": threads_per_task,
                      "picture": mesh[:-4] + ".png" if pictures else None})
-    remove_stale_temporaries(out_dir)
-    manifest = {"command": "register", "model": model_path or "built-in", "units": units, "up": up, "started": time.time(),
-                "finished": None, "scans": {}}
-    path = os.path.join(out_dir, MANIFEST)
-
-    def record(result: dict) -> None:
-        manifest["scans"][result["name"]] = result
-        write_json_atomically(path, manifest)
-
+    header = {"command": "register", "model": model_path or "built-in", "units": units, "up": up}
     with client_for(client, scheduler, workers) as c:
-        run_tasks(c, _worker.register_job, jobs, record, "register", progress)
-    manifest["finished"] = time.time()
-    manifest["scans"] = dict(sorted(manifest["scans"].items()))
-    write_json_atomically(path, manifest)
-    return manifest["scans"]
+        return run_into_manifest(c, _worker.register_job, jobs, out_dir, header, "register", progress)
