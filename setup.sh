@@ -12,9 +12,15 @@ jobs="${JOBS:-$(nproc)}"
 
 packages=(cmake make g++ pkg-config libeigen3-dev libnanoflann-dev libflatbuffers-dev flatbuffers-compiler
           libzstd-dev libxxhash-dev libpng-dev nlohmann-json3-dev libcli11-dev catch2 libbenchmark-dev)
-# The test suite also fuzzes, with clang's libFuzzer, and tests the Python package (Debian's python3).
+# The test suite also fuzzes, with clang's libFuzzer, and tests the Python package (Debian's python3)
+# and the C#, Rust and JavaScript bindings.
 if [ "$mode" = test ]; then packages+=(clang libclang-rt-14-dev python3-numpy python3-pytest python3-venv python3-setuptools python3-wheel
-                                     python3-distributed python3-tqdm); fi
+                                     python3-distributed python3-tqdm)
+  # The bindings' toolchains: Mono for C#; cargo for Rust unless rustup's is there; Node.js for JavaScript.
+  packages+=(mono-mcs mono-runtime)
+  command -v cargo > /dev/null 2>&1 || [ -x "$HOME/.cargo/bin/cargo" ] || packages+=(cargo)
+  command -v node > /dev/null 2>&1 || packages+=(nodejs npm)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -36,15 +42,17 @@ build() {  # build DIR [cmake args...]; TARGET=name builds only that target
   cmake --build "$dir" -j "$jobs" ${TARGET:+--target "$TARGET"}
 }
 
-# The Khronos glTF validator, for the export test (npm registry; pinned).
+# npm packages (pinned): the Khronos glTF validator for the export test, koffi for the JavaScript
+# binding's tests (bindings/javascript).
+npm_packages=(gltf-validator@2.0.0-dev.3.10 koffi@3.3.4)
 npm_tools() {  # npm_tools DIR
-  if [ -d "$1/npm/node_modules/gltf-validator" ]; then return; fi
+  if [ -d "$1/npm/node_modules/gltf-validator" ] && [ -d "$1/npm/node_modules/koffi" ]; then return; fi
   if command -v npm > /dev/null 2>&1; then
-    echo "setup: installing npm package gltf-validator into $1/npm"
-    npm install --silent --no-audit --no-fund --prefix "$1/npm" gltf-validator@2.0.0-dev.3.10 > /dev/null 2>&1 \
-      || { echo "setup: npm install of gltf-validator failed" >&2; exit 1; }
+    echo "setup: installing npm packages ${npm_packages[*]} into $1/npm"
+    npm install --silent --no-audit --no-fund --prefix "$1/npm" "${npm_packages[@]}" > /dev/null 2>&1 \
+      || { echo "setup: npm install of ${npm_packages[*]} failed" >&2; exit 1; }
   else
-    echo "setup: npm not found; the glTF validation test will be skipped"
+    echo "setup: npm not found; the glTF validation and JavaScript binding tests will be skipped"
   fi
 }
 
