@@ -42,11 +42,12 @@ build() {  # build DIR [cmake args...]; TARGET=name builds only that target
   cmake --build "$dir" -j "$jobs" ${TARGET:+--target "$TARGET"}
 }
 
-# npm packages (pinned): the Khronos glTF validator for the export test, koffi for the JavaScript
-# binding's tests (bindings/javascript).
-npm_packages=(gltf-validator@2.0.0-dev.3.10 koffi@3.3.4)
+# npm packages (pinned): the Khronos glTF validator for the export test; koffi and TypeScript for the
+# JavaScript binding's tests (bindings/javascript).
+npm_packages=(gltf-validator@2.0.0-dev.3.10 koffi@3.3.4 typescript@5.9.3)
 npm_tools() {  # npm_tools DIR
-  if [ -d "$1/npm/node_modules/gltf-validator" ] && [ -d "$1/npm/node_modules/koffi" ]; then return; fi
+  if [ -d "$1/npm/node_modules/gltf-validator" ] && [ -d "$1/npm/node_modules/koffi" ] \
+     && [ -d "$1/npm/node_modules/typescript" ]; then return; fi
   if command -v npm > /dev/null 2>&1; then
     echo "setup: installing npm packages ${npm_packages[*]} into $1/npm"
     npm install --silent --no-audit --no-fund --prefix "$1/npm" "${npm_packages[@]}" > /dev/null 2>&1 \

@@ -23,3 +23,14 @@ npm install --silent --no-audit --no-fund --prefer-offline --install-links "$her
 node node_modules/sscape/examples/bodies.js "$work" | tee "$work/example.log"
 grep -q "wrote .*body_0.glb" "$work/example.log"
 [ -s "$work/body_0.glb" ]
+
+# The TypeScript declarations, against the installed package (tsc from NODE_PATH, where setup.sh puts it).
+tsc=""
+for dir in ${NODE_PATH//:/ }; do [ -x "$dir/.bin/tsc" ] && tsc="$dir/.bin/tsc" && break; done
+if [ -n "$tsc" ]; then
+  cp "$here/test/types.ts" "$work/project/types.ts"
+  "$tsc" --noEmit --strict --module commonjs --target es2020 "$work/project/types.ts"
+  echo "index.d.ts: types.ts compiles with $("$tsc" --version)"
+else
+  echo "SKIPPED: the TypeScript check (no tsc in NODE_PATH; ./setup.sh test installs typescript)"
+fi
