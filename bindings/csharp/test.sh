@@ -14,8 +14,11 @@ rm -rf "$work" && mkdir -p "$work"
 export LD_LIBRARY_PATH="$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" SSCAPE_SOURCE="$here/../.."
 # -warnaserror: no warning in our code.
 mcs -unsafe -warn:4 -warnaserror -target:library -out:"$work/Sscape.dll" "$here"/Sscape/*.cs
-mcs -warn:4 -warnaserror -r:"$work/Sscape.dll" -out:"$work/Tests.exe" "$here/Tests/Tests.cs"
+mcs -unsafe -warn:4 -warnaserror -r:"$work/Sscape.dll" -out:"$work/Tests.exe" "$here/Tests/Tests.cs"
 mono "$work/Tests.exe"
+if [ -n "${SSCAPE_FAKE_ABI_LIBRARY:-}" ]; then
+  LD_LIBRARY_PATH="$(dirname "$SSCAPE_FAKE_ABI_LIBRARY")" mono "$work/Tests.exe" --expect-abi-mismatch
+fi
 # The README's example, as written there.
 cd "$work"
 mcs -r:Sscape.dll -out:Bodies.exe "$here/Examples/Bodies.cs"

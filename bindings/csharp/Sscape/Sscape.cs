@@ -54,9 +54,10 @@ namespace Sscape
             abiChecked = true;
         }
 
+        /// <summary>The status's name as C spells it (the enum's own, so it works before the ABI check too).</summary>
         public static string StatusName(ssc_status status)
         {
-            return Utf8(Api.ssc_status_name(status));
+            return Enum.IsDefined(typeof(ssc_status), status) ? status.ToString() : "SSC_ERROR_UNKNOWN(" + (int)status + ")";
         }
 
         /// <summary>Throws SscapeException with ssc_last_error's message unless status is SSC_OK.</summary>

@@ -81,8 +81,21 @@ static class Tests
         return bytes.ToArray();
     }
 
-    static void Main()
+    static void Main(string[] args)
     {
+        // test.sh runs this again against a library of the next ABI major (a process loads one library).
+        if (args.Length == 1 && args[0] == "--expect-abi-mismatch")
+        {
+            try { Model.LoadDefault(); }
+            catch (SscapeException e)
+            {
+                bool refused = e.Status == ssc_status.SSC_ERROR_UNSUPPORTED_VERSION && e.Message.Contains("ABI major " + Library.AbiMajor);
+                Console.WriteLine((refused ? "ok" : "FAILED") + " a library of another ABI major is refused: " + e.Message);
+                Environment.Exit(refused ? 0 : 1);
+            }
+            Console.WriteLine("FAILED a library of another ABI major was used");
+            Environment.Exit(1);
+        }
         Run("the scenario gives the C API's bytes", delegate
         {
             string reference = Environment.GetEnvironmentVariable("SSCAPE_SCENARIO_REFERENCE");
@@ -127,6 +140,13 @@ static class Tests
 
         Run("errors become SscapeException with the status and message", delegate
         {
+            foreach (ssc_status status in Enum.GetValues(typeof(ssc_status)))
+                unsafe
+                {
+                    if (status == ssc_status.SSC_STATUS_FORCE32) continue;
+                    string c = Library.Utf8(Api.ssc_status_name(status));
+                    Assert(Library.StatusName(status) == c, status + " is " + c + " in C");
+                }
             using (Model model = Model.LoadDefault())
             using (Body body = model.CreateBody())
             using (Fitter fitter = model.CreateFitter())

@@ -43,13 +43,13 @@ function library() {
       errors.push(`${name}: ${e.message}`);
       continue;
     }
-    const api = native.declare(koffi, lib);
-    const number = api.ssc_version();
+    // The version first: a library of another major may lack or change the other functions.
+    const number = lib.func('uint32_t ssc_version()')();
     const major = Math.floor(number / 10000);
     if (major !== native.VERSION_MAJOR) {
       throw new Error(`sscape: ${name} has ABI major ${major} (version ${number}); this package is for major ${native.VERSION_MAJOR}`);
     }
-    loaded = { lib, api };
+    loaded = { lib, api: native.declare(koffi, lib) };
     return loaded;
   }
   throw new Error(`sscape: cannot load the C library (set SSCAPE_LIBRARY to its path): ${errors.join('; ')}`);

@@ -70,6 +70,16 @@ test('the library\'s ABI major is the package\'s', () => {
   assert.strictEqual(sscape.version().number, sscape.native.ssc_version());
 });
 
+test('a library of another ABI major is refused with a message', (t) => {
+  const fake = process.env.SSCAPE_FAKE_ABI_LIBRARY;
+  if (!fake) { t.skip('SSCAPE_FAKE_ABI_LIBRARY not set (tests/CMakeLists.txt sets it)'); return; }
+  // In a child process: the package loads its library once per process.
+  const child = require('node:child_process').spawnSync(process.execPath,
+    ['-e', "require('..').Model.loadDefault()"], { cwd: __dirname, env: { ...process.env, SSCAPE_LIBRARY: fake }, encoding: 'utf8' });
+  assert.notStrictEqual(child.status, 0);
+  assert.match(child.stderr, new RegExp(`has ABI major ${sscape.ABI_MAJOR + 1} .*this package is for major ${sscape.ABI_MAJOR}`));
+});
+
 test('errors become SscapeError with the status and the library\'s message', () => {
   const model = sscape.Model.loadDefault();
   assert.throws(() => model.jointIndex('no_such_joint'), (e) => e instanceof sscape.SscapeError

@@ -81,14 +81,33 @@ pub fn version() -> (u32, u32, u32) {
 }
 
 fn check_abi() -> Result<()> {
-    let (major, minor, patch) = version();
-    if major != ABI_MAJOR {
+    // Safety: no arguments.
+    abi_matches(unsafe { sys::ssc_version() })
+}
+
+/// Whether a library of version `number` (as `ssc_version` gives it) is one this crate may call.
+fn abi_matches(number: u32) -> Result<()> {
+    if number / 10000 != ABI_MAJOR {
         return Err(Error {
             status: sys::SSC_ERROR_UNSUPPORTED_VERSION,
-            message: format!("the loaded libsscape is {}.{}.{}; this crate is for ABI major {}", major, minor, patch, ABI_MAJOR),
+            message: format!("the loaded libsscape is version {}; this crate is for ABI major {}", number, ABI_MAJOR),
         });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    // A library of another major is refused (the dynamic loader refuses most first: the soname
+    // carries the major).
+    #[test]
+    fn other_abi_majors_are_refused() {
+        let next = (super::ABI_MAJOR + 1) * 10000;
+        let e = super::abi_matches(next).unwrap_err();
+        assert_eq!(e.status, super::sys::SSC_ERROR_UNSUPPORTED_VERSION);
+        assert!(e.message.contains(&format!("ABI major {}", super::ABI_MAJOR)), "{}", e.message);
+        assert!(super::abi_matches(super::ABI_MAJOR * 10000 + 99).is_ok());
+    }
 }
 
 /// One of the library's measurements.
