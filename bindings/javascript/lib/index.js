@@ -11,7 +11,7 @@ const SSC_OK = enums.ssc_status.SSC_OK;
 /** The error of a failed call: `status` (the ssc_status value), `code` (its name), and the library's message. */
 class SscapeError extends Error {
   constructor(status, code, message, functionName) {
-    super(`${functionName}: ${code}: ${message}`);
+    super(`${code}: ${message}`);  // the library's message names the function already
     this.name = 'SscapeError';
     this.status = status;
     this.code = code;
