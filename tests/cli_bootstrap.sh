@@ -2,9 +2,11 @@
 # `sscape bootstrap` on a small simulated collection: one round from the built-in model, its files
 # (registrations sscape learn can read, decisions, contact sheet, model), a resumed run that redoes
 # nothing, a person's decision that changes the learned model, and the refusals.
-# usage: cli_bootstrap.sh SSCAPE OUT_DIR
+# usage: cli_bootstrap.sh SSCAPE OUT_DIR [small]
+#   small (the sanitizer build): without the second registration of every scan under another up axis,
+#   which runs the same code as the first.
 set -u
-sscape=$1 out=$2/bootstrap
+sscape=$1 out=$2/bootstrap scale=${3:-full}
 rm -rf "$out" && mkdir -p "$out/scans" "$out/truth"
 fail() { echo "FAIL: $*"; exit 1; }
 for i in 1 2 3 4 5 6; do
@@ -40,9 +42,11 @@ cp -r "$out/run" "$out/run_cm"
 "$sscape" bootstrap "$out/scans" --rounds 1 --components 3 --units m --up y -o "$out/run_cm" > "$out/same_units.txt" 2>&1 ||
     { cat "$out/same_units.txt"; fail "resume with the same units spelled out"; }
 grep -q "round 1: 0 registered, 6 reused" "$out/same_units.txt" || { cat "$out/same_units.txt"; fail "the same units redid work"; }
-"$sscape" bootstrap "$out/scans" --rounds 1 --components 3 --up z -o "$out/run_cm" > "$out/other_up.txt" 2>&1
-grep -q ", 0 reused, " "$out/other_up.txt" || { cat "$out/other_up.txt"; fail "another up axis reused registrations"; }
-grep -q "round 1: learning from" "$out/other_up.txt" || { cat "$out/other_up.txt"; fail "new registrations reused the model"; }
+if [ "$scale" = full ]; then
+    "$sscape" bootstrap "$out/scans" --rounds 1 --components 3 --up z -o "$out/run_cm" > "$out/other_up.txt" 2>&1
+    grep -q ", 0 reused, " "$out/other_up.txt" || { cat "$out/other_up.txt"; fail "another up axis reused registrations"; }
+    grep -q "round 1: learning from" "$out/other_up.txt" || { cat "$out/other_up.txt"; fail "new registrations reused the model"; }
+fi
 rm -rf "$out/run_cm"
 
 # A person rejects an accepted scan: the registrations stay, the model is learned again without it.

@@ -16,6 +16,15 @@
 
 namespace test {
 
+// Whether this build runs under AddressSanitizer (SSCAPE_SANITIZE): there the end-to-end tests run
+// their steps on less data, since their figures are checked by the Release run and the sanitizers
+// look for memory errors, which the same code on fewer scans shows as well.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool sanitized = true;
+#else
+inline constexpr bool sanitized = false;
+#endif
+
 // The MakeHuman assets' folder as CTest passes it (SSCAPE_MAKEHUMAN), or "" when it is not there:
 // tests that need it skip with a visible "SKIPPED:" message.
 inline std::string makehuman_root() {

@@ -17,6 +17,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <random>
 #include <set>
@@ -221,24 +222,26 @@ TEST_CASE("one round of bootstrapping on 20 MakeHuman booth scans: most accepted
     const Model& m = test::default_cpp_model();
     const std::string folder = "bootstrap_makehuman_test";
     std::filesystem::remove_all(folder);
+    // Under the sanitizers: the same steps on 6 scans (20 take 12 minutes there), without the figures.
+    const int scans = test::sanitized ? 6 : 20, held_out = test::sanitized ? 2 : 10, components = test::sanitized ? 3 : 8;
     learning::CollectionSpec cs;
-    cs.scans = 20;
-    cs.extra = 10;
-    cs.points = 15000;
+    cs.scans = scans;
+    cs.extra = held_out;
+    cs.points = test::sanitized ? 8000 : 15000;
     const learning::SimulatedCollection c = learning::simulate_collection(root, m, cs, folder + "/scans");
-    REQUIRE(c.scans.size() == 20);
+    REQUIRE(c.scans.size() == std::size_t(scans));
     learning::BootstrapSpec spec;
     spec.scans = c.scans;
     spec.out_dir = folder + "/run";
     spec.rounds = 1;
     spec.threads = 2;
-    spec.learn.components = 8;
+    spec.learn.components = components;
     spec.sheet_entries = 0;
     const std::vector<learning::RoundReport> reports = learning::bootstrap(format::write_model(m.data()), spec);
     REQUIRE(reports.size() == 1);
     INFO(reports[0].accepted << " accepted, " << reports[0].rejected << " rejected, " << reports[0].failed << " failed");
     CHECK(reports[0].failed == 0);
-    CHECK(reports[0].accepted >= 14);
+    CHECK(reports[0].accepted >= (test::sanitized ? 4u : 14u));
 
     // The accepted registrations against the true meshes, vertex for vertex.
     double error = 0;
@@ -253,7 +256,7 @@ TEST_CASE("one round of bootstrapping on 20 MakeHuman booth scans: most accepted
     REQUIRE(accepted.size() == reports[0].accepted);
     error /= double(accepted.size());
     INFO("mean correspondence error of the accepted registrations " << error * 1e3 << " mm");
-    CHECK(error < 0.012);
+    CHECK(error < (test::sanitized ? 0.02 : 0.012));
 
     // The learned model loads, and reconstructs the 10 held-out people at rest about as well as a
     // model learned from the scanned people's true rest meshes.
@@ -261,20 +264,24 @@ TEST_CASE("one round of bootstrapping on 20 MakeHuman booth scans: most accepted
     std::vector<learning::RegisteredScan> true_rest;
     for (std::size_t s = 0; s < c.scans.size(); ++s) true_rest.push_back({"true", c.rest[s], false, {}});
     learning::LearnSpec direct_spec;
-    direct_spec.components = 8;
+    direct_spec.components = uint32_t(components);
     direct_spec.posture = learning::Posture::None;
     const format::ModelData direct = learning::learn_model(m.data(), true_rest, direct_spec);
-    training::SampleMatrix held(10, 3 * Eigen::Index(m.vertex_count()));
-    for (int i = 0; i < 10; ++i)
+    training::SampleMatrix held(held_out, 3 * Eigen::Index(m.vertex_count()));
+    for (int i = 0; i < held_out; ++i)
         for (uint32_t v = 0; v < m.vertex_count(); ++v)
-            for (int a = 0; a < 3; ++a) held(i, 3 * Eigen::Index(v) + a) = float(c.rest[20 + std::size_t(i)][v][a]);
+            for (int a = 0; a < 3; ++a) held(i, 3 * Eigen::Index(v) + a) = float(c.rest[std::size_t(scans + i)][v][a]);
     learning::EvaluationSpec es;
-    es.components = {8};
+    es.components = {uint32_t(components)};
     es.samples = 100;
     const double learned_error = learning::evaluate_model(learned, held, es).at(0).generalization;
     const double direct_error = learning::evaluate_model(direct, held, es).at(0).generalization;
-    INFO("held-out people at 8 components: learned " << learned_error * 1e3 << " mm, from the true meshes " << direct_error * 1e3 << " mm");
-    CHECK(learned_error < direct_error + 0.005);
-    CHECK(learned_error < 0.015);
+    INFO("held-out people at " << components << " components: learned " << learned_error * 1e3 << " mm, from the true meshes " << direct_error * 1e3 << " mm");
+    if (test::sanitized) {
+        CHECK(std::isfinite(learned_error));  // 6 scans say nothing of the figures; the Release run checks them
+    } else {
+        CHECK(learned_error < direct_error + 0.005);
+        CHECK(learned_error < 0.015);
+    }
     std::filesystem::remove_all(folder);
 }

@@ -23,5 +23,6 @@ fi
 cd "$work"
 mcs -r:Sscape.dll -out:Bodies.exe "$here/Examples/Bodies.cs"
 mono Bodies.exe "$work" | tee "$work/example.log"
+mcs -r:Sscape.dll -warn:4 -warnaserror -out:Bench.exe "$here/Examples/Bench.cs"  # builds (tests/bench/bindings_bench.sh runs it)
 grep -q "wrote .*body_0.glb" "$work/example.log"
 [ -s "$work/body_0.glb" ]

@@ -12,7 +12,7 @@ for tool in node npm; do
 done
 node -e "require('koffi')" 2> /dev/null || { echo "SKIPPED: koffi not found (./setup.sh test installs it with npm)"; exit 77; }
 export SSCAPE_LIBRARY="$library"
-(cd "$here" && node --test test/)
+(cd "$here" && node --test test/ && node --check examples/bench.js)
 
 # The README's installation and example, in a new project.
 rm -rf "$work" && mkdir -p "$work/project"
