@@ -2,7 +2,7 @@
 # sscape setup: installs the Debian packages the build needs, builds, and runs a job.
 #   ./setup.sh         install, build (Release), run the main job: random bodies of the default model
 #   ./setup.sh test    install, build, run the whole test suite, also under ASan + UBSan, then fuzz
-# Environment: JOBS (parallel build jobs, default: number of cores), FUZZ_SECONDS (per fuzz target, default 60).
+# Environment: JOBS (parallel build jobs, default: number of cores), FUZZ_SECONDS (per fuzz target, default 30).
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -75,8 +75,8 @@ else
   build build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "${lines_only[@]}" -DSSCAPE_SANITIZE=ON -DSSCAPE_BUILD_BENCHMARKS=OFF
   npm_tools build-sanitize "$gltf_validator"
   (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest -j "$jobs" --output-on-failure)
-  # The fuzz targets (model loading, each reader), about a minute each; long runs: see README.
+  # The fuzz targets (model loading, each reader), half a minute each (two at a time); long runs: see README.
   CC=clang CXX=clang++ TARGET=fuzz_all build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo "${lines_only[@]}" -DSSCAPE_FUZZ=ON \
       -DSSCAPE_BUILD_TESTS=OFF -DSSCAPE_BUILD_BENCHMARKS=OFF -DSSCAPE_BUILD_TRAINING=OFF -DSSCAPE_BUILD_SAMPLES=OFF
-  tests/fuzz/run.sh build-fuzz "${FUZZ_SECONDS:-60}"
+  tests/fuzz/run.sh build-fuzz "${FUZZ_SECONDS:-30}"
 fi
