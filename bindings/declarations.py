@@ -224,8 +224,7 @@ def generate_rust(h: Header) -> str:
         out += ["", f"pub type {name} = Option<unsafe extern \"C\" fn{rust_fn(f)}>;"]
     for name, fields in h.structs.items():
         out += ["", "#[repr(C)]", "#[derive(Clone, Copy, Debug)]", f"pub struct {name} {{"]
-        out += [f"    pub {rust_name(p.name)}: {rust_type(p.type) if not h.callbacks.get(p.type.base) else p.type.base},"
-                for p in fields]
+        out += [f"    pub {rust_name(p.name)}: {rust_type(p.type)}," for p in fields]
         out.append("}")
     out += ["", "extern \"C\" {"]
     out += [f"    pub fn {f.name}{rust_fn(f)};" for f in h.functions]
@@ -244,7 +243,7 @@ CS_SCALARS = {"void": "void", "char": "byte", "int": "int", "uint8_t": "byte", "
 
 def cs_type(t: Type, h: Header) -> str:
     if t.base in h.callbacks:
-        return "IntPtr" if not t.pointers else "IntPtr" + "*" * t.depth
+        return "IntPtr" + "*" * t.depth
     if t.base in h.opaque:
         return "IntPtr" + "*" * (t.depth - 1)
     name = CS_SCALARS.get(t.base, t.base)

@@ -256,7 +256,9 @@ function counts(model) {
 }
 
 /** The measurements the library knows: [{ name, unit, definition }], in measurement order. */
+let measurementList = null;  // the library's static table, read once
 function measurements() {
+  if (measurementList) return measurementList.map((m) => ({ ...m }));
   const c = api();
   const list = [];
   for (let i = 0; i < c.ssc_measurement_count(); ++i) {
@@ -265,7 +267,8 @@ function measurements() {
     const unitName = Object.keys(enums.ssc_unit).find((k) => enums.ssc_unit[k] === unit[0]);
     list.push({ name: name[0], unit: unitName.replace(/^SSC_UNIT_/, '').toLowerCase(), definition: definition[0] });
   }
-  return list;
+  measurementList = list;
+  return measurements();
 }
 
 /** One body: shape and pose in, vertices and measurements out. One thread at a time. */
