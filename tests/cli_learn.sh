@@ -25,6 +25,20 @@ grep -qi "age" "$out/info.txt" || { cat "$out/info.txt"; fail "info lists the gi
 grep -q "CC-BY-4.0 (test scans)" "$out/info.txt" || { cat "$out/info.txt"; fail "the given licence"; }
 "$sscape" synth "$out/learned.sscape" --random 1 -o "$out/body.obj" > /dev/null 2>&1 || fail "a body of the learned model"
 "$sscape" learn "$out"/reg?.ply --posture none --components 2 -o "$out/none.sscape" > /dev/null 2>&1 || fail "posture none"
+# The laplacian method needs no model fits (registrations started rigidly have none): the
+# reports' fits taken out, skeleton refuses and laplacian learns.
+mkdir -p "$out/bare" && cp "$out"/reg?.ply "$out/bare/"
+for i in 1 2 3 4 5; do
+    /usr/bin/python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); r.pop("fit"); json.dump(r, open(sys.argv[2], "w"))' \
+        "$out/reg$i.json" "$out/bare/reg$i.json" || fail "a report without its fit"
+done
+"$sscape" learn "$out"/bare/reg?.ply --components 2 -o "$out/bad.sscape" > "$out/nofit.txt" 2>&1
+[ $? -ne 0 ] && grep -q "has no model fit.*--posture none or laplacian" "$out/nofit.txt" && [ ! -e "$out/bad.sscape" ] ||
+    { cat "$out/nofit.txt"; fail "skeleton without fits"; }
+"$sscape" learn "$out"/bare/reg?.ply --posture laplacian --components 2 -o "$out/laplacian.sscape" > "$out/laplacian.txt" 2>&1 ||
+    { cat "$out/laplacian.txt"; fail "posture laplacian"; }
+grep -q "(posture normalization laplacian)" "$out/laplacian.txt" || { cat "$out/laplacian.txt"; fail "learn's summary names laplacian"; }
+"$sscape" synth "$out/laplacian.sscape" --random 1 -o "$out/laplacian_body.obj" > /dev/null 2>&1 || fail "a body of the laplacian model"
 
 # Segment shape spaces: learned, listed by info, set per segment by synth.
 "$sscape" learn "$out"/reg?.ply --components 3 --segment-components 2 -o "$out/segments.sscape" > "$out/segments.txt" 2>&1 ||

@@ -1,11 +1,13 @@
 // Learning models from registered scans: posture normalization, the learned shape space, bad input.
 #include "learning/evaluate_learning.hpp"
 #include "learning/learn_model.hpp"
+#include "learning/laplacian_posture.hpp"
 #include "learning/posture_normalization.hpp"
 #include "support.hpp"
 
 #include "capi/cpp_access.hpp"
 #include "common/error.hpp"
+#include "common/rigid.hpp"
 #include "semantics/attribute_model.hpp"
 #include "simulation/simulate.hpp"
 #include "sscape_format/model_io.hpp"
@@ -88,6 +90,55 @@ TEST_CASE("skeleton posture normalization undoes the fitted skinning", "[learnin
     CHECK_THROWS_AS(learning::posture_from_name("laplace"), Error);
 }
 
+TEST_CASE("laplacian posture normalization drops posture without a fit and keeps the registration's surface", "[learning]") {
+    const Model& m = test::default_cpp_model();
+    const learning::LaplacianPosture laplacian(m);
+    // Mean vertex distance after the best rigid motion (learning aligns bodies rigidly anyway).
+    auto apart = [](const std::vector<Vector3d>& a, const std::vector<Vector3d>& b) {
+        Eigen::Matrix3Xd src(3, a.size()), dst(3, a.size());
+        for (std::size_t v = 0; v < a.size(); ++v) src.col(Eigen::Index(v)) = a[v], dst.col(Eigen::Index(v)) = b[v];
+        const Similarity T = align_points(src, dst, false);
+        return ((T.R * src).colwise() + T.t - dst).colwise().norm().mean();
+    };
+    std::mt19937 rng(5);
+    for (double amount : {0.15, 0.6}) {  // a booth's variation; bent elbows and knees
+        const Sample s = sample(m, rng, m.component_count(), amount);
+        const std::vector<Vector3d> from_posed = laplacian.unpose(s.scan.vertices), from_rest = laplacian.unpose(s.rest);
+        const double posed = apart(s.scan.vertices, s.rest), left = apart(from_posed, from_rest), shape = apart(from_rest, s.rest);
+        INFO("pose " << amount << ": posed body " << posed * 1e3 << " mm from its rest, normalized " << left * 1e3
+                     << " mm from the normalized rest body, which is " << shape * 1e3 << " mm from the rest body");
+        CHECK(posed > 0.03);
+        CHECK(left < (amount < 0.5 ? 0.1 : 0.13) * posed);  // posture mostly gone
+        CHECK(shape < 0.015);  // limbs turned to the mean's orientation (segment shape sets it too), nothing more
+    }
+    // The surface itself: a rest body's edges come back with their lengths.
+    const Sample s = sample(m, rng, m.component_count(), 0.0);
+    const std::vector<Vector3d> again = laplacian.unpose(s.rest);
+    const auto& tri = m.data().mesh.triangles;
+    double stretch = 0;
+    for (std::size_t t = 0; t < tri.size(); t += 3)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = tri[t + k], b = tri[t + (k + 1) % 3];
+            stretch += std::abs((again[a] - again[b]).norm() / (s.rest[a] - s.rest[b]).norm() - 1) / double(tri.size());
+        }
+    INFO("mean relative change of edge length " << stretch);
+    CHECK(stretch < 0.02);
+    // Bad input.
+    std::vector<Vector3d> short_list(s.rest.begin(), s.rest.end() - 1);
+    CHECK_THROWS_AS(laplacian.unpose(short_list), Error);
+    std::vector<Vector3d> nan_body = s.rest;
+    nan_body[7].x() = std::nan("");
+    CHECK_THROWS_AS(laplacian.unpose(nan_body), Error);
+    learning::LaplacianPostureOptions bad;
+    bad.anchor = 0;
+    CHECK_THROWS_AS(learning::LaplacianPosture(m, bad), Error);
+    bad = {};
+    bad.posture = std::nan("");
+    CHECK_THROWS_AS(learning::LaplacianPosture(m, bad), Error);
+    CHECK(learning::posture_from_name("laplacian") == learning::Posture::Laplacian);
+    CHECK(std::string(learning::posture_name(learning::Posture::Laplacian)) == "laplacian");
+}
+
 TEST_CASE("a model learned from posed registrations: skeleton normalization keeps shape and drops posture", "[learning]") {
     const Model& m = test::default_cpp_model();
     std::mt19937 rng(11);
@@ -120,6 +171,19 @@ TEST_CASE("a model learned from posed registrations: skeleton normalization keep
     INFO("held-out rest bodies: skeleton " << skeleton_error * 1e3 << " mm, none " << none_error * 1e3 << " mm");
     CHECK(skeleton_error < 0.5e-3);
     CHECK(none_error > 5 * skeleton_error);
+    // The laplacian method needs no fits; its space holds shape and far less posture than none's.
+    std::vector<learning::RegisteredScan> unfitted = train;
+    for (auto& scan : unfitted) scan.has_fit = false, scan.fit = {};
+    spec.posture = learning::Posture::Laplacian;
+    learning::LearnReport laplacian_report;
+    const format::ModelData laplacian = learning::learn_model(m.data(), unfitted, spec, &laplacian_report);
+    const Model laplacian_model(laplacian, nullptr);
+    double laplacian_error = 0;
+    for (const Sample& s : test) laplacian_error += simulation::best_approximation_error(laplacian_model, s.rest, true) / kTest;
+    INFO("explained by 8 components: skeleton " << report.explained << ", laplacian " << laplacian_report.explained << ", none " << none_report.explained
+                                                << "; held-out rest bodies: laplacian " << laplacian_error * 1e3 << " mm");
+    CHECK(laplacian_report.explained > none_report.explained);
+    CHECK(laplacian_error < 0.5 * none_error);
     // The file round trip, the template's frame (feet on the ground), and the attributes.
     const std::vector<unsigned char> bytes = format::write_model(skeleton);
     ssc_model* loaded = nullptr;

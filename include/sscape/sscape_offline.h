@@ -131,6 +131,7 @@ SSC_EXPERIMENTAL ssc_status ssc_fitter_write_params(ssc_fitter* fitter, const ss
 typedef enum ssc_posture_normalization {
     SSC_POSTURE_SKELETON = 0, /**< Each registration unposed by its fitted skeleton before PCA. */
     SSC_POSTURE_NONE = 1,     /**< PCA of the registrations as they are. */
+    SSC_POSTURE_LAPLACIAN = 2,/**< Each registration rebuilt at rest from posture-free differential coordinates (no fit needed). */
     SSC_POSTURE_FORCE32 = 0x7fffffff
 } ssc_posture_normalization;
 

@@ -79,7 +79,7 @@ ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, 
         SSC_REQUIRE_ARG_S(d.threads <= 256, "def->threads " << d.threads << " is not 0..256");
         SSC_REQUIRE_ARG_S(d.contact_sheet_entries <= 100, "def->contact_sheet_entries " << d.contact_sheet_entries << " is not 0..100");
         const int32_t posture = enum_value(d.posture);
-        SSC_REQUIRE_ARG_S(posture == SSC_POSTURE_SKELETON || posture == SSC_POSTURE_NONE, "def->posture " << posture << " is unknown");
+        SSC_REQUIRE_ARG_S(posture == SSC_POSTURE_SKELETON || posture == SSC_POSTURE_NONE || posture == SSC_POSTURE_LAPLACIAN, "def->posture " << posture << " is unknown");
 
         auto b = std::make_unique<ssc_bootstrap>();
         learning::BootstrapSpec& spec = b->spec;
@@ -94,7 +94,9 @@ ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, 
         b->up = optional(d.up);
         spec.reading = learning::scan_reading(b->units, b->up);
         spec.learn.components = d.components;
-        spec.learn.posture = posture == SSC_POSTURE_SKELETON ? learning::Posture::Skeleton : learning::Posture::None;
+        spec.learn.posture = posture == SSC_POSTURE_SKELETON  ? learning::Posture::Skeleton
+                             : posture == SSC_POSTURE_LAPLACIAN ? learning::Posture::Laplacian
+                                                                : learning::Posture::None;
         spec.learn.scale = d.scale != 0;
         spec.learn.segment_components = d.segment_components;
         spec.learn.segment_band = d.segment_band;

@@ -41,7 +41,7 @@ int run_bootstrap(const Options& o) {
     def.init_model_path = o.init.empty() ? nullptr : o.init.c_str();
     def.template_only = o.template_only;
     def.components = o.components;
-    def.posture = o.posture == "none" ? SSC_POSTURE_NONE : SSC_POSTURE_SKELETON;
+    def.posture = o.posture == "none" ? SSC_POSTURE_NONE : o.posture == "laplacian" ? SSC_POSTURE_LAPLACIAN : SSC_POSTURE_SKELETON;
     def.scale = o.scale;
     def.segment_components = o.segment_components;
     def.segment_band = float(o.segment_band_mm * 1e-3);
@@ -99,7 +99,7 @@ Run add_bootstrap(CLI::App& app) {
     c->add_option("--rounds", o->rounds, "rounds of registration and learning (default 3)")->check(CLI::Range(1u, 100u));
     c->add_option("--components", o->components, "shape components of each learned model (default 20; fewer when fewer scans are accepted)")
         ->check(CLI::Range(1u, 1000u));
-    c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default) or none")->check(CLI::IsMember({"none", "skeleton"}));
+    c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default), laplacian or none")->check(CLI::IsMember({"none", "skeleton", "laplacian"}));
     c->add_flag("--template-only", o->template_only, "start from the starting model's template alone (its mean body, skeleton and "
                                                      "skinning; no shape components): the weakest start");
     c->add_flag("--scale", o->scale, "learn with Procrustes alignment with scale (proportions only, no stature)");

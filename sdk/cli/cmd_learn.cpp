@@ -116,8 +116,9 @@ Run add_learn(CLI::App& app) {
     c->add_option("-o,--output", o->out, "the learned model (.sscape)")->required()->check(extension(".sscape"));
     c->add_option("--components", o->components, "shape components to keep (default 20; fewer than the registrations)")
         ->check(CLI::Range(1u, 1000u));
-    c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default: each scan's fitted skinning undone) or none")
-        ->check(CLI::IsMember({"none", "skeleton"}));
+    c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default: each scan's fitted skinning undone), "
+                                    "laplacian (rebuilt at rest from posture-free coordinates; no fit needed) or none")
+        ->check(CLI::IsMember({"none", "skeleton", "laplacian"}));
     c->add_flag("--scale", o->scale, "Procrustes alignment with scale: every body brought to the collection's average size, so the "
                                      "model holds proportions only (no stature)");
     c->add_option("--segment-components", o->segment_components,

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/rigid.hpp"
+#include "learning/laplacian_posture.hpp"
 #include "semantics/attribute_model.hpp"
 #include "sscape_format/basis_codec.hpp"
 #include "sscape_format/model_io.hpp"
@@ -9,6 +10,7 @@
 #include "training/pca.hpp"
 
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 namespace ssc::learning {
@@ -71,10 +73,14 @@ void align_to_template(training::SampleMatrix& X, const format::ModelData& t) {
 training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale) {
     const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
     training::SampleMatrix X(N, 3 * Eigen::Index(V));
+    std::unique_ptr<const LaplacianPosture> laplacian;
+    if (posture == Posture::Laplacian) laplacian = std::make_unique<const LaplacianPosture>(model);
     for (uint32_t i = 0; i < N; ++i) {
         SSC_REQUIRE_ARG_S(scans[i].vertices.size() == V, "learn: " << scans[i].name << " has " << scans[i].vertices.size() << " vertices; the model has " << V);
         SSC_REQUIRE_ARG_S(posture != Posture::Skeleton || scans[i].has_fit, "learn: " << scans[i].name << " has no model fit");
-        const std::vector<Eigen::Vector3d> rest = posture == Posture::Skeleton ? unpose_skeleton(model, scans[i].fit, scans[i].vertices) : scans[i].vertices;
+        const std::vector<Eigen::Vector3d> rest = posture == Posture::Skeleton    ? unpose_skeleton(model, scans[i].fit, scans[i].vertices)
+                                                  : posture == Posture::Laplacian ? laplacian->unpose(scans[i].vertices)
+                                                                                  : scans[i].vertices;
         for (uint32_t v = 0; v < V; ++v)
             for (int a = 0; a < 3; ++a) X(i, 3 * Eigen::Index(v) + a) = float(rest[v][a]);
     }

@@ -12,10 +12,11 @@ namespace ssc::learning {
 Posture posture_from_name(const std::string& name) {
     if (name == "none") return Posture::None;
     if (name == "skeleton") return Posture::Skeleton;
-    fail(SSC_ERROR_INVALID_ARGUMENT, "posture normalization '" + name + "' is unknown (none, skeleton)");
+    if (name == "laplacian") return Posture::Laplacian;
+    fail(SSC_ERROR_INVALID_ARGUMENT, "posture normalization '" + name + "' is unknown (none, skeleton, laplacian)");
 }
 
-const char* posture_name(Posture p) { return p == Posture::None ? "none" : "skeleton"; }
+const char* posture_name(Posture p) { return p == Posture::None ? "none" : p == Posture::Skeleton ? "skeleton" : "laplacian"; }
 
 std::vector<Eigen::Vector3d> unpose_skeleton(const Model& model, const fitting::FitState& fit, const std::vector<Eigen::Vector3d>& posed) {
     const uint32_t V = model.vertex_count(), J = model.joint_count();

@@ -15,9 +15,10 @@ namespace ssc::learning {
 enum class Posture {
     None,      // the registrations as they are (rigidly aligned only)
     Skeleton,  // each one's skinning undone with its own fitted skeleton and pose
+    Laplacian, // rebuilt from posture-free differential coordinates (laplacian_posture.hpp); no fit needed
 };
 
-// "none" or "skeleton"; throws ssc::Error (INVALID_ARGUMENT) for any other name.
+// "none", "skeleton" or "laplacian"; throws ssc::Error (INVALID_ARGUMENT) for any other name.
 Posture posture_from_name(const std::string& name);
 const char* posture_name(Posture p);
 

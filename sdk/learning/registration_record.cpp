@@ -167,7 +167,7 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
         throw Error(e.status(), path + ": " + e.what());
     }
     if (!r.registered.has_fit && need_fit)
-        throw Error(SSC_ERROR_INVALID_ARGUMENT, path + ": the report has no model fit (registered with --start rigid or rbf); use --posture none");
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, path + ": the report has no model fit (registered with --start rigid or rbf); use --posture none or laplacian");
     const Eigen::Matrix3d R = up_axis_rotation(r.scan_up);
     for (const auto& p : io::read_points(mesh_path).points) r.registered.vertices.push_back(R * (p * r.scan_units_to_metres));
     if (r.registered.vertices.size() != V)

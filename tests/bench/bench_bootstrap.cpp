@@ -5,7 +5,7 @@
 // other true bodies with 5 components). Measures per round the accepted scans and the
 // registrations' error against the true meshes; then the final model's generalization on held-out
 // true bodies beside a model learned directly from the true rest meshes, and the posture
-// normalizations none and skeleton, with pictures of their first five components at +-3 SD.
+// normalizations none, skeleton and laplacian (also from the true posed meshes), with pictures of their first five components at +-3 SD.
 //
 // The collection comes from learning::simulate_collection.
 //
@@ -211,6 +211,16 @@ int main(int argc, char** argv) {
     const format::ModelData known_pose = learning::learn_model(registered_with, last_true_pose, wide);
     wide.posture = learning::Posture::None;
     const format::ModelData none = learning::learn_model(registered_with, last_accepted, wide);
+    wide.posture = learning::Posture::Laplacian;
+    const format::ModelData laplacian = learning::learn_model(registered_with, last_accepted, wide);
+    // The normalizations alone, without the registrations' error: learned from the true posed
+    // meshes (skeleton with the true pose would give the rest meshes exactly: skinning posed them).
+    std::vector<learning::RegisteredScan> true_posed;
+    for (uint32_t s = 0; s < scans; ++s) true_posed.push_back({"true posed", truth[s], false, {}});
+    learning::LearnSpec posed_spec = direct_spec;
+    const format::ModelData posed_none = learning::learn_model(default_data, true_posed, posed_spec);
+    posed_spec.posture = learning::Posture::Laplacian;
+    const format::ModelData posed_laplacian = learning::learn_model(default_data, true_posed, posed_spec);
     std::vector<std::vector<Vector3d>> held(rest.begin() + scans, rest.begin() + scans + heldout);
     const training::SampleMatrix H = rows_of(held);
     learning::EvaluationSpec es;
@@ -221,14 +231,15 @@ int main(int argc, char** argv) {
         const format::ModelData* m;
     };
     const format::ModelData weak_data = format::read_model(weak.data(), weak.size()), final_data = format::read_model(final_bytes.data(), final_bytes.size());
-    std::printf("\nheld-out true bodies (%u), rest posture: generalization / specificity, mm\n%-34s", heldout, "model");
+    std::printf("\nheld-out true bodies (%u), rest posture: generalization / specificity, mm\n%-38s", heldout, "model");
     for (uint32_t k : es.components) std::printf("   k=%-2u gen   spec", k);
     std::printf("\n");
     for (const Named& n : {Named{start == "template" ? "start: the template alone" : "weak start (50 true bodies, 5 comp)", &weak_data}, Named{"bootstrapped (final round)", &final_data},
                            Named{"from final registrations, skeleton", &skeleton}, Named{"  the same, unposed with the true pose", &known_pose},
-                           Named{"from final registrations, none", &none},
-                           Named{"from the true rest meshes", &direct}}) {
-        std::printf("%-34s", n.name);
+                           Named{"from final registrations, none", &none}, Named{"from final registrations, laplacian", &laplacian},
+                           Named{"from the true rest meshes", &direct}, Named{"from the true posed meshes, none", &posed_none},
+                           Named{"from the true posed meshes, laplacian", &posed_laplacian}}) {
+        std::printf("%-38s", n.name);
         if (n.m->shape.stddev.empty()) {  // the template alone has nothing to measure
             std::printf("   (no shape components)\n");
             continue;
@@ -243,7 +254,8 @@ int main(int argc, char** argv) {
     }
     component_picture(out + "/components_skeleton.png", skeleton, "posture skeleton");
     component_picture(out + "/components_none.png", none, "posture none");
-    std::printf("\nwrote %s/components_skeleton.png and components_none.png; contact sheets in %s/round_N; %.0f s in all\n", out.c_str(),
+    component_picture(out + "/components_laplacian.png", laplacian, "posture laplacian");
+    std::printf("\nwrote %s/components_skeleton.png, components_none.png and components_laplacian.png; contact sheets in %s/round_N; %.0f s in all\n", out.c_str(),
                 spec.out_dir.c_str(), now());
     return 0;
 }

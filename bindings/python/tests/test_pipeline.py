@@ -148,6 +148,14 @@ def test_bootstrap_equals_the_serial_command_line(scans, client, tmp_path):
     assert weights.min() > 0 and weights.max() <= 1 and (weights == 1).any()
 
 
+def test_bootstrap_settings_name_the_posture_normalization(scans, tmp_path):
+    for posture in ("skeleton", "none", "laplacian"):
+        pipeline.Bootstrapping(str(scans), str(tmp_path / posture), posture=posture, components=2).close()
+        assert not (tmp_path / posture).exists()  # settings only: nothing written yet
+    with pytest.raises(ValueError, match="laplacian"):
+        pipeline.Bootstrapping(str(scans), str(tmp_path / "x"), posture="wuhrer")
+
+
 def test_fit_and_measure_collections_equal_the_serial_command_line(scans, client, tmp_path):
     out, serial = tmp_path / "fits", tmp_path / "serial"
     serial.mkdir()

@@ -30,7 +30,7 @@ def main(argv=None) -> int:
     b.add_argument("--init", metavar="MODEL.sscape", help="the starting model (default: the built-in model)")
     b.add_argument("--rounds", type=int, default=3)
     b.add_argument("--components", type=int, default=20)
-    b.add_argument("--posture", choices=["skeleton", "none"], default="skeleton")
+    b.add_argument("--posture", choices=["skeleton", "none", "laplacian"], default="skeleton")
     b.add_argument("--template-only", action="store_true")
     b.add_argument("--scale", action="store_true")
     b.add_argument("--segment-components", type=int, default=0)

@@ -15,7 +15,7 @@ from ..errors import check
 from . import _worker
 from ._cluster import client_for, run_into_manifest
 
-_POSTURES = {"skeleton": 0, "none": 1}
+_POSTURES = {"skeleton": 0, "none": 1, "laplacian": 2}
 
 
 class Bootstrapping(Handle):
