@@ -108,7 +108,7 @@ TEST_CASE("laplacian posture normalization drops posture without a fit and keeps
         INFO("pose " << amount << ": posed body " << posed * 1e3 << " mm from its rest, normalized " << left * 1e3
                      << " mm from the normalized rest body, which is " << shape * 1e3 << " mm from the rest body");
         CHECK(posed > 0.03);
-        CHECK(left < (amount < 0.5 ? 0.1 : 0.13) * posed);  // posture mostly gone
+        CHECK(left < (amount < 0.5 ? 0.1 : 0.15) * posed);  // posture mostly gone
         CHECK(shape < 0.015);  // limbs turned to the mean's orientation (segment shape sets it too), nothing more
     }
     // The surface itself: a rest body's edges come back with their lengths.
