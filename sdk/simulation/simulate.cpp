@@ -308,7 +308,7 @@ void add_bumps(TrueBody& b, const Model& m, int count, std::mt19937& rng) {
     b.normals = registration::vertex_normals(b.vertices, triangles);
 }
 
-double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> rest, bool align) {
+double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> rest, bool align, std::vector<Eigen::Vector3d>* approximation) {
     const fitting::LinearModel lin(m, m.component_count());
     const uint32_t V = m.vertex_count();
     SSC_REQUIRE_ARG(rest.size() == V, "best_approximation_error: one vertex per model vertex");
@@ -331,6 +331,10 @@ double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> res
     const Eigen::VectorXd residual = B * B.colPivHouseholderQr().solve(y) - y;
     double sum = 0;
     for (uint32_t v = 0; v < V; ++v) sum += residual.segment<3>(3 * Eigen::Index(v)).norm();
+    if (approximation) {
+        approximation->resize(V);
+        for (uint32_t v = 0; v < V; ++v) (*approximation)[v] = rest[v] + residual.segment<3>(3 * Eigen::Index(v));
+    }
     return sum / double(V);
 }
 

@@ -75,7 +75,9 @@ std::vector<Eigen::Vector3d> fitted_vertices(const Model& m, const fitting::FitS
 // model's vertex order, rest pose) to its least-squares approximation by the model's shape space
 // and a translation, correspondence known; first rigidly aligned onto the model's mean when
 // `align` (as learning aligns its bodies). A registration that follows the surface from the model
-// fit cannot be expected to get much below it along the surface.
-double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> rest, bool align);
+// fit cannot be expected to get much below it along the surface. `approximation`, when given,
+// receives the approximation itself (in `rest`'s frame after the alignment).
+double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> rest, bool align,
+                                std::vector<Eigen::Vector3d>* approximation = nullptr);
 
 }  // namespace ssc::simulation
