@@ -48,6 +48,9 @@ void add_model_argument(CLI::App& command, std::string& path);
 CLI::Validator finite_in(double lo, double hi);
 CLI::Validator extension(const std::string& ext);
 
+// The posture normalizations learn, bootstrap and evaluate accept (learning::posture_from_name's).
+inline const std::vector<std::string> kPostureNames = {"none", "skeleton", "laplacian"};
+
 // The help layout: CLI11's, with long descriptions wrapped to 100 columns.
 std::shared_ptr<CLI::Formatter> help_formatter();
 

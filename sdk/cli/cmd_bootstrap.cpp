@@ -99,7 +99,7 @@ Run add_bootstrap(CLI::App& app) {
     c->add_option("--rounds", o->rounds, "rounds of registration and learning (default 3)")->check(CLI::Range(1u, 100u));
     c->add_option("--components", o->components, "shape components of each learned model (default 20; fewer when fewer scans are accepted)")
         ->check(CLI::Range(1u, 1000u));
-    c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default), laplacian or none")->check(CLI::IsMember({"none", "skeleton", "laplacian"}));
+    c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default), laplacian or none")->check(CLI::IsMember(kPostureNames));
     c->add_flag("--template-only", o->template_only, "start from the starting model's template alone (its mean body, skeleton and "
                                                      "skinning; no shape components): the weakest start");
     c->add_flag("--scale", o->scale, "learn with Procrustes alignment with scale (proportions only, no stature)");

@@ -151,7 +151,7 @@ Run add_evaluate(CLI::App& app) {
         ->type_name("MODEL.sscape")->check(CLI::ExistingFile.description(""));
     c->add_option("-o,--output", o->out, "the prefix of the CSV and the plots")->required()->type_name("PREFIX");
     c->add_option("--posture", o->postures, "posture normalizations to compare, each a curve (default skeleton)")
-        ->delimiter(',')->check(CLI::IsMember({"none", "skeleton", "laplacian"}))->type_name("none,skeleton,laplacian");
+        ->delimiter(',')->check(CLI::IsMember(kPostureNames))->type_name("none,skeleton,laplacian");
     c->add_option("--models", o->models, "instead of learning, measure these models (bootstrapping's rounds, say) against the registrations")
         ->delimiter(',')->check(CLI::ExistingFile.description(""))->type_name("A.sscape,B.sscape");
     c->add_flag("--scale", o->scale, "Procrustes alignment with scale: compare shapes, sizes removed");

@@ -118,7 +118,7 @@ Run add_learn(CLI::App& app) {
         ->check(CLI::Range(1u, 1000u));
     c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default: each scan's fitted skinning undone), "
                                     "laplacian (rebuilt at rest from posture-free coordinates; no fit needed) or none")
-        ->check(CLI::IsMember({"none", "skeleton", "laplacian"}));
+        ->check(CLI::IsMember(kPostureNames));
     c->add_flag("--scale", o->scale, "Procrustes alignment with scale: every body brought to the collection's average size, so the "
                                      "model holds proportions only (no stature)");
     c->add_option("--segment-components", o->segment_components,
