@@ -184,6 +184,14 @@ TEST_CASE("a model learned from posed registrations: skeleton normalization keep
                                                 << "; held-out rest bodies: laplacian " << laplacian_error * 1e3 << " mm");
     CHECK(laplacian_report.explained > none_report.explained);
     CHECK(laplacian_error < 0.5 * none_error);
+    // Normalization runs on threads: the same bodies on one or two, and a body that fails is
+    // reported from inside the pool.
+    std::vector<learning::RegisteredScan> few(unfitted.begin(), unfitted.begin() + 4);
+    const training::SampleMatrix one_thread = learning::normalized_bodies(m, few, learning::Posture::Laplacian, false, 1);
+    const training::SampleMatrix two_threads = learning::normalized_bodies(m, few, learning::Posture::Laplacian, false, 2);
+    CHECK(one_thread == two_threads);
+    few[2].vertices[5].x() = std::nan("");
+    CHECK_THROWS_AS(learning::normalized_bodies(m, few, learning::Posture::Laplacian, false, 2), Error);
     // The file round trip, the template's frame (feet on the ground), and the attributes.
     const std::vector<unsigned char> bytes = format::write_model(skeleton);
     ssc_model* loaded = nullptr;

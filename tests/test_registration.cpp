@@ -390,15 +390,17 @@ TEST_CASE("the C API registers a scan and refuses misuse with a status and a mes
     CHECK(std::string(region) == "torso");
     CHECK(q.within[3] > 0.8f);
     CHECK(ssc_registration_get_region(reg, 6, &region, &q) == SSC_ERROR_INVALID_ARGUMENT);
-    // The same as the C++ registration of the same scan.
-    ThreadPool pool(1);
-    const fitting::LinearModel lin(test::default_cpp_model(), test::default_cpp_model().component_count());
-    registration::Scan cloud_only;
-    for (uint32_t i = 0; i < n; ++i) cloud_only.cloud.points.emplace_back(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
-    const auto direct = registration::register_scan(lin, cloud_only, {});
-    double worst = 0;
-    for (uint32_t v = 0; v < V; ++v) worst = std::max(worst, (direct.vertices[v] - Vector3d(verts[3 * v], verts[3 * v + 1], verts[3 * v + 2])).norm());
-    CHECK(worst < 1e-5);
+    // The same as the C++ registration of the same scan (not under the sanitizers: the same code
+    // again, a minute there).
+    if (!test::sanitized) {
+        const fitting::LinearModel lin(test::default_cpp_model(), test::default_cpp_model().component_count());
+        registration::Scan cloud_only;
+        for (uint32_t i = 0; i < n; ++i) cloud_only.cloud.points.emplace_back(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
+        const auto direct = registration::register_scan(lin, cloud_only, {});
+        double worst = 0;
+        for (uint32_t v = 0; v < V; ++v) worst = std::max(worst, (direct.vertices[v] - Vector3d(verts[3 * v], verts[3 * v + 1], verts[3 * v + 2])).norm());
+        CHECK(worst < 1e-5);
+    }
     // A cancel leaves no result.
     const ssc_stage_progress_fn stop = [](void*, const char* stage, uint32_t, uint32_t) { return std::string(stage) == "deform" ? 1 : 0; };
     CHECK(ssc_registration_run(reg, stop, nullptr, nullptr) == SSC_ERROR_CANCELLED);

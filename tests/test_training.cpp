@@ -79,6 +79,7 @@ TEST_CASE("a small model retrained from the MakeHuman assets meets its quality n
     if (!small_training(spec)) return;
     spec.population.seed = 3;
     spec.made_to_measure_bodies = 8;
+    spec.segment_components = 4;
     ssc::training::TrainReport report;
     const auto model = ssc::training::train_model(spec, report);
     REQUIRE(model.vertex_count() == 13380);
@@ -159,4 +160,32 @@ TEST_CASE("a small model retrained from the MakeHuman assets meets its quality n
     CHECK(at("Lt. Thelion/Bustpoint")[2] > at("Suprasternale")[2]);
     CHECK(at("Cervicale")[2] < at("Suprasternale")[2] - 0.05f);
     CHECK(at("Lt. Calcaneous, Post.")[2] < at("Lt. Digit II")[2] - 0.15f);
+
+    // Segment shape spaces over the same bodies: six, each holding more of its own variance with
+    // its own first components than the whole body's first components hold of it; and a body built
+    // from an arm's coefficients moves that arm, not the other.
+    REQUIRE(model.segments.size() == 6);
+    REQUIRE(report.segments.size() == 6);
+    for (const auto& s : report.segments) {
+        INFO(s.name << ": own " << s.own[0] << ", whole body " << s.whole_body[0]);
+        REQUIRE(s.own.size() == 4);
+        CHECK(s.own[0] >= s.whole_body[0] - 1e-9);
+        CHECK(s.own[3] > 0.5);
+    }
+    CHECK(model.metadata.provenance.find("segment shape spaces: 4 components each") != std::string::npos);
+    uint32_t arm_l = 0, arm_r = 0;
+    REQUIRE(ssc_model_find_segment(m.get(), "arm_l", &arm_l) == SSC_OK);
+    REQUIRE(ssc_model_find_segment(m.get(), "arm_r", &arm_r) == SSC_OK);
+    const float coefficients[1] = {3.f};
+    REQUIRE(ssc_body_set_segment_shape(b.get(), arm_l, coefficients, 1) == SSC_OK);
+    const auto moved = test::posed(m.get(), b.get());
+    double left = 0, right = 0;
+    for (std::size_t i = 0; i < v.size(); i += 3) {
+        const double d = std::hypot(moved[i] - v[i], moved[i + 1] - v[i + 1], moved[i + 2] - v[i + 2]);
+        if (v[i] > 0.3f) left = std::max(left, d);  // the subject's left is +X
+        if (v[i] < -0.3f) right = std::max(right, d);
+    }
+    INFO("arm_l at +3 SD moves the left hand side up to " << left * 1e3 << " mm, the right " << right * 1e3 << " mm");
+    CHECK(left > 0.005);
+    CHECK(right < 1e-6);
 }

@@ -15,6 +15,10 @@
 #include <string>
 #include <vector>
 
+namespace ssc::training {
+struct SegmentCompactness;
+}
+
 namespace ssc::cli {
 
 // A usage or input problem found after parsing: printed with a pointer to the command's --help,
@@ -49,6 +53,10 @@ CLI::Validator finite_in(double lo, double hi);
 CLI::Validator extension(const std::string& ext);
 
 // The posture normalizations learn, bootstrap and evaluate accept (learning::posture_from_name's).
+// Each segment's own components beside the whole body's, as shares of the segment's variance
+// (learn's and train's report); nothing for none.
+void print_segment_compactness(const std::vector<training::SegmentCompactness>& segments);
+
 inline const std::vector<std::string> kPostureNames = {"none", "skeleton", "laplacian"};
 
 // The help layout: CLI11's, with long descriptions wrapped to 100 columns.

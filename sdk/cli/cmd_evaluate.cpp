@@ -26,7 +26,7 @@ struct Options {
     std::vector<uint32_t> components;
     std::vector<std::string> sizes;
     std::string model, out;
-    uint32_t folds = 0, samples = 10000;
+    uint32_t folds = 0, samples = 10000, threads = 0;
     bool scale = false;
 };
 
@@ -105,18 +105,18 @@ int run_evaluate(const Options& o) {
             sizes.push_back(uint32_t(n));
         }
         say("posture normalization " + o.postures[0] + ": " + std::to_string(scans.size()) + " registrations, every fifth held out");
-        const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[0], o.scale);
+        const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[0], o.scale, o.threads);
         for (const auto& q : learning::evaluate_training_sizes(X, sizes, spec, say)) series.push_back({std::to_string(q.size) + " scans", q.points});
         if (series.size() < sizes.size()) std::printf("(sizes beyond the %zu registrations not held out are left out)\n", scans.size() - scans.size() / 5);
     } else if (o.models.empty()) {
         for (std::size_t i = 0; i < postures.size(); ++i) {
             say("posture normalization " + o.postures[i] + ": " + std::to_string(scans.size()) + " registrations");
-            const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[i], o.scale);
+            const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[i], o.scale, o.threads);
             series.push_back({"posture " + o.postures[i], learning::evaluate_learning(X, spec, say)});
         }
     } else {
         if (postures.size() != 1) throw UsageError("--models: the registrations are normalized one way; give one --posture");
-        const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[0], o.scale);
+        const training::SampleMatrix X = learning::normalized_bodies(model, scans, postures[0], o.scale, o.threads);
         for (const auto& path : o.models) {
             say("model " + path + " against " + std::to_string(scans.size()) + " registrations");
             // Named by file stem, or folder/stem where stems repeat (bootstrapping's round_N/model).
@@ -163,6 +163,7 @@ Run add_evaluate(CLI::App& app) {
     c->add_option("--folds", o->folds, "cross-validation folds (default: leave-one-out up to 100 registrations, 10 above)")
         ->check(CLI::Range(2u, 100000u));
     c->add_option("--samples", o->samples, "random bodies per number of components for specificity (default 10000)")->check(CLI::Range(1u, 1000000u));
+    c->add_option("--threads", o->threads, "worker threads of the posture normalization (default: all)")->check(CLI::Range(0u, 256u));
     return [o] { return run_evaluate(*o); };
 }
 

@@ -25,30 +25,12 @@ namespace {
 struct Options {
     std::vector<std::string> registrations;
     std::string model, out, posture = "skeleton", attributes, name = "sscape-learned", license;
-    uint32_t components = 20, segment_components = 0;
+    uint32_t components = 20, segment_components = 0, threads = 0;
     bool scale = false;
     double segment_band_mm = 80;
 };
 
 std::string stem_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
-
-// Each segment's own components beside the whole body's, as shares of the segment's variance.
-void print_segment_compactness(const std::vector<training::SegmentCompactness>& segments) {
-    if (segments.empty()) return;
-    std::printf("segment compactness: share of each segment's variance held by its own first k components / by the whole body's first k\n");
-    std::printf("  %-6s %8s %9s", "segment", "vertices", "RMS (mm)");
-    const std::size_t K = segments[0].own.size();
-    const std::size_t shown[] = {1, 3, 5, 10, 20};
-    for (std::size_t k : shown)
-        if (k <= K) std::printf("     k=%-3zu", k);
-    std::printf("\n");
-    for (const auto& s : segments) {
-        std::printf("  %-7s %8u %9.1f", s.name.c_str(), s.vertices, std::sqrt(s.variance / std::max(1u, s.vertices)) * 1e3);
-        for (std::size_t k : shown)
-            if (k <= K) std::printf("  %4.1f/%4.1f", 100 * s.own[k - 1], k <= s.whole_body.size() ? 100 * s.whole_body[k - 1] : NAN);
-        std::printf("\n");
-    }
-}
 
 int run_learn(const Options& o) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -62,6 +44,7 @@ int run_learn(const Options& o) {
     spec.segment_components = o.segment_components;
     spec.scale = o.scale;
     spec.segment_band = o.segment_band_mm * 1e-3;
+    spec.threads = o.threads;
     spec.name = o.name;
     if (!o.license.empty()) spec.license = o.license;
     if (o.registrations.size() <= o.components)
@@ -130,6 +113,7 @@ Run add_learn(CLI::App& app) {
         ->check(CLI::ExistingFile);
     c->add_option("--name", o->name, "the model's name in its metadata (default sscape-learned)");
     c->add_option("--license", o->license, "the learned model's licence, the scans' owner's to give (default: unspecified)");
+    c->add_option("--threads", o->threads, "worker threads of the posture normalization (default: all)")->check(CLI::Range(0u, 256u));
     return [o] { return run_learn(*o); };
 }
 

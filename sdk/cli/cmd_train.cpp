@@ -17,6 +17,8 @@ namespace {
 int run_train(const training::TrainSpec& spec, const std::string& out) {
     if (spec.population.count <= spec.heldout + spec.components)
         throw UsageError("--bodies must exceed --heldout plus --components");
+    if (spec.population.count <= spec.heldout + spec.segment_components)
+        throw UsageError("--bodies must exceed --heldout plus --segment-components");
     const auto t0 = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     training::TrainReport report;
@@ -56,6 +58,7 @@ int run_train(const training::TrainSpec& spec, const std::string& out) {
     for (const auto& q : report.quality)
         std::printf("%10u %11.3f%% %18.2f %16.2f\n", q.components, 100 * q.compactness, q.generalization * 1e3, q.specificity * 1e3);
     for (const auto& png : report.plots) std::printf("plot: %s\n", png.c_str());
+    print_segment_compactness(report.segments);
     if (const auto& mtm = report.made_to_measure; mtm.bodies > 0) {
         std::printf("made to measure, %u held-out bodies (stature, chest, waist, hip requested with sex and age): "
                     "%u converged, %.2f s per body\n", mtm.bodies, mtm.converged, mtm.mean_seconds);
@@ -118,6 +121,7 @@ Run add_train(CLI::App& app) {
     struct Options {
         training::TrainSpec spec;
         std::string out;
+        double segment_band_mm = 80;
     };
     auto o = std::make_shared<Options>();
     training::TrainSpec& s = o->spec;
@@ -140,8 +144,16 @@ Run add_train(CLI::App& app) {
                   "write the quality report (compactness, generalization, specificity: CSV and plots; landmark pictures) to "
                   "files starting with PREFIX (an existing folder ending in / or a name prefix)")
         ->type_name("PREFIX");
+    c->add_option("--segment-components", s.segment_components,
+                  "also learn a shape space per body segment (head, arms, torso, legs) with this many components each (default 0: none)")
+        ->check(CLI::Range(0u, 500u));
+    c->add_option("--segment-band", o->segment_band_mm, "millimetres on each side of a segment border over which segments blend (default 80)")
+        ->check(CLI::Range(5.0, 500.0));
     c->add_flag("--procrustes", s.procrustes, "rigidly align the bodies (generalized Procrustes) before PCA; MakeHuman's share one frame");
-    return [o] { return run_train(o->spec, o->out); };
+    return [o] {
+        o->spec.segment_band = o->segment_band_mm * 1e-3;
+        return run_train(o->spec, o->out);
+    };
 }
 
 }  // namespace ssc::cli

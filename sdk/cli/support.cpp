@@ -1,10 +1,13 @@
 // Helpers the commands share: model loading, status checks, number lists, validators.
 #include "cli.hpp"
 
+#include "training/segment_shapes.hpp"
+
 #include <Eigen/Geometry>
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -111,6 +114,23 @@ ssc_model* load_model(const std::string& path) {
     if (path.empty()) check(ssc_model_load_default(nullptr, &model), "cannot load the default model");
     else check(ssc_model_load_file(nullptr, path.c_str(), &model), "cannot load '" + path + "'");
     return model;
+}
+
+void print_segment_compactness(const std::vector<training::SegmentCompactness>& segments) {
+    if (segments.empty()) return;
+    std::printf("segment compactness: share of each segment's variance held by its own first k components / by the whole body's first k\n");
+    std::printf("  %-6s %8s %9s", "segment", "vertices", "RMS (mm)");
+    const std::size_t K = segments[0].own.size();
+    const std::size_t shown[] = {1, 3, 5, 10, 20};
+    for (std::size_t k : shown)
+        if (k <= K) std::printf("     k=%-3zu", k);
+    std::printf("\n");
+    for (const auto& s : segments) {
+        std::printf("  %-7s %8u %9.1f", s.name.c_str(), s.vertices, std::sqrt(s.variance / std::max(1u, s.vertices)) * 1e3);
+        for (std::size_t k : shown)
+            if (k <= K) std::printf("  %4.1f/%4.1f", 100 * s.own[k - 1], k <= s.whole_body.size() ? 100 * s.whole_body[k - 1] : NAN);
+        std::printf("\n");
+    }
 }
 
 }  // namespace ssc::cli

@@ -257,6 +257,7 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         // Not the run's planned rounds: a round's model is the same whether more rounds follow.
         prov << "bootstrap round " << round << "; " << accepted.size() << " of " << states.size() << " registrations accepted";
         learn.provenance = prov.str();
+        learn.threads = pool.size();
         nlohmann::ordered_json settings{{"start_model_digest", digest}, {"accepted", accepted_names}, {"components", learn.components},
                                         {"posture", posture_name(learn.posture)}, {"name", learn.name}, {"license", learn.license},
                                         {"provenance", learn.provenance}, {"segment_components", learn.segment_components},

@@ -1,6 +1,7 @@
 #include "learning/learn_model.hpp"
 
 #include "common/error.hpp"
+#include "common/thread_pool.hpp"
 #include "common/rigid.hpp"
 #include "learning/laplacian_posture.hpp"
 #include "semantics/attribute_model.hpp"
@@ -9,9 +10,13 @@
 #include "synthesis/model.hpp"
 #include "training/pca.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <exception>
 #include <memory>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 namespace ssc::learning {
 
@@ -70,20 +75,34 @@ void align_to_template(training::SampleMatrix& X, const format::ModelData& t) {
 
 }  // namespace
 
-training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale) {
+training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale,
+                                         uint32_t threads) {
     const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
+    for (const RegisteredScan& s : scans) {
+        SSC_REQUIRE_ARG_S(s.vertices.size() == V, "learn: " << s.name << " has " << s.vertices.size() << " vertices; the model has " << V);
+        SSC_REQUIRE_ARG_S(posture != Posture::Skeleton || s.has_fit, "learn: " << s.name << " has no model fit");
+    }
     training::SampleMatrix X(N, 3 * Eigen::Index(V));
     std::unique_ptr<const LaplacianPosture> laplacian;
     if (posture == Posture::Laplacian) laplacian = std::make_unique<const LaplacianPosture>(model);
-    for (uint32_t i = 0; i < N; ++i) {
-        SSC_REQUIRE_ARG_S(scans[i].vertices.size() == V, "learn: " << scans[i].name << " has " << scans[i].vertices.size() << " vertices; the model has " << V);
-        SSC_REQUIRE_ARG_S(posture != Posture::Skeleton || scans[i].has_fit, "learn: " << scans[i].name << " has no model fit");
-        const std::vector<Eigen::Vector3d> rest = posture == Posture::Skeleton    ? unpose_skeleton(model, scans[i].fit, scans[i].vertices)
-                                                  : posture == Posture::Laplacian ? laplacian->unpose(scans[i].vertices)
-                                                                                  : scans[i].vertices;
-        for (uint32_t v = 0; v < V; ++v)
-            for (int a = 0; a < 3; ++a) X(i, 3 * Eigen::Index(v) + a) = float(rest[v][a]);
-    }
+    // Each body on its own (the model and the factorisation are only read), each row written by
+    // one worker; the first failure is rethrown after the join.
+    ThreadPool pool(threads ? threads : std::max(1u, std::thread::hardware_concurrency()));
+    std::mutex failure_mutex;
+    std::exception_ptr failure;
+    pool.parallel_for(N, [&](std::size_t i, unsigned) {
+        try {
+            const std::vector<Eigen::Vector3d> rest = posture == Posture::Skeleton    ? unpose_skeleton(model, scans[i].fit, scans[i].vertices)
+                                                      : posture == Posture::Laplacian ? laplacian->unpose(scans[i].vertices)
+                                                                                      : scans[i].vertices;
+            for (uint32_t v = 0; v < V; ++v)
+                for (int a = 0; a < 3; ++a) X(Eigen::Index(i), 3 * Eigen::Index(v) + a) = float(rest[v][a]);
+        } catch (...) {
+            const std::lock_guard<std::mutex> lock(failure_mutex);
+            if (!failure) failure = std::current_exception();
+        }
+    });
+    if (failure) std::rethrow_exception(failure);
     training::procrustes_align(X, 5, scale);
     align_to_template(X, model.data());
     return X;
@@ -99,7 +118,7 @@ format::ModelData learn_model(const format::ModelData& template_model, const std
     const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
 
     say(std::string("posture normalization: ") + posture_name(spec.posture) + (spec.scale ? ", Procrustes alignment with scale" : ", Procrustes alignment"));
-    training::SampleMatrix X = normalized_bodies(model, scans, spec.posture, spec.scale);
+    training::SampleMatrix X = normalized_bodies(model, scans, spec.posture, spec.scale, spec.threads);
 
     say("PCA of " + std::to_string(N) + " registrations");
     const training::Pca p = training::pca(X, N, spec.components, spec.seed);

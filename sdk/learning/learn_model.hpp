@@ -43,6 +43,7 @@ struct LearnSpec {
     // 0 for none. The template needs the body-part vertex sets (see training::segment_layout).
     uint32_t segment_components = 0;
     double segment_band = 0.08;       // metres on each side of a segment border
+    uint32_t threads = 0;             // posture normalization's worker threads; 0: every hardware thread
 };
 
 struct LearnReport {
@@ -64,7 +65,10 @@ using LearnProgress = std::function<void(const std::string& stage)>;
 // rest posture (posture normalization with the model they were registered with), Procrustes
 // aligned, and moved as one onto the model's mean standing on its ground. Throws ssc::Error
 // (INVALID_ARGUMENT) for a scan of another vertex count, or without its fit for Posture::Skeleton.
-training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale = false);
+// The bodies are normalized on `threads` threads (0: every hardware thread); the result does not
+// depend on the count.
+training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale = false,
+                                         uint32_t threads = 0);
 
 // Throws ssc::Error (INVALID_ARGUMENT) for fewer than 3 scans, a scan of another vertex count,
 // non-finite vertices, Posture::Skeleton with a scan lacking its fit, components (or segment components)

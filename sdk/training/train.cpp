@@ -34,6 +34,9 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     auto say = [&](const std::string& stage) { tick(stage, 0, 0); };
     SSC_REQUIRE_ARG(spec.components >= 1, "components must be at least 1");
     SSC_REQUIRE_ARG(spec.population.count > spec.heldout + spec.components, "population too small for the components and held-out bodies");
+    SSC_REQUIRE_ARG(spec.population.count > spec.heldout + spec.segment_components, "population too small for the segment components and held-out bodies");
+    SSC_REQUIRE_ARG(spec.segment_components == 0 || (spec.segment_band >= 0.005 && spec.segment_band <= 0.5),
+                    "the segments' blend band must lie in [0.005, 0.5] m");
     say("loading assets from " + spec.assets_root);
     const mh::Assets a = mh::load_assets(spec.assets_root);
 
@@ -174,6 +177,19 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
 
     say("measuring every training body for the attribute model (sliders, made to measure)");
     m.attributes = learn_attribute_model(m, X, p, fit, population_attributes(people));
+    report.segments.clear();
+    if (spec.segment_components > 0) {
+        say("PCA per body segment");
+        SegmentSpec segments;
+        segments.components = spec.segment_components;
+        segments.band = spec.segment_band;
+        segments.tolerance = spec.tolerance;
+        segments.seed = spec.population.seed;
+        m.segments = learn_segments(m, X, fit, p, segments, &report.segments);
+        m.metadata.provenance += "\nsegment shape spaces: " + std::to_string(spec.segment_components) + " components each, blend band " +
+                                 std::to_string(int(std::lround(spec.segment_band * 1000))) + " mm";
+        format::validate_model(m);
+    }
     const uint32_t mtm = std::min(spec.made_to_measure_bodies, spec.heldout);
     if (mtm > 0) {
         say("making " + std::to_string(mtm) + " held-out bodies to measure");

@@ -5,6 +5,7 @@
 #include "attributes.hpp"
 #include "evaluate.hpp"
 #include "population.hpp"
+#include "segment_shapes.hpp"
 #include "sscape_format/model_data.hpp"
 #include "sscape_format/model_io.hpp"
 
@@ -25,6 +26,10 @@ struct TrainSpec {
     std::string report_prefix;      // quality CSV and plots go to prefix + "quality.csv" etc. ("" = don't)
     uint32_t specificity_samples = 200;
     uint32_t made_to_measure_bodies = 200;  // held-out bodies the made-to-measure accuracy is measured on
+    // Segment shape spaces (head, arms, torso, legs) over the same bodies: components per segment,
+    // 0 for none; band: metres on each side of a segment border (see segment_layout).
+    uint32_t segment_components = 0;
+    double segment_band = 0.08;
 };
 
 struct TrainReport {
@@ -44,6 +49,7 @@ struct TrainReport {
     std::vector<double> bmi;                    // per body: volume x density / stature^2
     std::vector<std::string> plots;             // PNG files written
     MadeToMeasureAccuracy made_to_measure;      // on held-out bodies
+    std::vector<SegmentCompactness> segments;   // when learned: each segment's own components beside the whole body's
 };
 
 // Called at the start of each stage (done = total = 0) and, within the long per-body stages, after
