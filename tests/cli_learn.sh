@@ -49,7 +49,7 @@ grep -q "arm_l  *2 components" "$out/info_segments.txt" || { cat "$out/info_segm
 "$sscape" info "$out/segments.sscape" --segments-png "$out/segments.png" > /dev/null 2>&1 || fail "info --segments-png"
 [ "$(head -c 4 "$out/segments.png" | od -An -c | tr -d ' ')" = "211PNG" ] || fail "the segments picture is not a PNG"
 "$sscape" info "$out/body.obj" --segments-png "$out/x.png" > /dev/null 2>&1 && fail "info --segments-png on a mesh"
-"$sscape" info --segments-png "$out/none.png" > "$out/none.txt" 2>&1
+"$sscape" info "$out/learned.sscape" --segments-png "$out/none.png" > "$out/none.txt" 2>&1
 [ $? -eq 2 ] && grep -q "no segment shape spaces" "$out/none.txt" && [ ! -e "$out/none.png" ] || { cat "$out/none.txt"; fail "info --segments-png on a model without segments"; }
 "$sscape" synth "$out/segments.sscape" --segment arm_l=1.5,-0.3 --segment head=1 -o "$out/segment_body.obj" > /dev/null 2>&1 || fail "synth --segment"
 cmp -s "$out/segment_body.obj" "$out/body.obj" && fail "synth --segment changed nothing"

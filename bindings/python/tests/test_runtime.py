@@ -56,7 +56,7 @@ def test_default_model(model):
     meta = model.metadata
     assert meta["name"] == "sscape-default" and meta["units"] == "m"
     assert [s.name for s in model.sliders][:2] == ["stature", "mass"]
-    assert model.segments == []
+    assert [(s.name, s.shape_count) for s in model.segments] == [(n, 10) for n in ("head", "arm_l", "arm_r", "torso", "leg_l", "leg_r")]
     assert "sscape-default" in repr(model)
 
 
@@ -133,8 +133,14 @@ def test_errors_carry_status_and_message(model, tmp_path):
         with pytest.raises(sscape.SscapeError) as e:
             body.set_pose(np.zeros((53, 4)))  # zero quaternions
         assert e.value.status_name == "SSC_ERROR_INVALID_ARGUMENT"
-        with pytest.raises(KeyError, match="no segment 'arm_l'"):
-            body.set_segment_shape("arm_l", [1.0])
+        with pytest.raises(KeyError, match="no segment 'tail'"):
+            body.set_segment_shape("tail", [1.0])
+        # A segment's coefficients move that segment only (the default model has segment spaces).
+        before = body.vertices.copy()
+        body.set_segment_shape("arm_l", [2.0])
+        assert body.segment_shape("arm_l")[0] == 2.0 and not body.segment_shape("arm_l")[1:].any()
+        moved = np.linalg.norm(body.vertices - before, axis=1)
+        assert moved[before[:, 0] > 0.3].max() > 0.005 and moved[before[:, 0] < -0.3].max() == 0  # +X: the left
     with pytest.raises(ValueError, match="closed"):
         body.vertices
     with pytest.raises(sscape.SscapeError) as e:
@@ -369,8 +375,13 @@ def test_axis_angle_poses_landmarks_joint_limits_and_sliders(model):
     for v in limited:
         assert v["frame"].shape == (3, 3) and np.all(v["lower"] <= v["upper"])
         assert np.allclose(v["frame"] @ v["frame"].T, np.eye(3), atol=1e-5)
-    with pytest.raises(KeyError):  # the default model has no segment shape spaces (test_pipeline learns one that has)
-        model.segment_vertices("head")
+    # The default model's segment shape spaces: six, each a band-blended part of the body.
+    assert [seg.name for seg in model.segments] == ["head", "arm_l", "arm_r", "torso", "leg_l", "leg_r"]
+    vertices, weights = model.segment_vertices("head")
+    assert vertices.dtype == np.uint32 and np.all(vertices < model.vertex_count)
+    assert np.all((weights > 0) & (weights <= 1)) and np.any(weights < 1)
+    with pytest.raises(KeyError):
+        model.segment_vertices("tail")
 
 
 def test_topology_skin_poses_and_matrices(model):
