@@ -69,6 +69,13 @@ export interface FitReport {
 }
 
 /** A loaded model: immutable, shared by any number of bodies and fitters. */
+/** A segment shape space: its name, components and the vertices they move. */
+export interface Segment {
+  name: string;
+  shapeCount: number;
+  vertexCount: number;
+}
+
 export class Model extends Handle {
   /** The default model built into the library. */
   static loadDefault(): Model;
@@ -89,6 +96,9 @@ export class Model extends Handle {
   /** Throws SscapeError (SSC_ERROR_NOT_FOUND) for an unknown name. */
   jointIndex(name: string): number;
   landmarkIndex(name: string): number;
+  /** The segment shape spaces (head, arm_l, ...), in index order; none in a model without them. */
+  readonly segments: Segment[];
+  segmentIndex(name: string): number;
   /** count * shapeCount coefficients of random bodies of the population, reproducible by seed. */
   sampleShapes(count: number, options?: { seed?: number; truncation?: number }): Float32Array;
   /** Many bodies in one call: count * vertexCount * 3 floats (and normals when asked for). */
@@ -102,6 +112,10 @@ export class Model extends Handle {
 export class Body extends Handle {
   /** The shape coefficients; setting n of them sets the rest to 0. */
   shape: Float32Array;
+  /** One segment's coefficients (Model.segmentIndex), on top of the whole-body shape; the segment's rest 0. */
+  setSegmentShape(segment: number, coefficients: Floats): void;
+  /** One segment's coefficients: shapeCount of them. */
+  segmentShape(segment: number, shapeCount: number): Float32Array;
   /** jointCount quaternions (or null: the rest pose) and a translation. */
   setPose(rotations?: Floats | null, translation?: Floats | null): void;
   /** jointCount axis-angle vectors (radians). */

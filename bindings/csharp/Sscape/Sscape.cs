@@ -137,6 +137,13 @@ namespace Sscape
         internal void Set(IntPtr value) { SetHandle(value); }
     }
 
+    /// <summary>A segment shape space: its name, components and the vertices they move.</summary>
+    public struct Segment
+    {
+        public string Name;
+        public int ShapeCount, VertexCount;
+    }
+
     /// <summary>The counts a body or fitter needs of its model, read once.</summary>
     internal struct Counts
     {
@@ -274,6 +281,33 @@ namespace Sscape
             return (int)index;
         }
 
+        /// <summary>The segment shape spaces (head, arm_l, ...; none in a model without them), in index order.</summary>
+        public Segment[] Segments
+        {
+            get
+            {
+                Segment[] segments = new Segment[Api.ssc_model_segment_count(Raw)];
+                for (uint i = 0; i < segments.Length; ++i)
+                {
+                    ssc_segment_info info = new ssc_segment_info { struct_size = (uint)sizeof(ssc_segment_info) };
+                    Library.Check(Api.ssc_model_get_segment_info(Raw, i, &info));
+                    segments[i] = new Segment { Name = Library.Utf8(info.name), ShapeCount = (int)info.shape_count, VertexCount = (int)info.vertex_count };
+                }
+                GC.KeepAlive(this);
+                return segments;
+            }
+        }
+
+        /// <summary>A segment's index; SSC_ERROR_NOT_FOUND for a name the model lacks.</summary>
+        public int SegmentIndex(string name)
+        {
+            byte[] utf8 = Library.ToUtf8(name);
+            uint index;
+            fixed (byte* p = utf8) Library.Check(Api.ssc_model_find_segment(Raw, p, &index));
+            GC.KeepAlive(this);
+            return (int)index;
+        }
+
         /// <summary>count * ShapeCount coefficients of random bodies of the population, reproducible by seed.</summary>
         public float[] SampleShapes(int count, uint seed = 1, float truncation = 2.5f)
         {
@@ -392,6 +426,26 @@ namespace Sscape
                 fixed (float* p = value) Library.Check(Api.ssc_body_set_shape(Raw, p, (uint)value.Length));
                 GC.KeepAlive(this);
             }
+        }
+
+        /// <summary>One segment's coefficients (Model.SegmentIndex), on top of the whole-body shape;
+        /// setting n of them sets the segment's rest to 0.</summary>
+        public void SetSegmentShape(int segment, float[] coefficients)
+        {
+            if (coefficients == null) throw new ArgumentNullException("coefficients");
+            if (segment < 0) throw new ArgumentOutOfRangeException("segment");
+            fixed (float* p = coefficients) Library.Check(Api.ssc_body_set_segment_shape(Raw, (uint)segment, p, (uint)coefficients.Length));
+            GC.KeepAlive(this);
+        }
+
+        /// <summary>One segment's coefficients (its Segment.ShapeCount of them).</summary>
+        public float[] GetSegmentShape(int segment, int shapeCount)
+        {
+            if (segment < 0) throw new ArgumentOutOfRangeException("segment");
+            float[] out_ = new float[shapeCount];
+            fixed (float* p = out_) Library.Check(Api.ssc_body_get_segment_shape(Raw, (uint)segment, p, (uint)out_.Length));
+            GC.KeepAlive(this);
+            return out_;
         }
 
         /// <summary>JointCount quaternions (x y z w, relative to the parent; null: the rest pose) and a translation (or null).</summary>

@@ -179,6 +179,35 @@ static class Tests
             Throws<ObjectDisposedException>(() => closed.GetVertices(), e => true, "use after Dispose");
         });
 
+        Run("segment shape spaces: listed, set on a body, moving their part only", delegate
+        {
+            using (Model model = Model.LoadDefault())
+            using (Body body = model.CreateBody())
+            {
+                Segment[] segments = model.Segments;
+                Assert(segments.Length == 6 && segments[0].Name == "head" && segments[1].Name == "arm_l", "six segments, head first");
+                int arm = model.SegmentIndex("arm_l");
+                Assert(segments[arm].ShapeCount == 10 && segments[arm].VertexCount > 1000, "arm_l's counts");
+                float[] before = body.GetVertices();
+                body.SetSegmentShape(arm, new float[] { 2.0f });
+                float[] shape = body.GetSegmentShape(arm, segments[arm].ShapeCount);
+                Assert(shape[0] == 2.0f && shape[1] == 0.0f, "the coefficients read back");
+                float[] after = body.GetVertices();
+                double left = 0, right = 0;
+                for (int v = 0; v < after.Length; v += 3)
+                {
+                    double dx = after[v] - before[v], dy = after[v + 1] - before[v + 1], dz = after[v + 2] - before[v + 2];
+                    double d = Math.Sqrt(dx * dx + dy * dy + dz * dz);
+                    if (before[v] > 0.3f) left = Math.Max(left, d);  // +X: the body's left
+                    if (before[v] < -0.3f) right = Math.Max(right, d);
+                }
+                Assert(left > 0.005 && right == 0, "the left arm moves " + left + " m, the right " + right + " m");
+                Throws<SscapeException>(() => model.SegmentIndex("tail"), e => e.Status == ssc_status.SSC_ERROR_NOT_FOUND, "unknown segment");
+                Throws<SscapeException>(() => body.SetSegmentShape(arm, new float[11]), e => e.Status == ssc_status.SSC_ERROR_INVALID_ARGUMENT, "too many");
+                Throws<SscapeException>(() => body.SetSegmentShape(6, new float[1]), e => e.Status == ssc_status.SSC_ERROR_INVALID_ARGUMENT, "no segment 6");
+            }
+        });
+
         Run("a body outlives its model; a fit recovers a shape; callbacks cancel", delegate
         {
             Body body;

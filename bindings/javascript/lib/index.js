@@ -184,6 +184,25 @@ class Model extends Handle {
     return out[0];
   }
 
+  /** The segment shape spaces, [{ name, shapeCount, vertexCount }] in index order (none in a model without them). */
+  get segments() {
+    const segments = [];
+    const count = api().ssc_model_segment_count(this.handle);
+    for (let i = 0; i < count; ++i) {
+      const info = { struct_size: koffi.sizeof('ssc_segment_info') };
+      call('ssc_model_get_segment_info', this.handle, i, info);
+      segments.push({ name: info.name, shapeCount: info.shape_count, vertexCount: info.vertex_count });
+    }
+    return segments;
+  }
+
+  /** A segment's index by name; throws NOT_FOUND for a name the model lacks. */
+  segmentIndex(name) {
+    const out = new Uint32Array(1);
+    call('ssc_model_find_segment', this.handle, String(name), out);
+    return out[0];
+  }
+
   /** Standard deviation of each shape coefficient. */
   get shapeStddevs() {
     const out = new Float32Array(this.shapeCount);
@@ -250,6 +269,12 @@ class Model extends Handle {
 
 // What a body or fitter needs of its model, read once: the model object may be closed first (the
 // C object lives on while a body or fitter holds it).
+// A non-negative integer index, or a RangeError naming what it is.
+function index(value, what) {
+  if (!Number.isInteger(value) || value < 0 || value > 0xffffffff) throw new RangeError(`${what} must be an index, not ${value}`);
+  return value;
+}
+
 function counts(model) {
   return Object.freeze({ vertexCount: model.vertexCount, jointCount: model.jointCount, shapeCount: model.shapeCount,
     landmarkCount: model.landmarkCount });
@@ -289,6 +314,19 @@ class Body extends Handle {
   set shape(coefficients) {
     const c = floats(coefficients, undefined, 'shape');
     call('ssc_body_set_shape', this.handle, c, c.length);
+  }
+
+  /** One segment's coefficients (model.segmentIndex), on top of the whole-body shape; the segment's rest 0. */
+  setSegmentShape(segment, coefficients) {
+    const c = floats(coefficients, undefined, 'coefficients');
+    call('ssc_body_set_segment_shape', this.handle, index(segment, 'segment'), c, c.length);
+  }
+
+  /** One segment's coefficients: shapeCount of them (its segments[] entry's). */
+  segmentShape(segment, shapeCount) {
+    const out = new Float32Array(shapeCount);
+    call('ssc_body_get_segment_shape', this.handle, index(segment, 'segment'), out, out.length);
+    return out;
   }
 
   /** The pose: jointCount quaternions (x y z w, parent-relative) or null (rest), and a translation in metres. */

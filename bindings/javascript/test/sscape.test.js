@@ -106,6 +106,33 @@ test('errors become SscapeError with the status and the library\'s message', () 
   model.close();
 });
 
+test('segment shape spaces: listed, set on a body, moving their part only', () => {
+  const model = sscape.Model.loadDefault();
+  const segments = model.segments;
+  assert.deepStrictEqual(segments.map((s) => s.name), ['head', 'arm_l', 'arm_r', 'torso', 'leg_l', 'leg_r']);
+  const arm = model.segmentIndex('arm_l');
+  assert.ok(segments[arm].shapeCount === 10 && segments[arm].vertexCount > 1000);
+  const body = model.createBody();
+  const before = body.vertices;
+  body.setSegmentShape(arm, [2.0]);
+  const shape = body.segmentShape(arm, segments[arm].shapeCount);
+  assert.ok(shape[0] === 2 && shape.slice(1).every((c) => c === 0));
+  const after = body.vertices;
+  let left = 0, right = 0;
+  for (let v = 0; v < after.length; v += 3) {
+    const d = Math.hypot(after[v] - before[v], after[v + 1] - before[v + 1], after[v + 2] - before[v + 2]);
+    if (before[v] > 0.3) left = Math.max(left, d);  // +X: the body's left
+    if (before[v] < -0.3) right = Math.max(right, d);
+  }
+  assert.ok(left > 0.005 && right === 0, `the left arm moves ${left} m, the right ${right} m`);
+  assert.throws(() => model.segmentIndex('tail'), (e) => e.code === 'SSC_ERROR_NOT_FOUND');
+  assert.throws(() => body.setSegmentShape(arm, new Float32Array(11)), (e) => e.code === 'SSC_ERROR_INVALID_ARGUMENT');
+  assert.throws(() => body.setSegmentShape(6, [1]), (e) => e.code === 'SSC_ERROR_INVALID_ARGUMENT');
+  assert.throws(() => body.setSegmentShape(-1, [1]), RangeError);
+  body.close();
+  model.close();
+});
+
 test('a body outlives its closed model; a fit recovers a shape from its landmarks', () => {
   const model = sscape.Model.loadDefault();
   const body = model.createBody();

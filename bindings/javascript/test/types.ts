@@ -11,7 +11,10 @@ fitter.addLandmarks(model.landmarkNames, body.landmarks);
 const report: sscape.FitReport = fitter.solve({ onProgress: (i: number, c: number) => i > 100 });
 const pose = fitter.pose();
 const s: number = pose.scale;
+const segments: sscape.Segment[] = model.segments;
+body.setSegmentShape(model.segmentIndex('head'), [1.0]);
+const head: Float32Array = body.segmentShape(model.segmentIndex('head'), segments[0].shapeCount);
 const batch = model.synthesize({ shapes: model.sampleShapes(2, { seed: 1 }) }).vertices;
 try { model.jointIndex('x'); } catch (e) { if (e instanceof sscape.SscapeError) console.log(e.code, e.status); }
-console.log(v.length, m.stature, report.iterations, s, batch.length, sscape.version().major, sscape.measurements()[0].unit);
+console.log(v.length, head.length, m.stature, report.iterations, s, batch.length, sscape.version().major, sscape.measurements()[0].unit);
 body.close(); fitter.close(); model.close();

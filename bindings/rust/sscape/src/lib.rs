@@ -279,6 +279,33 @@ impl Model {
         Ok(index as usize)
     }
 
+    /// The segment shape spaces (head, arm_l, ...; none in a model without them), in index order.
+    pub fn segments(&self) -> Result<Vec<Segment>> {
+        let count = unsafe { sys::ssc_model_segment_count(self.raw.as_ptr()) };
+        (0..count)
+            .map(|index| {
+                let mut info = sys::ssc_segment_info {
+                    struct_size: std::mem::size_of::<sys::ssc_segment_info>() as u32,
+                    name: ptr::null(),
+                    shape_count: 0,
+                    vertex_count: 0,
+                };
+                check(unsafe { sys::ssc_model_get_segment_info(self.raw.as_ptr(), index, &mut info) })?;
+                // Safety: the name belongs to the model, alive here.
+                let name = unsafe { CStr::from_ptr(info.name) }.to_string_lossy().into_owned();
+                Ok(Segment { name, shape_count: info.shape_count as usize, vertex_count: info.vertex_count as usize })
+            })
+            .collect()
+    }
+
+    /// A segment's index; `SSC_ERROR_NOT_FOUND` for a name the model lacks.
+    pub fn segment_index(&self, name: &str) -> Result<usize> {
+        let c_name = c_string(name, "the segment name")?;
+        let mut index = 0u32;
+        check(unsafe { sys::ssc_model_find_segment(self.raw.as_ptr(), c_name.as_ptr(), &mut index) })?;
+        Ok(index as usize)
+    }
+
     /// Standard deviation of each shape coefficient.
     pub fn shape_stddevs(&self) -> Result<Vec<f32>> {
         let mut out = vec![0f32; self.shape_count()];
@@ -355,6 +382,14 @@ impl Model {
         let raw = NonNull::new(raw).ok_or_else(|| Error { status: sys::SSC_ERROR_INTERNAL, message: "no fitter".into() })?;
         Ok(Fitter { raw, counts: self.counts() })
     }
+}
+
+/// A segment shape space: its name, components and the vertices they move.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Segment {
+    pub name: String,
+    pub shape_count: usize,
+    pub vertex_count: usize,
 }
 
 /// One body: shape and pose in, vertices and measurements out.
@@ -434,6 +469,22 @@ impl Body {
     pub fn measure(&mut self) -> Result<Vec<f32>> {
         let mut out = vec![0f32; unsafe { sys::ssc_measurement_count() } as usize];
         check(unsafe { sys::ssc_body_measure(self.raw.as_ptr(), out.as_mut_ptr(), out.len() as u32) })?;
+        Ok(out)
+    }
+
+    /// One segment's coefficients ([`Model::segment_index`]), on top of the whole-body shape; the
+    /// segment's remaining coefficients are set to 0.
+    pub fn set_segment_shape(&mut self, segment: usize, coefficients: &[f32]) -> Result<()> {
+        let segment = u32_len(segment, "the segment index")?;
+        let count = u32_len(coefficients.len(), "set_segment_shape")?;
+        check(unsafe { sys::ssc_body_set_segment_shape(self.raw.as_ptr(), segment, coefficients.as_ptr(), count) })
+    }
+
+    /// One segment's coefficients: `shape_count` of them ([`Segment::shape_count`]).
+    pub fn segment_shape(&self, segment: usize, shape_count: usize) -> Result<Vec<f32>> {
+        let segment = u32_len(segment, "the segment index")?;
+        let mut out = vec![0f32; shape_count];
+        check(unsafe { sys::ssc_body_get_segment_shape(self.raw.as_ptr(), segment, out.as_mut_ptr(), u32_len(out.len(), "segment_shape")?) })?;
         Ok(out)
     }
 

@@ -80,6 +80,36 @@ fn errors_carry_the_status_and_message() {
 }
 
 #[test]
+fn segment_shape_spaces_move_their_part_only() {
+    let model = Model::load_default().unwrap();
+    let segments = model.segments().unwrap();
+    let names: Vec<&str> = segments.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["head", "arm_l", "arm_r", "torso", "leg_l", "leg_r"]);
+    let arm = model.segment_index("arm_l").unwrap();
+    assert!(segments[arm].shape_count == 10 && segments[arm].vertex_count > 1000, "{:?}", segments[arm]);
+    let mut body = model.body().unwrap();
+    let before = body.vertices().unwrap();
+    body.set_segment_shape(arm, &[2.0]).unwrap();
+    let shape = body.segment_shape(arm, segments[arm].shape_count).unwrap();
+    assert!(shape[0] == 2.0 && shape[1..].iter().all(|&c| c == 0.0), "{:?}", shape);
+    let after = body.vertices().unwrap();
+    let (mut left, mut right) = (0f32, 0f32);
+    for (b, a) in before.chunks(3).zip(after.chunks(3)) {
+        let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+        if b[0] > 0.3 {
+            left = left.max(d); // +X: the body's left
+        }
+        if b[0] < -0.3 {
+            right = right.max(d);
+        }
+    }
+    assert!(left > 0.005 && right == 0.0, "the left arm moves {} m, the right {} m", left, right);
+    assert_eq!(model.segment_index("tail").unwrap_err().status, sys::SSC_ERROR_NOT_FOUND);
+    assert_eq!(body.set_segment_shape(arm, &[0.0; 11]).unwrap_err().status, sys::SSC_ERROR_INVALID_ARGUMENT);
+    assert_eq!(body.set_segment_shape(6, &[1.0]).unwrap_err().status, sys::SSC_ERROR_INVALID_ARGUMENT);
+}
+
+#[test]
 fn bodies_outlive_their_model_value_and_fits_recover_shapes() {
     let mut body = {
         let model = Model::load_default().unwrap();
