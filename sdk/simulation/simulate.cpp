@@ -308,7 +308,8 @@ void add_bumps(TrueBody& b, const Model& m, int count, std::mt19937& rng) {
     b.normals = registration::vertex_normals(b.vertices, triangles);
 }
 
-double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> rest, bool align, std::vector<Eigen::Vector3d>* approximation) {
+double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> rest, bool align, std::vector<Eigen::Vector3d>* approximation,
+                                bool with_segments) {
     const fitting::LinearModel lin(m, m.component_count());
     const uint32_t V = m.vertex_count();
     SSC_REQUIRE_ARG(rest.size() == V, "best_approximation_error: one vertex per model vertex");
@@ -319,7 +320,8 @@ double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> res
         const Similarity T = align_points(src, dst, false);
         for (auto& x : rest) x = T.R * x + T.t;
     }
-    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(3 * Eigen::Index(V), lin.K + 3);
+    const Eigen::Index S = with_segments ? Eigen::Index(m.segment_coefficient_count()) : 0;
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(3 * Eigen::Index(V), lin.K + 3 + S);
     Eigen::VectorXd y(3 * Eigen::Index(V));
     for (uint32_t v = 0; v < V; ++v)
         for (uint32_t a = 0; a < 3; ++a) {
@@ -327,6 +329,14 @@ double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> res
             y[row] = rest[v][a] - double(mean[3 * std::size_t(v) + a]);
             for (uint32_t k = 0; k < lin.K; ++k) B(row, k) = lin.basis[(std::size_t(v) * 3 + a) * lin.K + k] * lin.step[k];
             B(row, lin.K + a) = 1;
+        }
+    if (S > 0)
+        for (const SegmentSpace& seg : m.segments()) {
+            const std::size_t n = seg.vertices.size();
+            for (uint32_t k = 0; k < seg.components; ++k)
+                for (uint32_t a = 0; a < 3; ++a)
+                    for (std::size_t i = 0; i < n; ++i)
+                        B(3 * Eigen::Index(seg.vertices[i]) + a, lin.K + 3 + seg.first + k) = seg.basis[(std::size_t(k) * 3 + a) * n + i];
         }
     const Eigen::VectorXd residual = B * B.colPivHouseholderQr().solve(y) - y;
     double sum = 0;

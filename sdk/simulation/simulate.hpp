@@ -76,8 +76,9 @@ std::vector<Eigen::Vector3d> fitted_vertices(const Model& m, const fitting::FitS
 // and a translation, correspondence known; first rigidly aligned onto the model's mean when
 // `align` (as learning aligns its bodies). A registration that follows the surface from the model
 // fit cannot be expected to get much below it along the surface. `approximation`, when given,
-// receives the approximation itself (in `rest`'s frame after the alignment).
+// receives the approximation itself (in `rest`'s frame after the alignment). `with_segments`: the
+// model's segment shape spaces join the whole body's (all coefficients solved together).
 double best_approximation_error(const Model& m, std::vector<Eigen::Vector3d> rest, bool align,
-                                std::vector<Eigen::Vector3d>* approximation = nullptr);
+                                std::vector<Eigen::Vector3d>* approximation = nullptr, bool with_segments = false);
 
 }  // namespace ssc::simulation

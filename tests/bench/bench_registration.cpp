@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
     }
 #endif
     std::printf("trial  fit corr  nrd corr  nrd corr (no hands)  hands  scan->reg mean  median  p95   <2mm  <5mm  worst region  time (fit)\n");
-    std::vector<double> fit_errors, errors, body_errors, scan_means, times, best_errors, best_tangential;
+    std::vector<double> fit_errors, errors, body_errors, scan_means, times, best_errors, best_tangential, best_with_segments;
     // --compare: per method, every vertex's correspondence error over the trials, and its scan
     // distances and times.
     const char* methods[] = {"model fit alone", "rigid + deformation", "rbf + deformation", "model + deformation",
@@ -154,6 +154,10 @@ int main(int argc, char** argv) {
                 std::printf("  the model's best approximation: %.2f mm along the normal, %.2f mm along the surface\n", across / model.vertex_count() * 1e3,
                             along / model.vertex_count() * 1e3);
                 best_tangential.push_back(along / model.vertex_count());
+                if (!model.segments().empty()) {  // the same with the segment shape spaces added
+                    best_with_segments.push_back(simulation::best_approximation_error(model, rest, false, nullptr, true));
+                    std::printf("  with the segment shape spaces: %.2f mm\n", best_with_segments.back() * 1e3);
+                }
             }
             truth = simulation::pose_rest_vertices(model, rest, simulation::random_pose(model, rng, 0.15), Vector3d(0, 0, 0));
             simulation::BoothSpec booth;
@@ -306,5 +310,6 @@ int main(int argc, char** argv) {
     if (!best_errors.empty())
         std::printf("the model's best approximation of the true bodies (rest pose, correspondence known): %.2f mm mean vertex error\n", mean(best_errors) * 1e3);
     if (!best_tangential.empty()) std::printf("  of which along the surface: %.2f mm\n", mean(best_tangential) * 1e3);
+    if (!best_with_segments.empty()) std::printf("  with the model's segment shape spaces too: %.2f mm\n", mean(best_with_segments) * 1e3);
     return 0;
 }
