@@ -262,21 +262,19 @@ namespace Sscape
         }
 
         /// <summary>A joint's index; SSC_ERROR_NOT_FOUND for an unknown name.</summary>
-        public int JointIndex(string name)
-        {
-            byte[] utf8 = Library.ToUtf8(name);
-            uint index;
-            fixed (byte* p = utf8) Library.Check(Api.ssc_model_find_joint(Raw, p, &index));
-            GC.KeepAlive(this);
-            return (int)index;
-        }
+        public int JointIndex(string name) { return Find(Api.ssc_model_find_joint, name); }
 
         /// <summary>A landmark's index; SSC_ERROR_NOT_FOUND for an unknown name.</summary>
-        public int LandmarkIndex(string name)
+        public int LandmarkIndex(string name) { return Find(Api.ssc_model_find_landmark, name); }
+
+        unsafe delegate ssc_status Finder(IntPtr model, byte* name, uint* index);
+
+        // One of the C API's find-by-name calls (joint, landmark, segment).
+        int Find(Finder find, string name)
         {
             byte[] utf8 = Library.ToUtf8(name);
             uint index;
-            fixed (byte* p = utf8) Library.Check(Api.ssc_model_find_landmark(Raw, p, &index));
+            fixed (byte* p = utf8) Library.Check(find(Raw, p, &index));
             GC.KeepAlive(this);
             return (int)index;
         }
@@ -299,14 +297,7 @@ namespace Sscape
         }
 
         /// <summary>A segment's index; SSC_ERROR_NOT_FOUND for a name the model lacks.</summary>
-        public int SegmentIndex(string name)
-        {
-            byte[] utf8 = Library.ToUtf8(name);
-            uint index;
-            fixed (byte* p = utf8) Library.Check(Api.ssc_model_find_segment(Raw, p, &index));
-            GC.KeepAlive(this);
-            return (int)index;
-        }
+        public int SegmentIndex(string name) { return Find(Api.ssc_model_find_segment, name); }
 
         /// <summary>count * ShapeCount coefficients of random bodies of the population, reproducible by seed.</summary>
         public float[] SampleShapes(int count, uint seed = 1, float truncation = 2.5f)
