@@ -22,11 +22,11 @@ bool untouched(const std::vector<float>& v) {
     return true;
 }
 
-struct Fixture {
+struct MiniBody {
     test::ModelPtr model = test::load(test::mini_bytes());
     test::BodyPtr body;
     uint32_t V, J, K;
-    Fixture() {
+    MiniBody() {
         REQUIRE(model);
         body = test::body(model.get());
         REQUIRE(body);
@@ -49,7 +49,7 @@ TEST_CASE("status names and the last error", "[api]") {
 }
 
 TEST_CASE("NULL handles and pointers are errors", "[api]") {
-    Fixture f;
+    MiniBody f;
     ssc_model* m = nullptr;
     const auto bytes = test::mini_bytes();
     CHECK(ssc_model_load_memory(nullptr, nullptr, 10, &m) == SSC_ERROR_INVALID_ARGUMENT);
@@ -83,7 +83,7 @@ TEST_CASE("NULL handles and pointers are errors", "[api]") {
 }
 
 TEST_CASE("unknown names and indices", "[api]") {
-    Fixture f;
+    MiniBody f;
     uint32_t idx = 5;
     CHECK(ssc_model_find_joint(f.model.get(), "no_such_joint", &idx) == SSC_ERROR_NOT_FOUND);
     CHECK(ssc_model_find_landmark(f.model.get(), "no_such_landmark", &idx) == SSC_ERROR_NOT_FOUND);
@@ -98,7 +98,7 @@ TEST_CASE("unknown names and indices", "[api]") {
 }
 
 TEST_CASE("short buffers and bad strides write nothing", "[api]") {
-    Fixture f;
+    MiniBody f;
     std::vector<float> out(3ull * f.V + 64, kSentinel);
     CHECK(ssc_body_get_vertices(f.body.get(), out.data(), f.V - 1, 0) == SSC_ERROR_BUFFER_TOO_SMALL);
     CHECK(ssc_body_get_normals(f.body.get(), out.data(), 0, 0) == SSC_ERROR_BUFFER_TOO_SMALL);
@@ -124,7 +124,7 @@ TEST_CASE("short buffers and bad strides write nothing", "[api]") {
 }
 
 TEST_CASE("wrong counts and NaN/Inf parameters leave the body unchanged", "[api]") {
-    Fixture f;
+    MiniBody f;
     const float good_shape[2] = {0.5f, -0.5f};
     REQUIRE(ssc_body_set_shape(f.body.get(), good_shape, 2) == SSC_OK);
     const auto before = test::posed(f.model.get(), f.body.get());
@@ -178,7 +178,7 @@ TEST_CASE("bad def structs are rejected", "[api]") {
 }
 
 TEST_CASE("batch misuse writes nothing", "[api][batch]") {
-    Fixture f;
+    MiniBody f;
     const uint32_t n = 3;
     std::vector<float> verts(n * 3ull * f.V, kSentinel);
     std::vector<float> shapes(n * f.K, 0.2f);

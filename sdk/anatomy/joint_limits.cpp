@@ -1,5 +1,7 @@
 #include "anatomy/joint_limits.hpp"
 
+#include "anatomy/degrees.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -7,8 +9,6 @@
 namespace ssc::anatomy {
 
 namespace {
-
-constexpr double kDeg = M_PI / 180;
 
 struct Range {
     const char* name;     // joint name without the side suffix

@@ -1,5 +1,6 @@
 #include "anatomy/named_poses.hpp"
 
+#include "anatomy/degrees.hpp"
 #include "anatomy/joint_limits.hpp"
 #include "common/error.hpp"
 
@@ -8,8 +9,6 @@
 namespace ssc::anatomy {
 
 namespace {
-
-constexpr double kDeg = M_PI / 180;
 
 // Anatomical angles (degrees, relative to the rest pose; conventions of joint_limits.cpp: -x'
 // swings the thigh and the upper arm forward and bends the elbow, +x' bends the knee, -z' raises

@@ -49,6 +49,9 @@ int32_t enum_value(const E& e) {
     return v;
 }
 
+// A def struct's optional string: NULL reads as empty.
+inline std::string optional_string(const char* s) { return s ? std::string(s) : std::string(); }
+
 // Checks an output array of count elements of elem_bytes at stride (0 = packed); returns the stride.
 std::size_t check_output(const void* out, uint64_t capacity, uint64_t count, std::size_t stride, std::size_t elem_bytes);
 

@@ -24,8 +24,6 @@ struct ssc_bootstrap {
 
 namespace {
 
-std::string optional(const char* s) { return s ? std::string(s) : std::string(); }
-
 std::vector<unsigned char> starting_model(ssc_context* ctx, const ssc_bootstrap_def& d) {
     std::vector<unsigned char> bytes;
     if (d.init_model_path) {
@@ -90,8 +88,8 @@ ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, 
         ssc_registration_def registration;  // the defaults, as a file job's registration has them
         ssc_registration_def_init(&registration, sizeof registration);
         spec.registration = registration_options(registration);
-        b->units = optional(d.units);
-        b->up = optional(d.up);
+        b->units = optional_string(d.units);
+        b->up = optional_string(d.up);
         spec.reading = learning::scan_reading(b->units, b->up);
         spec.learn.components = d.components;
         spec.learn.posture = posture == SSC_POSTURE_SKELETON  ? learning::Posture::Skeleton

@@ -15,12 +15,6 @@ struct ssc_scan_list {
     std::vector<learning::ScanInput> scans;
 };
 
-namespace {
-
-std::string optional(const char* s) { return s ? std::string(s) : std::string(); }
-
-}  // namespace
-
 extern "C" {
 
 ssc_status ssc_scan_list_create(const char* folder, ssc_scan_list** out) {
@@ -68,13 +62,13 @@ ssc_status ssc_registration_run_file(ssc_registration* registration, const ssc_s
             SSC_REQUIRE_ARG(report->struct_size >= sizeof(uint32_t), "report->struct_size must be set to sizeof(ssc_registration_report)");
         learning::ScanFileJob work;
         work.scan.path = j.scan_path;
-        work.scan.landmarks = optional(j.landmarks_path);
-        work.reading = learning::scan_reading(optional(j.units), optional(j.up));
+        work.scan.landmarks = optional_string(j.landmarks_path);
+        work.reading = learning::scan_reading(optional_string(j.units), optional_string(j.up));
         work.mesh_path = j.mesh_path;
         work.write_report = j.write_report != 0;
         work.reuse = j.reuse != 0;
         SSC_REQUIRE_ARG(!work.reuse || work.write_report, "job->reuse needs job->write_report: a registration is reused by its report");
-        work.picture_path = optional(j.picture_path);
+        work.picture_path = optional_string(j.picture_path);
         registration::RegistrationProgress cb;
         if (progress) cb = [&](const char* stage, uint32_t done, uint32_t total) { return progress(user, stage, done, total) == 0; };
         const learning::ScanFileResult r =
