@@ -184,7 +184,21 @@ TEST_CASE("a registration record reads back as written, in the scan's units and 
     // The inspection of the record read back is the one of the record written.
     CHECK(learning::inspect_registration(m, back, {}).accepted == learning::inspect_registration(m, s.record, {}).accepted);
 
+    // A fit with the segment shape spaces: the whole body's coefficients, then the segments'.
+    learning::RegistrationRecord segmented = s.record;
+    segmented.registered.fit.shape.resize(m.component_count(), 0.0);
+    for (std::size_t i = 0; i < m.segment_coefficient_count(); ++i) segmented.registered.fit.shape.push_back(0.25 * double(i % 5) - 0.5);
+    learning::write_registration_record(mesh, m, segmented);
+    const learning::RegistrationRecord segmented_back = learning::read_registration_record(mesh, m, true);
+    REQUIRE(segmented_back.registered.fit.shape.size() == segmented.registered.fit.shape.size());
+    for (std::size_t k = 0; k < segmented.registered.fit.shape.size(); ++k)
+        CHECK(segmented_back.registered.fit.shape[k] == Approx(segmented.registered.fit.shape[k]));
+
     const std::string report = learning::record_report_path(mesh);
+    const std::string partial = "{\"scan\": \"x\", \"fit\": {\"shape\": [1], \"segment_shape\": [1, 2], \"rotations_xyzw\": [0, 0, 0, 1], "
+                                "\"translation_m\": [0, 0, 0], \"scale\": 1}}";
+    write_file_atomically(report, partial.data(), partial.size());  // segments after a part of the whole body's
+    CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, false), Catch::Contains("the fit's sizes do not match the model"));
     const std::string broken = "{\"scan\": \"x\", \"fit\": {\"shape\": [1], \"rotations_xyzw\": [0, 0, 0, 1]";
     write_file_atomically(report, broken.data(), broken.size());
     CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, false), Catch::Contains("not a registration report"));

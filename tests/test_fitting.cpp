@@ -283,6 +283,61 @@ TEST_CASE("fitter kinematics reproduce the runtime's synthesis", "[fitting]") {
     CHECK(worst < 1e-5);  // float synthesis vs double kinematics
 }
 
+TEST_CASE("fitter kinematics with the segment shape spaces reproduce the runtime's synthesis, and their Jacobians", "[fitting][segments]") {
+    const Model& m = default_model().model();
+    REQUIRE(!m.segments().empty());
+    const fitting::LinearModel lin(m, m.component_count(), nullptr, true);
+    const uint32_t K = m.component_count(), S = uint32_t(m.segment_coefficient_count());
+    CHECK(lin.whole_body == K);
+    CHECK(lin.K == K + S);
+    fitting::Kinematics kin(lin);
+    std::mt19937 rng(7);
+    fitting::FitState s = random_state(kin, m, rng);
+    std::normal_distribution<double> sd(0.0, 1.0);
+    for (uint32_t k = K; k < K + S; ++k) s.shape[k] = 1.5 * sd(rng);
+    kin.update(s);
+    const auto body = simulation::fitted_vertices(m, s);  // the float synthesis, segments set
+    fitting::FitState without = s;
+    without.shape.resize(K);
+    const auto whole_only = simulation::fitted_vertices(m, without);
+    double worst = 0, moved = 0;
+    for (uint32_t v = 0; v < m.vertex_count(); v += 7) {
+        fitting::SurfacePoint p;
+        p.vertex[0] = v;
+        worst = std::max(worst, (kin.point(p) - body[v]).norm());
+        moved = std::max(moved, (body[v] - whole_only[v]).norm());
+    }
+    CHECK(moved > 0.01);    // the segments change the body
+    CHECK(worst < 2e-5);   // and the kinematics follow them (16-bit segment bases)
+
+    // The segment columns of a hand vertex's Jacobian against finite differences.
+    fitting::SurfacePoint p;
+    p.vertex[0] = m.data().vertex_sets[3].vertices[10];
+    const uint32_t P = kin.parameter_count();
+    std::vector<double> J(3 * std::size_t(P), 0.0);
+    kin.point_jacobian(p, J.data());
+    double largest = 0, diff = 0;
+    for (uint32_t i = K; i < K + S; ++i) {
+        std::vector<double> d(P, 0.0);
+        fitting::FitState a = s, b = s;
+        d[i] = 1e-6;
+        kin.apply(d.data(), a);
+        d[i] = -1e-6;
+        kin.apply(d.data(), b);
+        fitting::Kinematics ka(lin), kb(lin);
+        ka.update(a);
+        kb.update(b);
+        const Eigen::Vector3d num = (ka.point(p) - kb.point(p)) / 2e-6;
+        for (int r = 0; r < 3; ++r) diff = std::max(diff, std::abs(num[r] - J[std::size_t(r) * P + i])), largest = std::max(largest, std::abs(num[r]));
+    }
+    INFO("worst difference " << diff << " of largest entry " << largest);
+    CHECK(largest > 0.001);
+    CHECK(diff < 1e-5 * largest);
+
+    // Only after all of the whole body's components.
+    CHECK_THROWS_AS(fitting::LinearModel(m, 10, nullptr, true), Error);
+}
+
 TEST_CASE("landmark fits recover held-out bodies in any heading", "[fitting]") {
     const Model& m = default_model().model();
     const fitting::LinearModel lin(m, m.component_count());

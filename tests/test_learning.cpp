@@ -77,6 +77,23 @@ TEST_CASE("skeleton posture normalization undoes the fitted skinning", "[learnin
     worst = 0;
     for (std::size_t v = 0; v < rest.size(); ++v) worst = std::max(worst, (again[v] - s.rest[v]).norm());
     CHECK(worst < 2e-5);
+    // A fit with the segment shape spaces (a registration's, by default): the skeleton follows them too.
+    fitting::FitState segmented = s.scan.fit;
+    segmented.shape.resize(m.component_count(), 0.0);
+    for (std::size_t i = 0; i < m.segment_coefficient_count(); ++i) segmented.shape.push_back(i % 3 == 0 ? 1.5 : -0.5);
+    fitting::FitState at_rest = segmented;
+    for (auto& q : at_rest.pose) q = Eigen::Quaterniond::Identity();
+    at_rest.translation.setZero();
+    at_rest.scale = 1;
+    const std::vector<Vector3d> segmented_rest = simulation::fitted_vertices(m, at_rest);
+    const std::vector<Vector3d> unposed = learning::unpose_skeleton(m, segmented, simulation::fitted_vertices(m, segmented));
+    worst = moved = 0;
+    for (std::size_t v = 0; v < rest.size(); ++v) {
+        worst = std::max(worst, (unposed[v] - segmented_rest[v]).norm());
+        moved = std::max(moved, (segmented_rest[v] - s.rest[v]).norm());
+    }
+    CHECK(moved > 0.01);  // the segments changed the body
+    CHECK(worst < 2e-5);
     // Bad input.
     std::vector<Vector3d> short_list(s.scan.vertices.begin(), s.scan.vertices.end() - 1);
     CHECK_THROWS_AS(learning::unpose_skeleton(m, s.scan.fit, short_list), Error);

@@ -265,13 +265,20 @@ double surface_error(const Model& m, const std::vector<Vector3d>& x, const simul
 
 TEST_CASE("a scan registers onto the template closer than the model fit that starts it", "[registration]") {
     const Model& m = test::default_cpp_model();
-    const fitting::LinearModel lin(m, m.component_count());
+    // With the segment shape spaces (RegistrationOptions::segments, off by default), the head's left out.
+    const fitting::LinearModel lin(m, m.component_count(), nullptr, true, registration::RegistrationOptions().segments_left_out);
     const BumpyScan s(31);
     registration::Scan without_landmarks = s.scan;
     without_landmarks.landmarks.clear();
     ThreadPool pool(2);
     const registration::Registration r = registration::register_scan(lin, without_landmarks, {}, {}, &pool);
     REQUIRE(r.vertices.size() == m.vertex_count());
+    REQUIRE(r.fit.frames[0].shape.size() == m.component_count() + m.segment_coefficient_count());
+    double head = 0, others = 0;  // the head is segment 0, its coefficients first
+    for (std::size_t k = m.component_count(); k < r.fit.frames[0].shape.size(); ++k)
+        (k < m.component_count() + m.segments()[0].components ? head : others) += std::abs(r.fit.frames[0].shape[k]);
+    CHECK(head == 0);
+    CHECK(others > 0);
     const auto fitted = simulation::fitted_vertices(m, r.fit.frames[0]);
     const double fit_surface = surface_error(m, fitted, s.truth), reg_surface = surface_error(m, r.vertices, s.truth);
     const auto& q = r.report.quality;
@@ -383,6 +390,22 @@ TEST_CASE("the C API registers a scan and refuses misuse with a status and a mes
     REQUIRE(ssc_registration_get_vertex_distances(reg, distance.data(), V) == SSC_OK);
     std::vector<float> shape(ssc_model_shape_count(model));
     CHECK(ssc_registration_get_fit(reg, shape.data(), uint32_t(shape.size()), nullptr, 0, nullptr, nullptr) == SSC_OK);
+    // The fit's segment shapes: zero, as the fit does not use the segments by default (the C++
+    // registration test fits with them).
+    CHECK(def.fit_segments == 0u);
+    REQUIRE(ssc_model_segment_count(model) == 6);
+    ssc_segment_info info;
+    info.struct_size = sizeof info;
+    REQUIRE(ssc_model_get_segment_info(model, 1, &info) == SSC_OK);
+    std::vector<float> arm(info.shape_count, -99.f);
+    for (uint32_t g = 0; g < 6; ++g) {
+        REQUIRE(ssc_registration_get_fit_segment_shape(reg, g, arm.data(), uint32_t(arm.size())) == SSC_OK);
+        for (float c : arm) CHECK(c == 0.f);
+    }
+    CHECK(ssc_registration_get_fit_segment_shape(reg, 6, arm.data(), uint32_t(arm.size())) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_registration_get_fit_segment_shape(reg, 1, arm.data(), info.shape_count - 1) == SSC_ERROR_BUFFER_TOO_SMALL);
+    CHECK(ssc_registration_get_fit_segment_shape(reg, 1, nullptr, info.shape_count) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_registration_get_fit_segment_shape(nullptr, 1, arm.data(), info.shape_count) == SSC_ERROR_INVALID_ARGUMENT);
     REQUIRE(ssc_registration_region_count(reg) == 6);
     const char* region = nullptr;
     ssc_registration_quality q;
@@ -393,7 +416,9 @@ TEST_CASE("the C API registers a scan and refuses misuse with a status and a mes
     // The same as the C++ registration of the same scan (not under the sanitizers: the same code
     // again, a minute there).
     if (!test::sanitized) {
-        const fitting::LinearModel lin(test::default_cpp_model(), test::default_cpp_model().component_count());
+        const registration::RegistrationOptions defaults;
+        const fitting::LinearModel lin(test::default_cpp_model(), test::default_cpp_model().component_count(), nullptr, defaults.segments,
+                                       defaults.segments_left_out);
         registration::Scan cloud_only;
         for (uint32_t i = 0; i < n; ++i) cloud_only.cloud.points.emplace_back(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]);
         const auto direct = registration::register_scan(lin, cloud_only, {});

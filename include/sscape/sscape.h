@@ -1121,6 +1121,10 @@ typedef struct ssc_registration_def {
     uint32_t max_iterations;             /**< Solves per round at most, 1..100. Default 4. */
     ssc_rbf_kernel rbf_kernel;           /**< Kernel of the rbf start. Default SSC_RBF_THIN_PLATE. */
     float rbf_scale;                     /**< Metres, (0, 10]: s of the multiquadric and Gaussian kernels. Default 0.1. */
+    uint32_t fit_segments;               /**< Non-zero: the model's segment shape spaces (but the head's), when it
+                                              has them, join the model fit's whole-body components, for bodies
+                                              whose proportions the whole body's cannot hold. Default 0 (whole
+                                              body only): see docs/registration.md for when each is better. */
 } ssc_registration_def;
 
 /** Fills def with defaults; size = sizeof(*def). Threads: any. */
@@ -1228,6 +1232,16 @@ SSC_EXPERIMENTAL ssc_status ssc_registration_get_vertex_distances(const ssc_regi
  */
 SSC_EXPERIMENTAL ssc_status ssc_registration_get_fit(const ssc_registration* registration, float* shape, uint32_t shape_capacity,
                                                      float* rotations, uint32_t joint_capacity, float* translation, float* scale);
+
+/**
+ * One segment's coefficients in that model fit (its shape_count values, ssc_segment_info; zeros when
+ * the fit had no segments: ssc_registration_def.fit_segments 0). With ssc_registration_get_fit's
+ * shape and pose, ssc_body_set_segment_shape rebuilds the fitted body. SSC_ERROR_INVALID_ARGUMENT
+ * as ssc_registration_get_fit, or for a bad segment or a capacity below its shape_count.
+ * Threads: the registration's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_registration_get_fit_segment_shape(const ssc_registration* registration, uint32_t segment, float* out,
+                                                                   uint32_t capacity);
 
 /** Body regions of the quality report (the model's vertex sets: head, torso, arms, ...), after a run. */
 SSC_EXPERIMENTAL uint32_t ssc_registration_region_count(const ssc_registration* registration);

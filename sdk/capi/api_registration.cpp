@@ -54,6 +54,7 @@ registration::RegistrationOptions registration_options(const ssc_registration_de
                    : kernel == SSC_RBF_MULTIQUADRIC ? registration::RbfKernel::Multiquadric
                                                     : registration::RbfKernel::Gaussian;
     o.rbf_scale = d.rbf_scale;
+    o.segments = d.fit_segments != 0;
     return o;
 }
 
@@ -74,6 +75,7 @@ void ssc_registration_def_init(ssc_registration_def* def, size_t size) {
     d.max_iterations = o.max_iterations;
     d.rbf_kernel = SSC_RBF_THIN_PLATE;
     d.rbf_scale = float(o.rbf_scale);
+    d.fit_segments = o.segments ? 1u : 0u;
     std::memcpy(def, &d, d.struct_size);
 }
 
@@ -193,6 +195,24 @@ ssc_status ssc_registration_get_fit(const ssc_registration* registration, float*
         if (translation)
             for (int a = 0; a < 3; ++a) translation[a] = float(s.translation[a]);
         if (scale) *scale = float(s.scale);
+    });
+}
+
+ssc_status ssc_registration_get_fit_segment_shape(const ssc_registration* registration, uint32_t segment, float* out, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(registration, "registration");
+        need(out, "out");
+        const registration::Registration& r = registration->registrar.result();
+        SSC_REQUIRE_ARG(!r.fit.frames.empty(), "registration: no model fit (the run started from landmarks)");
+        const Model& m = registration->registrar.model();
+        SSC_REQUIRE_ARG_S(segment < m.segments().size(), "segment " << segment << " is out of range (the model has " << m.segments().size() << ")");
+        const SegmentSpace& s = m.segments()[segment];
+        check_output(out, capacity, s.components, 0, 4);
+        const std::vector<double>& shape = r.fit.frames[0].shape;  // the whole body's, then every segment's
+        for (uint32_t k = 0; k < s.components; ++k) {
+            const std::size_t i = std::size_t(m.component_count()) + s.first + k;
+            out[k] = i < shape.size() ? float(shape[i]) : 0.f;
+        }
     });
 }
 

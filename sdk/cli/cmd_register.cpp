@@ -16,7 +16,7 @@ namespace {
 
 struct Options {
     std::string scan, model, out, landmarks, png, report, units, up, start = "model", kernel = "thin-plate";
-    bool constant = false;
+    bool constant = false, segments = false;
     double stiffness = 0;
 };
 
@@ -32,6 +32,7 @@ int run_register(const Options& o) {
     ssc_registration_def_init(&def, sizeof def);
     def.start = o.start == "rigid" ? SSC_REGISTRATION_START_RIGID : o.start == "rbf" ? SSC_REGISTRATION_START_RBF : SSC_REGISTRATION_START_MODEL;
     def.schedule = o.constant ? SSC_REGISTRATION_CONSTANT : SSC_REGISTRATION_RELAXED;
+    def.fit_segments = o.segments ? 1u : 0u;
     if (o.stiffness > 0) def.stiffness = float(o.stiffness);
     def.rbf_kernel = o.kernel == "gaussian" ? SSC_RBF_GAUSSIAN : o.kernel == "multiquadric" ? SSC_RBF_MULTIQUADRIC : SSC_RBF_THIN_PLATE;
     ssc_registration* reg = nullptr;
@@ -107,6 +108,8 @@ Run add_register(CLI::App& app) {
     c->add_option("--rbf-kernel", o->kernel, "the rbf start's kernel (default thin-plate)")
         ->check(CLI::IsMember({"thin-plate", "multiquadric", "gaussian"}).description(""))->type_name("thin-plate|multiquadric|gaussian");
     c->add_flag("--constant", o->constant, "keep the stiffness at its final value in every round instead of relaxing it");
+    c->add_flag("--segments", o->segments, "fit the model's segment shape spaces (arms, torso, legs) with its whole-body "
+                                           "components: for bodies whose proportions the whole body's cannot hold");
     c->add_option("--stiffness", o->stiffness, "the first round's stiffness (default 0.03)")->check(finite_in(1e-6, 1e6))->type_name("B");
     c->add_option("--report", o->report, "write the report as JSON beside the mesh (its path with .json, where sscape learn reads "
                                          "it): times, quality overall and per body region, the model fit, and per vertex whether it "

@@ -306,7 +306,7 @@ double FitProblem::evaluate(const Stage& st, ArrowSystem* H, VectorXd* g, uint32
     double cost = data_.evaluate(kin_, on, st.gm_scale, H, g, *pool_);
     for (uint32_t f = 0; f < F_; ++f)
         if (frame_only >= F_ || f == frame_only) cost += pose_prior_.evaluate(kin_[f], states_[f], f * B_, H, g);
-    add_shape_prior(shape_, o_.shape_prior, cost, H, g);
+    add_shape_prior(shape_, o_.shape_prior, lin_.whole_body, o_.segment_prior, cost, H, g);
     return cost;
 }
 

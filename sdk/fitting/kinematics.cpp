@@ -64,24 +64,53 @@ SurfacePoint landmark_point(const format::ModelData& d, uint32_t l) {
     return p;
 }
 
-LinearModel::LinearModel(const Model& m, uint32_t components, std::shared_ptr<const anatomy::ModelAnatomy> shared)
-    : model(m), K(std::min(components, m.component_count())), J(m.joint_count()), V(m.vertex_count()),
+LinearModel::LinearModel(const Model& m, uint32_t components, std::shared_ptr<const anatomy::ModelAnatomy> shared, bool segments,
+                         const std::vector<std::string>& left_out)
+    : model(m), K(std::min(components, m.component_count())), J(m.joint_count()), V(m.vertex_count()), whole_body(K),
       anatomy(shared ? std::move(shared) : std::make_shared<const anatomy::ModelAnatomy>(m)), limits(anatomy->limits),
       roles(anatomy->roles) {
     const auto& d = m.data();
+    const std::vector<SegmentSpace>& spaces = m.segments();
+    if (segments && !spaces.empty()) {
+        SSC_REQUIRE_ARG(whole_body == m.component_count(), "linear model: segments follow all of the whole body's components");
+        K = whole_body + uint32_t(m.segment_coefficient_count());
+    }
     const float* step_in = m.basis_step();
-    step.assign(step_in, step_in + K);
-    basis.resize(std::size_t(V) * 3 * K);
-    for (uint32_t k = 0; k < K; ++k)
+    step.assign(step_in, step_in + whole_body);
+    basis.assign(std::size_t(V) * 3 * K, 0);
+    for (uint32_t k = 0; k < whole_body; ++k)
         for (uint32_t a = 0; a < 3; ++a)
             for (uint32_t v = 0; v < V; ++v) basis[(std::size_t(v) * 3 + a) * K + k] = d.shape.basis.q[(std::size_t(k) * 3 + a) * V + v];
-    joint_basis.resize(std::size_t(J) * 3 * K);
+    joint_basis.assign(std::size_t(J) * 3 * K, 0.0);
     joint_mean.resize(J);
     for (uint32_t j = 0; j < J; ++j)
         for (uint32_t a = 0; a < 3; ++a) {
             joint_mean[j][a] = m.joint_mean()[3 * j + a];
-            for (uint32_t k = 0; k < K; ++k)
+            for (uint32_t k = 0; k < whole_body; ++k)
                 joint_basis[(std::size_t(j) * 3 + a) * K + k] = double(step[k]) * m.joint_basis()[(std::size_t(k) * J + j) * 3 + a];
+        }
+    // Segment components, quantized like the whole body's (16 bits over each one's largest value).
+    if (K > whole_body)
+        for (const SegmentSpace& seg : spaces) {
+            if (std::find(left_out.begin(), left_out.end(), seg.name) != left_out.end()) {  // zero columns: kept at 0 by the prior
+                step.insert(step.end(), seg.components, 1.0);
+                continue;
+            }
+            const std::size_t n = seg.vertices.size();
+            for (uint32_t c = 0; c < seg.components; ++c) {
+                const uint32_t k = whole_body + seg.first + c;
+                float largest = 0;
+                for (std::size_t i = 0; i < 3 * n; ++i) largest = std::max(largest, std::abs(seg.basis[std::size_t(c) * 3 * n + i]));
+                const double q = largest > 0 ? double(largest) / 32767 : 1.0;
+                step.push_back(q);
+                for (uint32_t a = 0; a < 3; ++a)
+                    for (std::size_t i = 0; i < n; ++i)
+                        basis[(std::size_t(seg.vertices[i]) * 3 + a) * K + k] =
+                            int16_t(std::lround(double(seg.basis[(std::size_t(c) * 3 + a) * n + i]) / q));
+                for (uint32_t j = 0; j < J; ++j)
+                    for (uint32_t a = 0; a < 3; ++a)
+                        joint_basis[(std::size_t(j) * 3 + a) * K + k] = seg.joint_basis[(std::size_t(c) * J + j) * 3 + a];
+            }
         }
     rest_orient.resize(J);
     rest_world.resize(J);

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <string>
 #include <vector>
 
 namespace ssc::fitting {
@@ -25,7 +26,9 @@ using Eigen::Vector3d;
 
 // What the fitter solves for.
 struct FitState {
-    std::vector<double> shape;                // K (used components; the rest stay zero)
+    // K: the used whole-body components (the rest stay zero), then, from a LinearModel with
+    // segments, every segment's coefficients (posed_surface.hpp's set_fit_shape).
+    std::vector<double> shape;
     std::vector<Eigen::Quaterniond> pose;     // J local pose rotations (each joint's rest frame)
     Vector3d translation = Vector3d::Zero();  // metres
     double scale = 1;
@@ -47,10 +50,15 @@ SurfacePoint landmark_point(const format::ModelData& model, uint32_t l);
 // The model's linear parts in double precision for the used components: built once, shared by every
 // frame's Kinematics.
 struct LinearModel {
-    // anatomy: the model's (shared, read-only); null: derived here.
-    LinearModel(const Model& model, uint32_t components, std::shared_ptr<const anatomy::ModelAnatomy> anatomy = nullptr);
+    // anatomy: the model's (shared, read-only); null: derived here. segments: the model's segment
+    // shape spaces (when it has them) join as further components after all of the whole body's,
+    // so a fit's shape holds the whole body's coefficients, then every segment's; those of the
+    // segments named in left_out keep zero columns (their coefficients stay 0).
+    LinearModel(const Model& model, uint32_t components, std::shared_ptr<const anatomy::ModelAnatomy> anatomy = nullptr,
+                bool segments = false, const std::vector<std::string>& left_out = {});
     const Model& model;
     uint32_t K, J, V;
+    uint32_t whole_body;  // the first K that are the whole body's components (K without segments)
     // The shape basis as the model stores it (quantized), laid out per vertex: [v][axis][k], each
     // value times step[k] in metres per standard deviation. A quarter of the memory of doubles,
     // which matters because fits read it at random vertices.

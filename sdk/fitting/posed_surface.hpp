@@ -7,6 +7,10 @@
 
 namespace ssc::fitting {
 
+// Gives `body` a fit's shape: the whole body's coefficients, then (from a LinearModel with
+// segments) every segment's; the rest zero.
+void set_fit_shape(Body& body, const std::vector<double>& shape);
+
 // Poses `body` (of the state's model) with the state and writes scale * posed + translation into
 // vertices (resized to V) and, when given, unit vertex normals.
 void posed_surface(Body& body, const FitState& s, std::vector<Vector3d>& vertices, std::vector<Vector3d>* normals = nullptr);

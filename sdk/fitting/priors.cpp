@@ -96,12 +96,14 @@ double PosePrior::evaluate(const Kinematics& kin, const FitState& state, uint32_
     return cost;
 }
 
-void add_shape_prior(const std::vector<double>& shape, double weight, double& cost, ArrowSystem* H, Eigen::VectorXd* g) {
+void add_shape_prior(const std::vector<double>& shape, double weight, uint32_t whole_body, double segment_weight, double& cost,
+                     ArrowSystem* H, Eigen::VectorXd* g) {
     for (uint32_t k = 0; k < shape.size(); ++k) {
-        cost += 0.5 * weight * shape[k] * shape[k];
+        const double w = k < whole_body ? weight : weight * segment_weight;
+        cost += 0.5 * w * shape[k] * shape[k];
         if (!H) continue;
-        H->add(k, k, weight);
-        (*g)[k] += weight * shape[k];
+        H->add(k, k, w);
+        (*g)[k] += w * shape[k];
     }
 }
 

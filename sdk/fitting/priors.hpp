@@ -47,6 +47,8 @@ private:
 // The shape prior: the coefficients are standard deviations of the training population, so the
 // prior is 0.5 weight |shape|^2, added into cost term by term. With H and g, adds its normal
 // equations (shape columns first).
-void add_shape_prior(const std::vector<double>& shape, double weight, double& cost, ArrowSystem* H, Eigen::VectorXd* g);
+// Components from whole_body on (a LinearModel's segments) weigh segment_weight times more.
+void add_shape_prior(const std::vector<double>& shape, double weight, uint32_t whole_body, double segment_weight, double& cost,
+                     ArrowSystem* H, Eigen::VectorXd* g);
 
 }  // namespace ssc::fitting

@@ -49,7 +49,7 @@ using Eigen::Quaterniond;
 class Solver {
 public:
     Solver(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& o, ThreadPool* pool)
-        : p_(lin, frames, o, pool), o_(o), F_(uint32_t(frames.size())), K_(lin.K) {}
+        : p_(lin, frames, o, pool), o_(o), F_(uint32_t(frames.size())), K_(lin.K), whole_body_(lin.whole_body) {}
 
     // refine: start from `start` with the fine stages only (the joint refinement of frames fitted
     // one by one, see fit()).
@@ -71,7 +71,7 @@ public:
             // their own; they start from the mean).
             if (F_ == 1 && searched_frames_ == 1) shape = states[0].shape;
         }
-        const Schedule plan = schedule(o_.max_iterations, K_, start && !o_.auto_start);
+        const Schedule plan = schedule(o_.max_iterations, K_, start && !o_.auto_start, whole_body_);
         bool cancelled = false;
         uint32_t iteration = 0;
         // Frames whose start search ended with a short coarse fit need no rigid stage.
@@ -138,6 +138,12 @@ private:
                 Stage again = stages[Schedule::kFine];
                 again.iterations = std::max<uint32_t>(2, again.iterations / 2);
                 converged = p_.run_stage(again, kAllFrames, &progress, iteration, cancelled);
+            }
+            if (si == Schedule::kFine && plan.segment_iterations > 0 && !cancelled) {
+                Stage segments = stages[Schedule::kFine];
+                segments.components = K_;
+                segments.iterations = plan.segment_iterations;
+                converged = p_.run_stage(segments, kAllFrames, &progress, iteration, cancelled);
             }
             // Between the coarse and the fine stage: limbs the coarse stage could not reach, each
             // search settled by a short coarse stage when a limb moved. Limbs are searched one after
@@ -314,7 +320,7 @@ private:
 
     FitProblem p_;
     FitOptions o_;
-    uint32_t F_, K_;
+    uint32_t F_, K_, whole_body_;
     uint32_t searched_frames_ = 0;  // frames started by the cloud start search (with its coarse fit)
     // A single frame's other start candidates after their short fits, with the explained measure
     // (run()), and the start poses whose short fits were put off (initial_state()).

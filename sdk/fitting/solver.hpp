@@ -38,6 +38,7 @@ struct FitOptions {
     double landmark_sigma = 0.01;       // metres: expected landmark placement error
     double point_sigma = 0.004;         // metres: expected scan noise plus model error
     double shape_prior = 1;             // multiplies the Gaussian shape prior (0 = none)
+    double segment_prior = 1;           // further multiplies it for segment components (LinearModel with segments)
     double pose_prior = 1;              // multiplies the joint rotation prior (0 = none)
     bool joint_limits = true;           // keep joints within their anatomical ranges (joint_limits.hpp)
     uint32_t max_iterations = 60;       // Levenberg-Marquardt iterations, all stages together

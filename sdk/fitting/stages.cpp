@@ -68,11 +68,15 @@ Stage start_stage(uint32_t components) {
     return s;
 }
 
-Schedule schedule(uint32_t max_iterations, uint32_t components, bool given_start) {
+Schedule schedule(uint32_t max_iterations, uint32_t components, bool given_start, uint32_t whole_body) {
     const uint32_t total = std::max<uint32_t>(max_iterations, 3);
     const uint32_t rigid = std::max<uint32_t>(1, total / 5), coarse = std::max<uint32_t>(1, total / 3);
     const uint32_t later = total - rigid - coarse;  // at least 1: the fine stage keeps one
     const uint32_t fine = later - std::min(kPolishIterations, later - 1);
+    if (whole_body < components && fine >= 2)
+        return Schedule{{rigid_stage(rigid, given_start), coarse_stage(coarse, std::min(whole_body, kCoarseComponents)),
+                         fine_stage(fine - fine / 2, whole_body, false), fine_stage(later - fine, components, true)},
+                        fine / 2};
     return Schedule{{rigid_stage(rigid, given_start), coarse_stage(coarse, std::min(components, kCoarseComponents)),
                      fine_stage(fine, components, false), fine_stage(later - fine, components, true)}};
 }

@@ -53,8 +53,13 @@ constexpr uint32_t kCoarseComponents = 10;
 // rigid, a third coarse, two (when there is room) the polish, the rest fine.
 struct Schedule {
     Stage stages[4];
+    // With segment components: the fine stage fits the whole body's alone, then this many more
+    // iterations of it with every component (the segments join once the pose has settled).
+    uint32_t segment_iterations = 0;
     static constexpr int kRigid = 0, kCoarse = 1, kFine = 2, kPolish = 3;
 };
-Schedule schedule(uint32_t max_iterations, uint32_t components, bool given_start);
+// whole_body < components: the components from whole_body on (a LinearModel's segments) join for
+// the fine stage's second half (segment_iterations).
+Schedule schedule(uint32_t max_iterations, uint32_t components, bool given_start, uint32_t whole_body);
 
 }  // namespace ssc::fitting

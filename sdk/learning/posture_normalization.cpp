@@ -1,6 +1,7 @@
 #include "learning/posture_normalization.hpp"
 
 #include "common/error.hpp"
+#include "fitting/posed_surface.hpp"
 #include "synthesis/body.hpp"
 
 #include <Eigen/LU>
@@ -21,20 +22,21 @@ const char* posture_name(Posture p) { return p == Posture::None ? "none" : p == 
 std::vector<Eigen::Vector3d> unpose_skeleton(const Model& model, const fitting::FitState& fit, const std::vector<Eigen::Vector3d>& posed) {
     const uint32_t V = model.vertex_count(), J = model.joint_count();
     SSC_REQUIRE_ARG_S(posed.size() == V, "unpose: " << posed.size() << " vertices, the model has " << V);
-    SSC_REQUIRE_ARG_S(fit.pose.size() == J && fit.shape.size() <= model.component_count(),
+    SSC_REQUIRE_ARG_S(fit.pose.size() == J && fit.shape.size() <= model.component_count() + model.segment_coefficient_count(),
                       "unpose: the fit has " << fit.pose.size() << " joint rotations and " << fit.shape.size() << " shape values; the model has "
-                                             << J << " joints and " << model.component_count() << " components");
+                                             << J << " joints and " << model.component_count() + model.segment_coefficient_count()
+                                             << " shape coefficients");
     SSC_REQUIRE_ARG(std::isfinite(fit.scale) && fit.scale > 0 && fit.translation.allFinite(), "unpose: the fit's scale and translation must be finite");
     for (const auto& x : posed) SSC_REQUIRE_ARG(x.allFinite(), "unpose: a registered vertex is not finite");
-    std::vector<float> shape(fit.shape.begin(), fit.shape.end()), quats(4 * std::size_t(J));
+    std::vector<float> quats(4 * std::size_t(J));
     for (uint32_t j = 0; j < J; ++j) {
         SSC_REQUIRE_ARG(fit.pose[j].coeffs().allFinite() && fit.pose[j].norm() > 0, "unpose: a joint rotation is not finite");
         const Eigen::Quaterniond q = fit.pose[j].normalized();
         quats[4 * j] = float(q.x()), quats[4 * j + 1] = float(q.y()), quats[4 * j + 2] = float(q.z()), quats[4 * j + 3] = float(q.w());
     }
-    for (float c : shape) SSC_REQUIRE_ARG(std::isfinite(c), "unpose: a shape value is not finite");
+    for (double c : fit.shape) SSC_REQUIRE_ARG(std::isfinite(c), "unpose: a shape value is not finite");
     Body body(model, nullptr);
-    body.set_shape(shape.data(), uint32_t(shape.size()));
+    fitting::set_fit_shape(body, fit.shape);  // the whole body's and the segments' (the skeleton follows both)
     body.set_pose(quats.data(), nullptr);
     const kernels::SkinMatrix* skinning = body.skinning();
     const auto& skin = model.data().skin;

@@ -88,8 +88,12 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
         const auto& f = r.registered.fit;
         std::vector<double> rotations;
         for (const auto& q : f.pose) rotations.insert(rotations.end(), {q.x(), q.y(), q.z(), q.w()});
-        j["fit"] = {{"shape", f.shape}, {"rotations_xyzw", rotations}, {"translation_m", {f.translation.x(), f.translation.y(), f.translation.z()}},
+        // The whole body's coefficients, then the segments' when the fit had them.
+        const std::size_t K = std::min<std::size_t>(f.shape.size(), model.component_count());
+        const std::vector<double> whole(f.shape.begin(), f.shape.begin() + std::ptrdiff_t(K)), segments(f.shape.begin() + std::ptrdiff_t(K), f.shape.end());
+        j["fit"] = {{"shape", whole}, {"rotations_xyzw", rotations}, {"translation_m", {f.translation.x(), f.translation.y(), f.translation.z()}},
                     {"scale", f.scale}, {"frame", "the scan's, turned so that scan_up is +Y, in metres"}};
+        if (!segments.empty()) j["fit"]["segment_shape"] = segments;
     }
     if (!r.quality.vertex_distance.empty()) {
         std::vector<double> mm;  // rounded to 0.01 mm: the report stays small
@@ -147,9 +151,13 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
         }
         if (j.contains("fit")) {
             const auto& fit = j.at("fit");
-            const std::vector<double> shape = fit.at("shape"), rotations = fit.at("rotations_xyzw"), translation = fit.at("translation_m");
-            SSC_REQUIRE_ARG(rotations.size() == 4 * std::size_t(J) && translation.size() == 3 && shape.size() <= model.component_count(),
+            std::vector<double> shape = fit.at("shape");
+            const std::vector<double> rotations = fit.at("rotations_xyzw"), translation = fit.at("translation_m");
+            const std::vector<double> segments = fit.contains("segment_shape") ? fit.at("segment_shape").get<std::vector<double>>() : std::vector<double>();
+            SSC_REQUIRE_ARG(rotations.size() == 4 * std::size_t(J) && translation.size() == 3 && shape.size() <= model.component_count() &&
+                                segments.size() <= model.segment_coefficient_count() && (segments.empty() || shape.size() == model.component_count()),
                             "the fit's sizes do not match the model");
+            shape.insert(shape.end(), segments.begin(), segments.end());
             r.registered.fit.shape = shape;
             for (uint32_t k = 0; k < J; ++k)
                 r.registered.fit.pose.emplace_back(rotations[4 * k + 3], rotations[4 * k], rotations[4 * k + 1], rotations[4 * k + 2]);

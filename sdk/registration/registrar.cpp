@@ -26,7 +26,7 @@ const RegistrationOptions& checked(const RegistrationOptions& o) {
 }  // namespace
 
 Registrar::Registrar(const Model& model, const RegistrationOptions& options, std::shared_ptr<const anatomy::ModelAnatomy> anatomy)
-    : options_(checked(options)), linear_(model, model.component_count(), std::move(anatomy)) {}
+    : options_(checked(options)), linear_(model, model.component_count(), std::move(anatomy), options_.segments, options_.segments_left_out) {}
 
 void Registrar::set_scan(fitting::PointCloud cloud, std::vector<uint32_t> triangles) {
     fitting::validate_cloud(cloud, "registration: scan");

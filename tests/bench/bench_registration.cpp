@@ -1,6 +1,6 @@
 // Scan registration accuracy and speed on simulated scans with known correspondence.
 //
-//   sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--stiffness B] [--threads N]
+//   sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--segments|--all-segments] [--segment-prior W] [--stiffness B] [--threads N]
 //                         [--makehuman DIR] [--landmarks] [--png PREFIX] [--compare OUT.png]
 // --compare: the papers' comparison on the same scans: the model fit alone, rigid + deformation,
 // rbf + deformation (both from the landmarks), model fit + deformation with relaxed and with
@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
     bool with_landmarks = false;
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     registration::RegistrationOptions options;
+    double segment_prior = options.fit.segment_prior;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--trials" && i + 1 < argc) trials = std::atoi(argv[++i]);
@@ -73,6 +74,9 @@ int main(int argc, char** argv) {
         else if (a == "--makehuman" && i + 1 < argc) makehuman = argv[++i];
         else if (a == "--compare" && i + 1 < argc) compare = argv[++i];
         else if (a == "--landmarks") with_landmarks = true;
+        else if (a == "--segments") options.segments = true;
+        else if (a == "--all-segments") options.segments = true, options.segments_left_out.clear();
+        else if (a == "--segment-prior" && i + 1 < argc) segment_prior = std::atof(argv[++i]);
         else if (a == "--fit-points" && i + 1 < argc) options.fit.max_points = uint32_t(std::atoi(argv[++i]));
         else if (a == "--fit-iterations" && i + 1 < argc) options.fit.max_iterations = uint32_t(std::atoi(argv[++i]));
         else if (a == "--constant") options.schedule = registration::Schedule::Constant;
@@ -82,12 +86,13 @@ int main(int argc, char** argv) {
                                      : v == "rbf" ? registration::Initialisation::Rbf
                                                   : registration::Initialisation::Model;
         } else {
-            std::fprintf(stderr, "usage: sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--stiffness B] [--threads N] [--makehuman DIR] [--landmarks] [--png PREFIX]\n");
+            std::fprintf(stderr, "usage: sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--segments|--all-segments] [--segment-prior W] [--stiffness B] [--threads N] [--makehuman DIR] [--landmarks] [--png PREFIX]\n");
             return 2;
         }
     }
     const Model model(format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH), nullptr);
-    const fitting::LinearModel lin(model, model.component_count());
+    const fitting::LinearModel lin(model, model.component_count(), nullptr, options.segments, options.segments_left_out);
+    options.fit.segment_prior = segment_prior;
     const std::vector<uint32_t> triangles(model.data().mesh.triangles.begin(), model.data().mesh.triangles.end());
     std::vector<uint8_t> hand(model.vertex_count(), 0);
     for (const auto& set : model.data().vertex_sets)

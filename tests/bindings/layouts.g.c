@@ -106,6 +106,7 @@ int main(void) {
     printf("ssc_registration_def.max_iterations offset %zu\n", offsetof(ssc_registration_def, max_iterations));
     printf("ssc_registration_def.rbf_kernel offset %zu\n", offsetof(ssc_registration_def, rbf_kernel));
     printf("ssc_registration_def.rbf_scale offset %zu\n", offsetof(ssc_registration_def, rbf_scale));
+    printf("ssc_registration_def.fit_segments offset %zu\n", offsetof(ssc_registration_def, fit_segments));
     printf("ssc_registration_quality size %zu\n", sizeof(ssc_registration_quality));
     printf("ssc_registration_quality.scan_mean offset %zu\n", offsetof(ssc_registration_quality, scan_mean));
     printf("ssc_registration_quality.scan_median offset %zu\n", offsetof(ssc_registration_quality, scan_median));

@@ -283,6 +283,7 @@ namespace Sscape.Native
         public uint @max_iterations;
         public ssc_rbf_kernel @rbf_kernel;
         public float @rbf_scale;
+        public uint @fit_segments;
     }
 
     [StructLayout(LayoutKind.Sequential)]
@@ -630,6 +631,9 @@ namespace Sscape.Native
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern ssc_status ssc_registration_get_fit(IntPtr @registration, float* @shape, uint @shape_capacity, float* @rotations, uint @joint_capacity, float* @translation, float* @scale);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_registration_get_fit_segment_shape(IntPtr @registration, uint @segment, float* @out, uint @capacity);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern uint ssc_registration_region_count(IntPtr @registration);

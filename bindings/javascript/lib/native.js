@@ -148,6 +148,7 @@ function declareTypes(koffi) {
     max_iterations: 'uint32_t',
     rbf_kernel: 'int32_t',
     rbf_scale: 'float',
+    fit_segments: 'uint32_t',
   });
   types.ssc_registration_quality = koffi.struct('ssc_registration_quality', {
     scan_mean: 'float',
@@ -274,6 +275,7 @@ const prototypes = [
   'int32_t ssc_registration_get_valid(const ssc_registration* registration, uint8_t* out, uint32_t capacity)',
   'int32_t ssc_registration_get_vertex_distances(const ssc_registration* registration, float* out, uint32_t capacity)',
   'int32_t ssc_registration_get_fit(const ssc_registration* registration, float* shape, uint32_t shape_capacity, float* rotations, uint32_t joint_capacity, float* translation, float* scale)',
+  'int32_t ssc_registration_get_fit_segment_shape(const ssc_registration* registration, uint32_t segment, float* out, uint32_t capacity)',
   'uint32_t ssc_registration_region_count(const ssc_registration* registration)',
   'int32_t ssc_registration_get_region(const ssc_registration* registration, uint32_t index, _Out_ const char** name, _Inout_ ssc_registration_quality* quality)',
 ];

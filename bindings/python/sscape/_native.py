@@ -58,7 +58,7 @@ class FitReport(ctypes.Structure):
 class RegistrationDef(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("start", c_int32), ("schedule", c_int32), ("stiffness", c_float),
                 ("landmark_weight", c_float), ("gamma", c_float), ("max_iterations", c_uint32), ("rbf_kernel", c_int32),
-                ("rbf_scale", c_float)]
+                ("rbf_scale", c_float), ("fit_segments", c_uint32)]
 
 
 class RegistrationQuality(ctypes.Structure):
@@ -176,6 +176,7 @@ _DECLARATIONS = {
     "ssc_registration_get_valid": (_STATUS, [c_void_p, POINTER(ctypes.c_uint8), c_uint32]),
     "ssc_registration_get_vertex_distances": (_STATUS, [c_void_p, c_float_p, c_uint32]),
     "ssc_registration_get_fit": (_STATUS, [c_void_p, c_float_p, c_uint32, c_float_p, c_uint32, c_float_p, c_float_p]),
+    "ssc_registration_get_fit_segment_shape": (_STATUS, [c_void_p, c_uint32, c_float_p, c_uint32]),
     "ssc_registration_region_count": (c_uint32, [c_void_p]),
     "ssc_registration_get_region": (_STATUS, [c_void_p, c_uint32, POINTER(c_char_p), POINTER(RegistrationQuality)]),
     "ssc_named_pose_count": (c_uint32, []),

@@ -29,8 +29,8 @@ def _quality(q: RegistrationQuality) -> Dict[str, float]:
 class Registration(Handle):
     """Registers one scan at a time to the model's template. Options as ssc_registration_def:
     start ("model", "rigid", "rbf"), schedule ("relaxed", "constant"), stiffness, landmark_weight,
-    gamma, max_iterations, rbf_kernel ("thin_plate", "multiquadric", "gaussian"), rbf_scale.
-    One thread at a time.
+    gamma, max_iterations, rbf_kernel ("thin_plate", "multiquadric", "gaussian"), rbf_scale,
+    fit_segments (True: the model's segment shape spaces join the model fit). One thread at a time.
 
         reg = sscape.Registration(model)
         reg.set_scan(points, triangles=faces)        # metres; faces optional
@@ -40,7 +40,8 @@ class Registration(Handle):
 
     _what = "registration"
 
-    def __init__(self, model: Model, start: str = "model", schedule: str = "relaxed", rbf_kernel: str = "thin_plate", **numbers):
+    def __init__(self, model: Model, start: str = "model", schedule: str = "relaxed", rbf_kernel: str = "thin_plate",
+                 fit_segments: bool = False, **numbers):
         unknown = set(numbers) - _NUMBERS
         if unknown:
             raise TypeError(f"unknown registration options: {', '.join(sorted(unknown))}")
@@ -50,6 +51,7 @@ class Registration(Handle):
             if value not in table:
                 raise ValueError(f"{what} must be one of {', '.join(table)}, not {value!r}")
         d.start, d.schedule, d.rbf_kernel = _STARTS[start], _SCHEDULES[schedule], _KERNELS[rbf_kernel]
+        d.fit_segments = 1 if fit_segments else 0
         for key, value in numbers.items():
             setattr(d, key, int(value) if key == "max_iterations" else float(value))
         handle = ctypes.c_void_p()
@@ -159,3 +161,17 @@ class Registration(Handle):
         check(lib.ssc_registration_get_fit(self.handle, shape.ctypes.data_as(c_float_p), K, rotations.ctypes.data_as(c_float_p), J,
                                            translation.ctypes.data_as(c_float_p), ctypes.byref(scale)))
         return shape, rotations, translation, scale.value
+
+    def fit_segment_shape(self, segment) -> np.ndarray:
+        """One segment's coefficients (by index or name) in that fit: with fit()'s shape and pose,
+        Body.set_segment_shape rebuilds the fitted body."""
+        segments = self.model.segments
+        if isinstance(segment, str):
+            names = [s.name for s in segments]
+            if segment not in names:
+                raise KeyError(f"the model has no segment {segment!r} (it has: {', '.join(names) or 'none'})")
+            segment = names.index(segment)
+        count = segments[int(segment)].shape_count if 0 <= int(segment) < len(segments) else 0
+        out = np.empty(max(count, 1), np.float32)
+        check(lib.ssc_registration_get_fit_segment_shape(self.handle, int(segment), out.ctypes.data_as(c_float_p), count))
+        return out[:count]

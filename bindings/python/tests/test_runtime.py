@@ -302,6 +302,11 @@ def test_registration_brings_the_template_onto_a_scan(model):
         assert d.shape == (model.vertex_count,) and (d[valid] >= 0).all()
         shape, rotations, translation, scale = reg.fit()
         assert shape.shape == (50,) and rotations.shape == (53, 4)
+        # The fit's segment shapes (the default model has six): zero, as the fit did not use them by default.
+        arms = [reg.fit_segment_shape("arm_l"), reg.fit_segment_shape(2)]
+        assert all(a.shape == (10,) and (a == 0).all() for a in arms)
+        with pytest.raises(sscape.SscapeError):
+            reg.fit_segment_shape(6)
         with pytest.raises(sscape.SscapeError) as e:
             reg.set_landmarks(["Nowhere"], [[0, 0, 0]])
         assert e.value.status_name == "SSC_ERROR_NOT_FOUND"

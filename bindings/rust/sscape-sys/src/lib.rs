@@ -290,6 +290,7 @@ pub struct ssc_registration_def {
     pub max_iterations: u32,
     pub rbf_kernel: ssc_rbf_kernel,
     pub rbf_scale: f32,
+    pub fit_segments: u32,
 }
 
 #[repr(C)]
@@ -420,6 +421,7 @@ extern "C" {
     pub fn ssc_registration_get_valid(registration: *const ssc_registration, out: *mut u8, capacity: u32) -> ssc_status;
     pub fn ssc_registration_get_vertex_distances(registration: *const ssc_registration, out: *mut f32, capacity: u32) -> ssc_status;
     pub fn ssc_registration_get_fit(registration: *const ssc_registration, shape: *mut f32, shape_capacity: u32, rotations: *mut f32, joint_capacity: u32, translation: *mut f32, scale: *mut f32) -> ssc_status;
+    pub fn ssc_registration_get_fit_segment_shape(registration: *const ssc_registration, segment: u32, out: *mut f32, capacity: u32) -> ssc_status;
     pub fn ssc_registration_region_count(registration: *const ssc_registration) -> u32;
     pub fn ssc_registration_get_region(registration: *const ssc_registration, index: u32, name: *mut *const c_char, quality: *mut ssc_registration_quality) -> ssc_status;
 }

@@ -115,6 +115,7 @@ fn lines() -> Vec<String> {
         format!("ssc_registration_def.max_iterations offset {}", offset!(ssc_registration_def, max_iterations)),
         format!("ssc_registration_def.rbf_kernel offset {}", offset!(ssc_registration_def, rbf_kernel)),
         format!("ssc_registration_def.rbf_scale offset {}", offset!(ssc_registration_def, rbf_scale)),
+        format!("ssc_registration_def.fit_segments offset {}", offset!(ssc_registration_def, fit_segments)),
         format!("ssc_registration_quality size {}", size_of::<ssc_registration_quality>()),
         format!("ssc_registration_quality.scan_mean offset {}", offset!(ssc_registration_quality, scan_mean)),
         format!("ssc_registration_quality.scan_median offset {}", offset!(ssc_registration_quality, scan_median)),
