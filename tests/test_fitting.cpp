@@ -42,8 +42,8 @@ const DefaultModel& default_model() {
 
 fitting::FitState random_state(const fitting::Kinematics& kin, const Model& m, std::mt19937& rng) {
     fitting::FitState s = kin.zero_state();
-    const auto shape = simulation::random_shape(m, rng);
-    for (uint32_t k = 0; k < kin.components(); ++k) s.shape[k] = shape[k];
+    const auto shape = simulation::random_shape(m, rng);  // the whole body's; segment coefficients stay 0
+    for (uint32_t k = 0; k < kin.components() && k < shape.size(); ++k) s.shape[k] = shape[k];
     const auto pose = simulation::random_pose(m, rng);
     for (uint32_t j = 0; j < m.joint_count(); ++j) s.pose[j] = Eigen::Quaterniond(pose[4 * j + 3], pose[4 * j], pose[4 * j + 1], pose[4 * j + 2]);
     s.pose[0] = Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.2, 1, 0.1).normalized()));
