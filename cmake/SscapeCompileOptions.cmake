@@ -38,3 +38,14 @@ function(sscape_defaults target)
     C_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON)
 endfunction()
+
+# The command line's and the tests' own files parse arguments, check results and call the
+# libraries; CLI11's and Catch's header-only code is most of what they compile. At -O0 they build
+# in a third of the time (the sanitizer build: 1010 of its 2360 CPU seconds at -O2), and no hot
+# loop lives in them. Only with SSCAPE_UNOPTIMIZED_CLIENTS: the shipped command is optimized.
+function(sscape_client_defaults target)
+  sscape_defaults(${target})
+  if(SSCAPE_UNOPTIMIZED_CLIENTS)
+    target_compile_options(${target} PRIVATE -O0 -U_FORTIFY_SOURCE)
+  endif()
+endfunction()
