@@ -127,6 +127,7 @@ TEST_CASE("a scan file is registered into its record, reused while current, and 
     const std::string bytes = read_regular_file(mesh, 1u << 30), json = read_regular_file(dir + "/out.json", 1u << 30);
     CHECK(json.find("\"model_digest\"") != std::string::npos);
     CHECK(json.find("\"scan_units_to_metres\": 0.001") != std::string::npos);
+    CHECK(json.find("\"fit_segments\": false") != std::string::npos);
     const float seconds = report.seconds;
 
     // Again: reused from the files (the same report), nothing written.
@@ -157,9 +158,21 @@ TEST_CASE("a scan file is registered into its record, reused while current, and 
     REQUIRE(ssc_registration_run_file(reg_other, &job, nullptr, nullptr, &again, &reused) == SSC_OK);
     CHECK(reused == 0);
     CHECK(read_regular_file(mesh, 1u << 30) != bytes);
-    // Back to the first model, and a changed scan (not under the sanitizers: the same code twice
-    // more, two minutes there).
+    // The model fit with segments, back to the first model, and a changed scan (not under the
+    // sanitizers: the same code four times more, minutes there).
     if (!test::sanitized) {
+        // The model fit with the segment shape spaces is another setting: registered again, then reused.
+        ssc_registration_def with_segments;
+        ssc_registration_def_init(&with_segments, sizeof with_segments);
+        with_segments.fit_segments = 1;
+        ssc_registration* reg_segments = nullptr;
+        REQUIRE(ssc_registration_create(model, &with_segments, &reg_segments) == SSC_OK);
+        REQUIRE(ssc_registration_run_file(reg_segments, &job, nullptr, nullptr, &again, &reused) == SSC_OK);
+        CHECK(reused == 0);
+        CHECK(read_regular_file(dir + "/out.json", 1u << 30).find("\"fit_segments\": true") != std::string::npos);
+        REQUIRE(ssc_registration_run_file(reg_segments, &job, nullptr, nullptr, &again, &reused) == SSC_OK);
+        CHECK(reused == 1);
+        ssc_registration_destroy(reg_segments);
         REQUIRE(ssc_registration_run_file(reg, &job, nullptr, nullptr, &again, &reused) == SSC_OK);
         CHECK(reused == 0);
         CHECK(read_regular_file(mesh, 1u << 30) == bytes);  // the same registration, to the byte
@@ -261,6 +274,7 @@ TEST_CASE("bootstrapping refuses bad settings before writing, and gives each rou
     ssc_bootstrap_def_init(&def, sizeof def);
     CHECK(def.components == 20);
     CHECK(def.contact_sheet_entries == 12);
+    CHECK(def.fit_segments == 0);
     ssc_bootstrap* b = nullptr;
     CHECK(ssc_bootstrap_create(nullptr, nullptr, &b) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(ssc_bootstrap_create(nullptr, &def, &b) == SSC_ERROR_INVALID_ARGUMENT);  // no folders

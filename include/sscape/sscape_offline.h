@@ -154,6 +154,8 @@ typedef struct ssc_bootstrap_def {
     const char* license;              /**< Their licence; NULL: unspecified. */
     uint32_t threads;                 /**< Worker threads of ssc_bootstrap_run, 0..256; 0: all. */
     uint32_t contact_sheet_entries;   /**< Registrations per contact sheet page, 0..100; 0: none. Default 12. */
+    uint32_t fit_segments;            /**< Each round's model fits with its segment shape spaces (as
+                                           ssc_registration_def.fit_segments), where it has them. Default 0. */
 } ssc_bootstrap_def;
 
 typedef struct ssc_bootstrap ssc_bootstrap;
@@ -183,7 +185,8 @@ SSC_EXPERIMENTAL ssc_status ssc_bootstrap_prepare(ssc_bootstrap* bootstrap);
 /**
  * The registration that round `round` (1..100) makes of scan `index`, as ssc_bootstrap_run makes it:
  * run it with ssc_registration_run_file on a registration of the model at *model_path (round - 1's)
- * with default options, in any process that sees the same files; ssc_bootstrap_run then reuses it.
+ * with default options but fit_segments as the def's, in any process that sees the same files;
+ * ssc_bootstrap_run then reuses it.
  * Makes the round's registrations folder. Strings are owned by the bootstrap and valid until its
  * next call. @return SSC_ERROR_IO when the folder cannot be made.
  */

@@ -87,6 +87,7 @@ ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, 
         spec.threads = d.threads;
         ssc_registration_def registration;  // the defaults, as a file job's registration has them
         ssc_registration_def_init(&registration, sizeof registration);
+        registration.fit_segments = d.fit_segments ? 1u : 0u;
         spec.registration = registration_options(registration);
         b->units = optional_string(d.units);
         b->up = optional_string(d.up);

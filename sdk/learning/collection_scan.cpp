@@ -100,7 +100,7 @@ ScanFileResult register_scan_file(registration::Registrar& registrar, const std:
         try {
             RegistrationRecord old = read_registration_record(job.mesh_path, model, false);
             if (old.model_digest == model_digest && old.scan_digest == digest && old.scan_units_to_metres == reading.scan_units_to_metres &&
-                old.scan_up == reading.up) {
+                old.scan_up == reading.up && old.fit_segments == registrar.options().segments) {
                 out.record = std::move(old);
                 out.reused = true;
                 registrar.forget_result();  // its result is not this job's
@@ -115,7 +115,7 @@ ScanFileResult register_scan_file(registration::Registrar& registrar, const std:
     const std::string failure_path = fs::path(job.mesh_path).replace_extension(".failed.json").string();
     const bool memo = job.reuse && job.write_report;
     const nlohmann::json key{{"model_digest", model_digest}, {"scan_digest", digest}, {"scan_units_to_metres", reading.scan_units_to_metres},
-                             {"scan_up", reading.up}};
+                             {"scan_up", reading.up}, {"fit_segments", registrar.options().segments}};
     if (memo && fs::exists(failure_path)) {
         std::string reason;
         try {
@@ -155,6 +155,7 @@ ScanFileResult register_scan_file(registration::Registrar& registrar, const std:
     rec.scan = job.scan.path;
     rec.scan_units_to_metres = reading.scan_units_to_metres;
     rec.scan_up = reading.up;
+    rec.fit_segments = registrar.options().segments;
     rec.seconds = r.report.seconds;
     rec.fit_seconds = r.report.fit_seconds;
     rec.rounds = r.report.rounds;

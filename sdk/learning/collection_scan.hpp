@@ -55,7 +55,7 @@ struct ScanFileJob {
     ScanReading reading;
     std::string mesh_path;     // the registered mesh, .ply or .obj
     bool write_report = true;  // the report beside the mesh (record_report_path)
-    bool reuse = false;        // keep a record made from the same model, scan, landmarks, units and up
+    bool reuse = false;        // keep a record made from the same model, scan, landmarks, units, up and fit_segments
     std::string picture_path;  // a PNG of the scan beside the registration, or empty
 };
 

@@ -73,6 +73,7 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
     j["scan"] = r.scan;
     j["scan_units_to_metres"] = r.scan_units_to_metres;
     j["scan_up"] = r.scan_up;
+    j["fit_segments"] = r.fit_segments;
     j["seconds"] = r.seconds;
     j["fit_seconds"] = r.fit_seconds;
     j["rounds"] = r.rounds;
@@ -123,6 +124,7 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
         r.scan = j.value("scan", "");
         r.scan_up = j.value("scan_up", "y");
         r.scan_units_to_metres = j.value("scan_units_to_metres", 1.0);
+        r.fit_segments = j.value("fit_segments", false);
         r.seconds = j.value("seconds", 0.0);
         r.fit_seconds = j.value("fit_seconds", 0.0);
         r.rounds = j.value("rounds", 0u);

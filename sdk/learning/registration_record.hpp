@@ -17,6 +17,7 @@ struct RegistrationRecord {
     std::string scan;                 // the scan's file
     double scan_units_to_metres = 1;  // the scan's units
     std::string scan_up = "y";        // the scan's axis that is the model's +Y
+    bool fit_segments = false;        // the model fit had the segment shape spaces (RegistrationOptions::segments)
     double seconds = 0, fit_seconds = 0;
     uint32_t rounds = 0, solves = 0;  // the deformation's stiffness rounds and linear solves
     std::vector<uint8_t> valid;       // per vertex: ended on a compatible scan point (empty when unknown)

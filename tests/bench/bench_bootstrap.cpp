@@ -10,7 +10,10 @@
 // The collection comes from learning::simulate_collection.
 //
 // usage: sscape_bootstrap_bench --makehuman DIR [--scans 200] [--heldout 50] [--rounds 3]
-//                               [--components 20] [--points 30000] [--out DIR] [--threads N]
+//                               [--components 20] [--points 30000] [--out DIR] [--threads N] [--start weak|template|default]
+//                               [--segment-components K] [--fit-segments]
+// --start default: the built-in model (which has segment shape spaces); --segment-components: the
+// rounds' models learn them too; --fit-segments: every round registers with them in the model fit.
 #include "common/files.hpp"
 #include "learning/bootstrap.hpp"
 #include "learning/evaluate_learning.hpp"
@@ -81,7 +84,8 @@ void component_picture(const std::string& path, const format::ModelData& data, c
 
 int main(int argc, char** argv) {
     std::string makehuman, out = "bootstrap_bench", start = "weak";
-    uint32_t scans = 200, heldout = 50, rounds = 3, components = 20, points = 30000, threads = 0;
+    uint32_t scans = 200, heldout = 50, rounds = 3, components = 20, points = 30000, threads = 0, segment_components = 0;
+    bool fit_segments = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -94,12 +98,15 @@ int main(int argc, char** argv) {
         else if (a == "--threads") threads = uint32_t(std::stoul(next()));
         else if (a == "--out") out = next();
         else if (a == "--start") start = next();
+        else if (a == "--segment-components") segment_components = uint32_t(std::stoul(next()));
+        else if (a == "--fit-segments") fit_segments = true;
         else {
-            std::fprintf(stderr, "usage: sscape_bootstrap_bench --makehuman DIR [--scans N] [--heldout N] [--rounds N] [--components K] [--points N] [--out DIR] [--threads N] [--start weak|template]\n");
+            std::fprintf(stderr, "usage: sscape_bootstrap_bench --makehuman DIR [--scans N] [--heldout N] [--rounds N] [--components K] [--points N] [--out DIR] [--threads N] "
+                                 "[--start weak|template|default] [--segment-components K] [--fit-segments]\n");
             return 2;
         }
     }
-    if (makehuman.empty() || scans < 10 || (start != "weak" && start != "template")) {
+    if (makehuman.empty() || scans < 10 || (start != "weak" && start != "template" && start != "default")) {
         std::fprintf(stderr, "sscape_bootstrap_bench: --makehuman DIR is required (../shared/makehuman), and at least 10 scans\n");
         return 2;
     }
@@ -130,15 +137,18 @@ int main(int argc, char** argv) {
     weak_spec.components = 5;
     weak_spec.posture = learning::Posture::None;
     weak_spec.name = "weak-start";
-    // Or weaker still: the template alone (--start template).
+    // Or weaker still: the template alone (--start template); or the built-in model (--start default).
     const std::vector<unsigned char> weak = format::write_model(start == "template" ? learning::template_only(default_data)
-                                                                                    : learning::learn_model(default_data, weak_bodies, weak_spec));
+                                                                : start == "default" ? default_data
+                                                                                     : learning::learn_model(default_data, weak_bodies, weak_spec));
 
     // Bootstrapping.
     spec.out_dir = out + "/boot";
     spec.rounds = rounds;
     spec.threads = threads;
     spec.learn.components = components;
+    spec.learn.segment_components = segment_components;
+    spec.registration.segments = fit_segments;
     spec.sheet_entries = 12;
     const std::vector<learning::RoundReport> reports = learning::bootstrap(weak, spec, [&](const std::string& line) {
         if (line.find(" of ") == std::string::npos || line.find("learning") != std::string::npos) std::printf("[%5.0f s] %s\n", now(), line.c_str());

@@ -126,11 +126,15 @@ def test_a_killed_run_resumes(scans, client, tmp_path):
 
 
 def test_bootstrap_equals_the_serial_command_line(scans, client, tmp_path):
+    """With the segment shape spaces in the registrations' model fit: the cluster's tasks register
+    as the library's own bootstrapping does, with the same settings."""
     out, serial = tmp_path / "bootstrap", tmp_path / "serial"
-    rows = pipeline.bootstrap(str(scans), None, 1, str(out), client=client, components=2, segment_components=2, progress=False,
-                              log=lambda line: None)
+    rows = pipeline.bootstrap(str(scans), None, 1, str(out), client=client, components=2, segment_components=2, fit_segments=True,
+                              progress=False, log=lambda line: None)
     assert len(rows) == 1 and int(rows[0]["failed"]) == 1 and int(rows[0]["accepted"]) >= 3
-    run("bootstrap", scans, "-o", serial, "--rounds", 1, "--components", 2, "--segment-components", 2)
+    report = json.loads((out / "round_1" / "registrations" / "p1_scan.json").read_text())
+    assert report["fit_segments"] is True and len(report["fit"]["segment_shape"]) > 0
+    run("bootstrap", scans, "-o", serial, "--rounds", 1, "--components", 2, "--segment-components", 2, "--fit-segments")
     for f in ("model.sscape", "round_0/model.sscape", "round_1/model.sscape", "round_1/decisions.csv", "round_1/contact_sheet_01.png"):
         assert filecmp.cmp(out / f, serial / f, shallow=False), f
     for i in range(1, SCANS + 1):

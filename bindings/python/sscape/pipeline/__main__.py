@@ -34,6 +34,7 @@ def main(argv=None) -> int:
     b.add_argument("--template-only", action="store_true")
     b.add_argument("--scale", action="store_true")
     b.add_argument("--segment-components", type=int, default=0)
+    b.add_argument("--fit-segments", action="store_true", help="register with the model's segment shape spaces in the model fit")
     b.add_argument("--decisions", metavar="FILE.csv")
     b.add_argument("--attributes", metavar="FILE.csv")
     b.add_argument("--name")
@@ -82,7 +83,7 @@ def main(argv=None) -> int:
             return 1 if failed else 0
         rows = bootstrap(a.scans, a.init, a.rounds, a.output, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet,
                          components=a.components, posture=a.posture, template_only=a.template_only, scale=a.scale,
-                         segment_components=a.segment_components, units=a.units, up=a.up, decisions=a.decisions,
+                         segment_components=a.segment_components, fit_segments=a.fit_segments, units=a.units, up=a.up, decisions=a.decisions,
                          attributes=a.attributes, name=a.name, license=a.license)
         for row in rows:
             print(f"round {row['round']}: {row['accepted']} accepted, {row['rejected']} rejected, {row['failed']} failed")

@@ -28,7 +28,7 @@ class Bootstrapping(Handle):
                  posture: str = "skeleton", template_only: bool = False, scale: bool = False, segment_components: int = 0,
                  segment_band_mm: float = 80.0, units: Optional[str] = None, up: Optional[str] = None,
                  decisions: Optional[str] = None, attributes: Optional[str] = None, name: Optional[str] = None,
-                 license: Optional[str] = None, threads: int = 0, contact_sheet_entries: int = 12):
+                 license: Optional[str] = None, threads: int = 0, contact_sheet_entries: int = 12, fit_segments: bool = False):
         need_offline("sscape.pipeline.bootstrap")
         if posture not in _POSTURES:
             raise ValueError(f"posture must be one of {', '.join(_POSTURES)}, not {posture!r}")
@@ -41,6 +41,8 @@ class Bootstrapping(Handle):
         d.components, d.posture, d.template_only, d.scale = int(components), _POSTURES[posture], int(template_only), int(scale)
         d.segment_components, d.segment_band = int(segment_components), float(segment_band_mm) * 1e-3
         d.threads, d.contact_sheet_entries = int(threads), int(contact_sheet_entries)
+        d.fit_segments = int(fit_segments)
+        self.fit_segments = bool(fit_segments)
         handle = ctypes.c_void_p()
         check(lib.ssc_bootstrap_create(None, ctypes.byref(d), ctypes.byref(handle)))
         self._own(handle, lib.ssc_bootstrap_destroy)
@@ -69,7 +71,8 @@ class Bootstrapping(Handle):
             text = lambda v: None if v is None else os.path.abspath(v.decode()) if v else None
             out.append({"name": name, "scan": text(job.scan_path), "landmarks": text(job.landmarks_path),
                         "units": job.units.decode() if job.units else None, "up": job.up.decode() if job.up else None,
-                        "mesh": text(job.mesh_path), "model": text(model.value), "reuse": bool(job.reuse), "threads": 1})
+                        "mesh": text(job.mesh_path), "model": text(model.value), "reuse": bool(job.reuse), "threads": 1,
+                        "fit_segments": self.fit_segments})
         return out
 
     def run(self, rounds: int, progress: Optional[Callable[[str], None]] = None) -> None:
@@ -91,8 +94,8 @@ def bootstrap(scans_dir: str, init_model: Optional[str] = None, rounds: int = 3,
     (with manifest.json: each registration task's status and error), model.sscape and rounds.csv.
 
     init_model: the starting .sscape (None: the built-in model). settings: components, posture
-    ("skeleton" or "none"), template_only, scale, segment_components, segment_band_mm, units, up,
-    decisions, attributes, name, license, threads (of the learning here), contact_sheet_entries.
+    ("skeleton" or "none"), template_only, scale, segment_components, segment_band_mm, fit_segments, units,
+    up, decisions, attributes, name, license, threads (of the learning here), contact_sheet_entries.
     Cluster as register_collection's. Returns rounds.csv's rows."""
     say = log or (lambda line: print(line, file=sys.stderr))
     b = Bootstrapping(scans_dir, out_dir, init_model, **settings)
