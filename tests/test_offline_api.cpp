@@ -127,7 +127,7 @@ TEST_CASE("a scan file is registered into its record, reused while current, and 
     const std::string bytes = read_regular_file(mesh, 1u << 30), json = read_regular_file(dir + "/out.json", 1u << 30);
     CHECK(json.find("\"model_digest\"") != std::string::npos);
     CHECK(json.find("\"scan_units_to_metres\": 0.001") != std::string::npos);
-    CHECK(json.find("\"fit_segments\": false") != std::string::npos);
+    CHECK(json.find("\"fit_segments\": true") != std::string::npos);  // the default
     const float seconds = report.seconds;
 
     // Again: reused from the files (the same report), nothing written.
@@ -158,21 +158,21 @@ TEST_CASE("a scan file is registered into its record, reused while current, and 
     REQUIRE(ssc_registration_run_file(reg_other, &job, nullptr, nullptr, &again, &reused) == SSC_OK);
     CHECK(reused == 0);
     CHECK(read_regular_file(mesh, 1u << 30) != bytes);
-    // The model fit with segments, back to the first model, and a changed scan (not under the
+    // The model fit without segments, back to the first model, and a changed scan (not under the
     // sanitizers: the same code four times more, minutes there).
     if (!test::sanitized) {
-        // The model fit with the segment shape spaces is another setting: registered again, then reused.
-        ssc_registration_def with_segments;
-        ssc_registration_def_init(&with_segments, sizeof with_segments);
-        with_segments.fit_segments = 1;
-        ssc_registration* reg_segments = nullptr;
-        REQUIRE(ssc_registration_create(model, &with_segments, &reg_segments) == SSC_OK);
-        REQUIRE(ssc_registration_run_file(reg_segments, &job, nullptr, nullptr, &again, &reused) == SSC_OK);
+        // The model fit without the segment shape spaces is another setting: registered again, then reused.
+        ssc_registration_def whole_body;
+        ssc_registration_def_init(&whole_body, sizeof whole_body);
+        whole_body.fit_segments = 0;
+        ssc_registration* reg_whole = nullptr;
+        REQUIRE(ssc_registration_create(model, &whole_body, &reg_whole) == SSC_OK);
+        REQUIRE(ssc_registration_run_file(reg_whole, &job, nullptr, nullptr, &again, &reused) == SSC_OK);
         CHECK(reused == 0);
-        CHECK(read_regular_file(dir + "/out.json", 1u << 30).find("\"fit_segments\": true") != std::string::npos);
-        REQUIRE(ssc_registration_run_file(reg_segments, &job, nullptr, nullptr, &again, &reused) == SSC_OK);
+        CHECK(read_regular_file(dir + "/out.json", 1u << 30).find("\"fit_segments\": false") != std::string::npos);
+        REQUIRE(ssc_registration_run_file(reg_whole, &job, nullptr, nullptr, &again, &reused) == SSC_OK);
         CHECK(reused == 1);
-        ssc_registration_destroy(reg_segments);
+        ssc_registration_destroy(reg_whole);
         REQUIRE(ssc_registration_run_file(reg, &job, nullptr, nullptr, &again, &reused) == SSC_OK);
         CHECK(reused == 0);
         CHECK(read_regular_file(mesh, 1u << 30) == bytes);  // the same registration, to the byte
@@ -274,7 +274,7 @@ TEST_CASE("bootstrapping refuses bad settings before writing, and gives each rou
     ssc_bootstrap_def_init(&def, sizeof def);
     CHECK(def.components == 20);
     CHECK(def.contact_sheet_entries == 12);
-    CHECK(def.fit_segments == 0);
+    CHECK(def.fit_segments == 1);
     ssc_bootstrap* b = nullptr;
     CHECK(ssc_bootstrap_create(nullptr, nullptr, &b) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(ssc_bootstrap_create(nullptr, &def, &b) == SSC_ERROR_INVALID_ARGUMENT);  // no folders

@@ -1123,8 +1123,9 @@ typedef struct ssc_registration_def {
     float rbf_scale;                     /**< Metres, (0, 10]: s of the multiquadric and Gaussian kernels. Default 0.1. */
     uint32_t fit_segments;               /**< Non-zero: the model's segment shape spaces (but the head's), when it
                                               has them, join the model fit's whole-body components, for bodies
-                                              whose proportions the whole body's cannot hold. Default 0 (whole
-                                              body only): see docs/registration.md for when each is better. */
+                                              whose proportions the whole body's cannot hold (real people's).
+                                              Default 1; 0: whole body only, a little better on bodies the
+                                              model holds (docs/registration.md). */
 } ssc_registration_def;
 
 /** Fills def with defaults; size = sizeof(*def). Threads: any. */
@@ -1235,7 +1236,7 @@ SSC_EXPERIMENTAL ssc_status ssc_registration_get_fit(const ssc_registration* reg
 
 /**
  * One segment's coefficients in that model fit (its shape_count values, ssc_segment_info; zeros when
- * the fit had no segments: ssc_registration_def.fit_segments 0). With ssc_registration_get_fit's
+ * the fit had no segments: ssc_registration_def.fit_segments 0, or the head's). With ssc_registration_get_fit's
  * shape and pose, ssc_body_set_segment_shape rebuilds the fitted body. SSC_ERROR_INVALID_ARGUMENT
  * as ssc_registration_get_fit, or for a bad segment or a capacity below its shape_count.
  * Threads: the registration's thread.

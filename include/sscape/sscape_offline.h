@@ -155,7 +155,7 @@ typedef struct ssc_bootstrap_def {
     uint32_t threads;                 /**< Worker threads of ssc_bootstrap_run, 0..256; 0: all. */
     uint32_t contact_sheet_entries;   /**< Registrations per contact sheet page, 0..100; 0: none. Default 12. */
     uint32_t fit_segments;            /**< Each round's model fits with its segment shape spaces (as
-                                           ssc_registration_def.fit_segments), where it has them. Default 0. */
+                                           ssc_registration_def.fit_segments), where it has them. Default 1. */
 } ssc_bootstrap_def;
 
 typedef struct ssc_bootstrap ssc_bootstrap;

@@ -60,6 +60,7 @@ void ssc_bootstrap_def_init(ssc_bootstrap_def* def, size_t size) {
     d.segment_components = learn.segment_components;
     d.segment_band = float(learn.segment_band);
     d.contact_sheet_entries = 12;
+    d.fit_segments = registration::RegistrationOptions().segments ? 1u : 0u;
     std::memcpy(def, &d, d.struct_size);
 }
 

@@ -22,7 +22,7 @@ struct Options {
     std::string scans, init, out, posture = "skeleton", units, up, decisions, attributes, name = "sscape-learned", license;
     uint32_t rounds = 3, components = 20, threads = 0, segment_components = 0;
     double segment_band_mm = 80;
-    bool scale = false, template_only = false, fit_segments = false;
+    bool scale = false, template_only = false, fit_segments = true;
 };
 
 int run_bootstrap(const Options& o) {
@@ -109,9 +109,9 @@ Run add_bootstrap(CLI::App& app) {
         ->check(CLI::Range(0u, 1000u));
     c->add_option("--segment-band", o->segment_band_mm, "millimetres on each side of a segment border over which segments blend (default 80)")
         ->check(CLI::Range(5.0, 500.0));
-    c->add_flag("--fit-segments", o->fit_segments,
-                "register with each round's segment shape spaces in the model fit (as sscape register --segments), where its model has "
-                "them: a starting model that has them, or --segment-components");
+    c->add_flag("--fit-segments,!--no-fit-segments", o->fit_segments,
+                "register with each round's segment shape spaces in the model fit (as sscape register --segments: the default), where "
+                "its model has them: a starting model that has them, or --segment-components; --no-fit-segments: the whole body's only");
     c->add_option("--units", o->units, "units of the scans and landmark files (default: metres for scans, millimetres for .lnd)")
         ->check(CLI::IsMember({"m", "cm", "mm"}).description(""))->type_name("m|cm|mm");
     c->add_option("--up", o->up, "the scans' up axis (default y)")->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}).description(""));

@@ -16,7 +16,7 @@ namespace {
 
 struct Options {
     std::string scan, model, out, landmarks, png, report, units, up, start = "model", kernel = "thin-plate";
-    bool constant = false, segments = false;
+    bool constant = false, segments = true;
     double stiffness = 0;
 };
 
@@ -71,6 +71,9 @@ int run_register(const Options& o) {
     if (!o.landmarks.empty()) std::printf("%s: %u landmarks\n", o.landmarks.c_str(), report.landmarks);
     std::printf("registered in %.2f s (model fit %.2f s): %u rounds, %u solves; %u of %u vertices on the scan\n", report.seconds,
                 report.fit_seconds, report.rounds, report.solves, report.valid_vertices, V);
+    if (def.start == SSC_REGISTRATION_START_MODEL)
+        std::printf("model fit: %s\n", def.fit_segments && ssc_model_segment_count(model) > 0 ? "whole-body components and segment shape spaces"
+                                                                                             : "whole-body components only");
     const auto& q = report.quality;
     std::printf("scan to registration: mean %.2f mm, median %.2f mm, 95th percentile %.2f mm\n", q.scan_mean * 1e3, q.scan_median * 1e3,
                 q.scan_p95 * 1e3);
@@ -108,8 +111,10 @@ Run add_register(CLI::App& app) {
     c->add_option("--rbf-kernel", o->kernel, "the rbf start's kernel (default thin-plate)")
         ->check(CLI::IsMember({"thin-plate", "multiquadric", "gaussian"}).description(""))->type_name("thin-plate|multiquadric|gaussian");
     c->add_flag("--constant", o->constant, "keep the stiffness at its final value in every round instead of relaxing it");
-    c->add_flag("--segments", o->segments, "fit the model's segment shape spaces (arms, torso, legs) with its whole-body "
-                                           "components: for bodies whose proportions the whole body's cannot hold");
+    c->add_flag("--segments,!--no-segments", o->segments,
+                "with --segments (the default) the model's segment shape spaces (arms, torso, legs) join its whole-body components "
+                "in the model fit, for bodies whose proportions the whole body's cannot hold; --no-segments: the whole body's only "
+                "(a little better on bodies the model holds)");
     c->add_option("--stiffness", o->stiffness, "the first round's stiffness (default 0.03)")->check(finite_in(1e-6, 1e6))->type_name("B");
     c->add_option("--report", o->report, "write the report as JSON beside the mesh (its path with .json, where sscape learn reads "
                                          "it): times, quality overall and per body region, the model fit, and per vertex whether it "

@@ -53,8 +53,9 @@ constexpr uint32_t kCoarseComponents = 10;
 // rigid, a third coarse, two (when there is room) the polish, the rest fine.
 struct Schedule {
     Stage stages[4];
-    // With segment components: the fine stage fits the whole body's alone, then this many more
-    // iterations of it with every component (the segments join once the pose has settled).
+    // With segment components: the fine stage fits the whole body's alone, then (once the pose has
+    // settled and a failed fit has been restarted, solver.cpp) this many more iterations of it with
+    // every component, then the polish.
     uint32_t segment_iterations = 0;
     static constexpr int kRigid = 0, kCoarse = 1, kFine = 2, kPolish = 3;
 };

@@ -57,11 +57,12 @@ struct RegistrationOptions {
     double rbf_scale = 0.1;                       // metres: its multiquadric or Gaussian scale
     fitting::FitOptions fit = registration_fit();  // the model fit of the `model` initialisation
     // The model's segment shape spaces (when it has them) join that fit, but for those left out
-    // (Registrar; a caller of register_scan decides by its LinearModel): bodies whose proportions
-    // the whole body's components cannot hold. Off by default: on bodies the whole body's space
-    // holds they cost accuracy and once an arm (docs/registration.md). The head's is left out: on
-    // the benchmark it slid the face along the surface.
-    bool segments = false;
+    // (Registrar; a caller of register_scan decides by its LinearModel): for bodies whose
+    // proportions the whole body's components cannot hold, as real people's are. On by default:
+    // on bodies beyond the model they cut the correspondence error by a third; on the model's own
+    // bodies they cost a little (docs/registration.md). The head's is left out: on the benchmark it
+    // slid the face along the surface.
+    bool segments = true;
     std::vector<std::string> segments_left_out = {"head"};
 };
 

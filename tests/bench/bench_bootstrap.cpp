@@ -11,9 +11,10 @@
 //
 // usage: sscape_bootstrap_bench --makehuman DIR [--scans 200] [--heldout 50] [--rounds 3]
 //                               [--components 20] [--points 30000] [--out DIR] [--threads N] [--start weak|template|default]
-//                               [--segment-components K] [--fit-segments]
+//                               [--segment-components K] [--no-fit-segments]
 // --start default: the built-in model (which has segment shape spaces); --segment-components: the
-// rounds' models learn them too; --fit-segments: every round registers with them in the model fit.
+// rounds' models learn them too; every round registers with them in the model fit where its model
+// has them (--no-fit-segments: the whole body's components only).
 #include "common/files.hpp"
 #include "learning/bootstrap.hpp"
 #include "learning/evaluate_learning.hpp"
@@ -85,7 +86,7 @@ void component_picture(const std::string& path, const format::ModelData& data, c
 int main(int argc, char** argv) {
     std::string makehuman, out = "bootstrap_bench", start = "weak";
     uint32_t scans = 200, heldout = 50, rounds = 3, components = 20, points = 30000, threads = 0, segment_components = 0;
-    bool fit_segments = false;
+    bool fit_segments = true;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -99,10 +100,11 @@ int main(int argc, char** argv) {
         else if (a == "--out") out = next();
         else if (a == "--start") start = next();
         else if (a == "--segment-components") segment_components = uint32_t(std::stoul(next()));
-        else if (a == "--fit-segments") fit_segments = true;
+        else if (a == "--fit-segments") fit_segments = true;  // the default
+        else if (a == "--no-fit-segments") fit_segments = false;
         else {
             std::fprintf(stderr, "usage: sscape_bootstrap_bench --makehuman DIR [--scans N] [--heldout N] [--rounds N] [--components K] [--points N] [--out DIR] [--threads N] "
-                                 "[--start weak|template|default] [--segment-components K] [--fit-segments]\n");
+                                 "[--start weak|template|default] [--segment-components K] [--no-fit-segments]\n");
             return 2;
         }
     }

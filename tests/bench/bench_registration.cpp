@@ -1,6 +1,6 @@
 // Scan registration accuracy and speed on simulated scans with known correspondence.
 //
-//   sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--segments|--all-segments] [--segment-prior W] [--stiffness B] [--threads N]
+//   sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--no-segments|--all-segments] [--segment-prior W] [--stiffness B] [--threads N]
 //                         [--makehuman DIR] [--landmarks] [--png PREFIX] [--compare OUT.png]
 // --compare: the papers' comparison on the same scans: the model fit alone, rigid + deformation,
 // rbf + deformation (both from the landmarks), model fit + deformation with relaxed and with
@@ -74,7 +74,8 @@ int main(int argc, char** argv) {
         else if (a == "--makehuman" && i + 1 < argc) makehuman = argv[++i];
         else if (a == "--compare" && i + 1 < argc) compare = argv[++i];
         else if (a == "--landmarks") with_landmarks = true;
-        else if (a == "--segments") options.segments = true;
+        else if (a == "--segments") options.segments = true;  // the default
+        else if (a == "--no-segments") options.segments = false;
         else if (a == "--all-segments") options.segments = true, options.segments_left_out.clear();
         else if (a == "--segment-prior" && i + 1 < argc) segment_prior = std::atof(argv[++i]);
         else if (a == "--fit-points" && i + 1 < argc) options.fit.max_points = uint32_t(std::atoi(argv[++i]));
@@ -86,7 +87,7 @@ int main(int argc, char** argv) {
                                      : v == "rbf" ? registration::Initialisation::Rbf
                                                   : registration::Initialisation::Model;
         } else {
-            std::fprintf(stderr, "usage: sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--segments|--all-segments] [--segment-prior W] [--stiffness B] [--threads N] [--makehuman DIR] [--landmarks] [--png PREFIX]\n");
+            std::fprintf(stderr, "usage: sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--no-segments|--all-segments] [--segment-prior W] [--stiffness B] [--threads N] [--makehuman DIR] [--landmarks] [--png PREFIX]\n");
             return 2;
         }
     }

@@ -30,7 +30,8 @@ class Registration(Handle):
     """Registers one scan at a time to the model's template. Options as ssc_registration_def:
     start ("model", "rigid", "rbf"), schedule ("relaxed", "constant"), stiffness, landmark_weight,
     gamma, max_iterations, rbf_kernel ("thin_plate", "multiquadric", "gaussian"), rbf_scale,
-    fit_segments (True: the model's segment shape spaces join the model fit). One thread at a time.
+    fit_segments (True, the default: the model's segment shape spaces join the model fit; False: the
+    whole body's components only). One thread at a time.
 
         reg = sscape.Registration(model)
         reg.set_scan(points, triangles=faces)        # metres; faces optional
@@ -41,7 +42,7 @@ class Registration(Handle):
     _what = "registration"
 
     def __init__(self, model: Model, start: str = "model", schedule: str = "relaxed", rbf_kernel: str = "thin_plate",
-                 fit_segments: bool = False, **numbers):
+                 fit_segments: bool = True, **numbers):
         unknown = set(numbers) - _NUMBERS
         if unknown:
             raise TypeError(f"unknown registration options: {', '.join(sorted(unknown))}")

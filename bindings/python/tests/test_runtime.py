@@ -302,9 +302,10 @@ def test_registration_brings_the_template_onto_a_scan(model):
         assert d.shape == (model.vertex_count,) and (d[valid] >= 0).all()
         shape, rotations, translation, scale = reg.fit()
         assert shape.shape == (50,) and rotations.shape == (53, 4)
-        # The fit's segment shapes (the default model has six): zero, as the fit did not use them by default.
+        # The fit's segment shapes (the default model has six): the default fit uses them, but the head's.
         arms = [reg.fit_segment_shape("arm_l"), reg.fit_segment_shape(2)]
-        assert all(a.shape == (10,) and (a == 0).all() for a in arms)
+        assert all(a.shape == (10,) for a in arms) and any((a != 0).any() for a in arms)
+        assert (reg.fit_segment_shape("head") == 0).all()
         with pytest.raises(sscape.SscapeError):
             reg.fit_segment_shape(6)
         with pytest.raises(sscape.SscapeError) as e:

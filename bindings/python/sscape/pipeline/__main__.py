@@ -23,6 +23,8 @@ def main(argv=None) -> int:
     r.add_argument("-o", "--output", required=True, metavar="OUT_DIR")
     r.add_argument("--model", metavar="MODEL.sscape", help="default: the built-in model")
     r.add_argument("--png", action="store_true", help="also draw each scan beside its registration (NAME.png)")
+    r.add_argument("--segments", action=argparse.BooleanOptionalAction, default=True,
+                   help="the model's segment shape spaces join each model fit (default; as sscape register --segments)")
     _cluster_options(r)
     b = sub.add_parser("bootstrap", help="learn a model from a folder of scans by rounds (as sscape bootstrap)")
     b.add_argument("scans", metavar="SCANS_DIR")
@@ -34,7 +36,8 @@ def main(argv=None) -> int:
     b.add_argument("--template-only", action="store_true")
     b.add_argument("--scale", action="store_true")
     b.add_argument("--segment-components", type=int, default=0)
-    b.add_argument("--fit-segments", action="store_true", help="register with the model's segment shape spaces in the model fit")
+    b.add_argument("--fit-segments", action=argparse.BooleanOptionalAction, default=True,
+                   help="register with the model's segment shape spaces in the model fit (default; as sscape bootstrap)")
     b.add_argument("--decisions", metavar="FILE.csv")
     b.add_argument("--attributes", metavar="FILE.csv")
     b.add_argument("--name")
@@ -60,7 +63,7 @@ def main(argv=None) -> int:
     try:
         if a.command == "register":
             scans = register_collection(a.scans, a.model, a.output, units=a.units, up=a.up, pictures=a.png, scheduler=a.scheduler,
-                                        workers=a.workers, progress=not a.quiet)
+                                        workers=a.workers, progress=not a.quiet, fit_segments=a.segments)
             failed = {n: s for n, s in scans.items() if s["status"] == "failed"}
             done = sum(s["status"] == "registered" for s in scans.values())
             print(f"{len(scans)} scans: {done} registered, {len(scans) - done - len(failed)} reused, {len(failed)} failed; "

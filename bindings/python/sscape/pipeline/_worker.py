@@ -47,7 +47,7 @@ def model_for(path: Optional[str], threads: int = 1) -> Model:
         return model
 
 
-def registration_for(path: Optional[str], threads: int = 1, fit_segments: bool = False) -> Registration:
+def registration_for(path: Optional[str], threads: int = 1, fit_segments: bool = True) -> Registration:
     """This thread's registration of the model at path (default options, as the CLI's, but
     fit_segments)."""
     key = _model_key(path, threads) + (bool(fit_segments),)
@@ -77,7 +77,7 @@ def register_job(job: dict) -> dict:
     """Registers job["scan"] into job["mesh"] (report beside it) with the model at job["model"]:
     a dict with the scan's name, status "registered", "reused" or "failed", error, seconds, quality."""
     def work():
-        reg = registration_for(job.get("model"), job.get("threads", 1), job.get("fit_segments", False))
+        reg = registration_for(job.get("model"), job.get("threads", 1), job.get("fit_segments", True))
         report = reg.run_file(job["scan"], job["mesh"], landmarks=job.get("landmarks"), units=job.get("units"), up=job.get("up"),
                               report=True, reuse=job.get("reuse", True), picture=job.get("picture"))
         return {"status": "reused" if report["reused"] else "registered", "registration_seconds": report["seconds"],

@@ -28,7 +28,7 @@ class Bootstrapping(Handle):
                  posture: str = "skeleton", template_only: bool = False, scale: bool = False, segment_components: int = 0,
                  segment_band_mm: float = 80.0, units: Optional[str] = None, up: Optional[str] = None,
                  decisions: Optional[str] = None, attributes: Optional[str] = None, name: Optional[str] = None,
-                 license: Optional[str] = None, threads: int = 0, contact_sheet_entries: int = 12, fit_segments: bool = False):
+                 license: Optional[str] = None, threads: int = 0, contact_sheet_entries: int = 12, fit_segments: bool = True):
         need_offline("sscape.pipeline.bootstrap")
         if posture not in _POSTURES:
             raise ValueError(f"posture must be one of {', '.join(_POSTURES)}, not {posture!r}")
