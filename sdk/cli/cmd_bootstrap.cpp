@@ -22,7 +22,7 @@ struct Options {
     std::string scans, init, out, posture = "skeleton", units, up, decisions, attributes, name = "sscape-learned", license;
     uint32_t rounds = 3, components = 20, threads = 0, segment_components = 0;
     double segment_band_mm = 80;
-    bool scale = false, template_only = false, fit_segments = true;
+    bool scale = false, template_only = false, fit_segments = true;  // add_bootstrap: the library's default
 };
 
 int run_bootstrap(const Options& o) {
@@ -109,6 +109,9 @@ Run add_bootstrap(CLI::App& app) {
         ->check(CLI::Range(0u, 1000u));
     c->add_option("--segment-band", o->segment_band_mm, "millimetres on each side of a segment border over which segments blend (default 80)")
         ->check(CLI::Range(5.0, 500.0));
+    ssc_bootstrap_def defaults;
+    ssc_bootstrap_def_init(&defaults, sizeof defaults);
+    o->fit_segments = defaults.fit_segments != 0;
     c->add_flag("--fit-segments,!--no-fit-segments", o->fit_segments,
                 "register with each round's segment shape spaces in the model fit (as sscape register --segments: the default), where "
                 "its model has them: a starting model that has them, or --segment-components; --no-fit-segments: the whole body's only");

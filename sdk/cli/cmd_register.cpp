@@ -16,7 +16,7 @@ namespace {
 
 struct Options {
     std::string scan, model, out, landmarks, png, report, units, up, start = "model", kernel = "thin-plate";
-    bool constant = false, segments = true;
+    bool constant = false, segments = true;  // add_register: the library's default
     double stiffness = 0;
 };
 
@@ -111,6 +111,9 @@ Run add_register(CLI::App& app) {
     c->add_option("--rbf-kernel", o->kernel, "the rbf start's kernel (default thin-plate)")
         ->check(CLI::IsMember({"thin-plate", "multiquadric", "gaussian"}).description(""))->type_name("thin-plate|multiquadric|gaussian");
     c->add_flag("--constant", o->constant, "keep the stiffness at its final value in every round instead of relaxing it");
+    ssc_registration_def defaults;
+    ssc_registration_def_init(&defaults, sizeof defaults);
+    o->segments = defaults.fit_segments != 0;
     c->add_flag("--segments,!--no-segments", o->segments,
                 "with --segments (the default) the model's segment shape spaces (arms, torso, legs) join its whole-body components "
                 "in the model fit, for bodies whose proportions the whole body's cannot hold; --no-segments: the whole body's only "

@@ -163,6 +163,14 @@ private:
         return converged;
     }
 
+    // What restart_if_implausible() accepts of a frame: its pose prior and unexplained share.
+    static bool acceptable(double pose_prior, double unexplained) { return pose_prior <= kImplausibleFit && unexplained <= kRetryUnexplained; }
+    bool every_frame_acceptable() {
+        for (uint32_t f = 0; f < F_; ++f)
+            if (!acceptable(p_.pose_priors(f), p_.unexplained_share(f))) return false;
+        return true;
+    }
+
     // The segment components (a LinearModel's beyond its whole body's) join a fit that the whole
     // body's components have settled and restart_if_implausible() has checked: the fine stage with
     // every component, then the polish. Fitted earlier, the segments took up part of a misplaced
@@ -173,9 +181,7 @@ private:
         p_.update_kinematics();
         const std::vector<double> shape_before = p_.shape();
         const std::vector<FitState> states_before = p_.states();
-        bool acceptable_before = true;
-        for (uint32_t f = 0; f < F_; ++f)
-            acceptable_before = acceptable_before && p_.pose_priors(f) <= kImplausibleFit && p_.unexplained_share(f) <= kRetryUnexplained;
+        const bool acceptable_before = every_frame_acceptable();
         Stage segments = plan.stages[Schedule::kFine];
         segments.components = K_;
         segments.iterations = plan.segment_iterations;
@@ -183,10 +189,7 @@ private:
         if (!cancelled && plan.stages[Schedule::kPolish].iterations > 0)
             p_.run_stage(plan.stages[Schedule::kPolish], kAllFrames, &progress, iteration, cancelled);
         p_.update_kinematics();
-        bool acceptable_after = true;
-        for (uint32_t f = 0; f < F_; ++f)
-            acceptable_after = acceptable_after && p_.pose_priors(f) <= kImplausibleFit && p_.unexplained_share(f) <= kRetryUnexplained;
-        if (acceptable_before && !acceptable_after && !cancelled) {
+        if (acceptable_before && !every_frame_acceptable() && !cancelled) {
             p_.shape() = shape_before;
             p_.states() = states_before;
             p_.update_kinematics();
@@ -206,7 +209,6 @@ private:
                                 uint32_t& restarts, bool converged) {
         p_.update_kinematics();
         const double prior = p_.pose_priors(0), unexplained = p_.unexplained_share(0);
-        auto acceptable = [](double p, double u) { return p <= kImplausibleFit && u <= kRetryUnexplained; };
         if (acceptable(prior, unexplained)) return converged;
         struct Attempt {
             std::vector<double> shape;
