@@ -15,6 +15,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
 
 #include <random>
 
@@ -188,6 +189,48 @@ TEST_CASE("the 4x4 block Cholesky solves as a dense factorisation on a random sp
     CHECK((chol.solve(B) - 0.5 * reference).cwiseAbs().maxCoeff() < 1e-10);
     K *= -1.0;
     CHECK_FALSE(chol.factorize(K));
+}
+
+TEST_CASE("the block Cholesky's subtrees on threads give the factor and solution it gives alone", "[registration]") {
+    // The default template's deformation system: its elimination tree splits into two
+    // independent groups of subtrees. The solve must match Eigen's and not depend on threads.
+    test::DefaultBody d;
+    const std::vector<float> rest = test::rest(d.model, d.body);
+    const uint32_t V = ssc_model_vertex_count(d.model);
+    std::vector<Vector3d> vertices(V);
+    for (uint32_t v = 0; v < V; ++v) vertices[v] = Vector3d(rest[3 * v], rest[3 * v + 1], rest[3 * v + 2]);
+    const auto& mesh = test::default_cpp_model().data().mesh;
+    const std::vector<uint32_t> triangles(mesh.triangles.begin(), mesh.triangles.end());
+    NonrigidSystem system(vertices, registration::mesh_edges(triangles, V), {}, {});
+    std::mt19937 rng(5);
+    std::normal_distribution<double> n(0, 1);
+    std::vector<Vector3d> targets(V);
+    std::vector<double> weights(V);
+    for (uint32_t v = 0; v < V; ++v) targets[v] = vertices[v] + 0.01 * Vector3d(n(rng), n(rng), n(rng)), weights[v] = rng() % 5 ? 1.0 : 0.0;
+    Eigen::SparseMatrix<double> K;
+    Eigen::MatrixX3d B;
+    system.assemble({1.0, 0.01, 0.0}, targets, weights, {}, system.identity(), K, B);
+    const Eigen::MatrixX3d reference = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>(K).solve(B);
+
+    registration::BlockCholesky4 chol;
+    chol.analyze(K);
+    CHECK(chol.parallel_parts() == 2);
+    REQUIRE(chol.factorize(K));
+    const Eigen::MatrixX3d alone = chol.solve(B);
+    CHECK((K * alone - B).cwiseAbs().maxCoeff() < 1e-9 * B.cwiseAbs().maxCoeff());
+    CHECK((alone - reference).cwiseAbs().maxCoeff() < 1e-6 * reference.cwiseAbs().maxCoeff());
+    for (const unsigned threads : {2u, 3u}) {
+        ThreadPool pool(threads);
+        REQUIRE(chol.factorize(K, &pool));
+        CHECK(chol.solve(B, &pool) == alone);
+        CHECK(chol.solve(B) == alone);
+    }
+    // A failure on a thread is reported, and the next factorisation starts clean.
+    ThreadPool pool(2);
+    const Eigen::SparseMatrix<double> negative = -K;
+    CHECK_FALSE(chol.factorize(negative, &pool));
+    REQUIRE(chol.factorize(K, &pool));
+    CHECK(chol.solve(B, &pool) == alone);
 }
 
 TEST_CASE("scan boundaries are the rims of holes and of the scan, not its inside", "[registration]") {

@@ -6,6 +6,7 @@
 #include <Eigen/OrderingMethods>
 
 #include <algorithm>
+#include <functional>
 
 namespace ssc::registration {
 
@@ -65,24 +66,94 @@ void BlockCholesky4::analyze(const Eigen::SparseMatrix<double>& K) {
         }
     // The factor's column counts: each row k's pattern (the reach of its upper column in the
     // tree) adds one block to each column it names.
+    // Each row's work is the block products its factor row takes: column i's blocks so far, for
+    // every column i it names.
     std::vector<std::size_t> count(n_, 0);
     std::vector<uint32_t> mark(n_, UINT32_MAX);
+    std::vector<double> row_work(n_, 1.0);
     for (uint32_t k = 0; k < n_; ++k) {
         mark[k] = k;
         for (std::size_t p = upper_ptr_[k]; p < upper_ptr_[k + 1]; ++p)
             for (int32_t i = int32_t(upper_row_[p]); i != -1 && mark[std::size_t(i)] != k; i = parent_[std::size_t(i)]) {
                 mark[std::size_t(i)] = k;
-                ++count[std::size_t(i)];
+                row_work[k] += double(++count[std::size_t(i)]);
             }
     }
     l_ptr_.assign(n_ + 1, 0);
     for (uint32_t j = 0; j < n_; ++j) l_ptr_[j + 1] = l_ptr_[j] + count[j];
     l_row_.assign(l_ptr_[n_], 0);
     l_value_.assign(l_ptr_[n_], Block::Zero());
-    diagonal_.assign(n_, Block::Identity());
+    inverse_diagonal_.assign(n_, Block::Identity());
+    split_tree(row_work);
 }
 
-bool BlockCholesky4::factorize(const Eigen::SparseMatrix<double>& K) {
+// Subtrees are taken from the top of the elimination tree down (the heaviest first) until they
+// fall into kParts groups within kBalance of each other, or the top would hold more than
+// kMaxTop of the work (then everything is the top: a small or dense matrix gains nothing).
+void BlockCholesky4::split_tree(const std::vector<double>& row_work) {
+    constexpr std::size_t kParts = 2;
+    constexpr double kBalance = 1.1, kMaxTop = 0.5;
+    std::vector<double> subtree(row_work);
+    std::vector<std::vector<uint32_t>> children(n_);
+    std::vector<uint32_t> frontier;
+    double total = 0;
+    for (uint32_t k = 0; k < n_; ++k) {  // children come before their parents
+        total += row_work[k];
+        if (parent_[k] < 0) {
+            frontier.push_back(k);
+        } else {
+            subtree[std::size_t(parent_[k])] += subtree[k];
+            children[std::size_t(parent_[k])].push_back(k);
+        }
+    }
+    std::vector<uint32_t> top;
+    std::vector<std::vector<uint32_t>> bins(kParts);
+    double top_work = 0;
+    const auto heavier = [&](uint32_t a, uint32_t b) { return subtree[a] > subtree[b] || (subtree[a] == subtree[b] && a < b); };
+    bool balanced = false;
+    while (!frontier.empty() && top_work <= kMaxTop * total) {
+        std::sort(frontier.begin(), frontier.end(), heavier);
+        std::vector<double> load(kParts, 0.0);
+        for (auto& b : bins) b.clear();
+        for (uint32_t r : frontier) {
+            const std::size_t lightest = std::size_t(std::min_element(load.begin(), load.end()) - load.begin());
+            load[lightest] += subtree[r];
+            bins[lightest].push_back(r);
+        }
+        if (*std::max_element(load.begin(), load.end()) <= kBalance * (total - top_work) / double(kParts)) {
+            balanced = true;
+            break;
+        }
+        const uint32_t r = frontier.front();
+        frontier.erase(frontier.begin());
+        top.push_back(r);
+        top_work += row_work[r];
+        frontier.insert(frontier.end(), children[r].begin(), children[r].end());
+    }
+    parts_.clear();
+    top_.clear();
+    top_slot_.assign(n_, -1);
+    if (!balanced || top_work > kMaxTop * total) {
+        for (uint32_t k = 0; k < n_; ++k) top_.push_back(k);
+    } else {
+        for (const auto& bin : bins) {
+            std::vector<uint32_t> rows, stack(bin.begin(), bin.end());
+            while (!stack.empty()) {
+                const uint32_t r = stack.back();
+                stack.pop_back();
+                rows.push_back(r);
+                stack.insert(stack.end(), children[r].begin(), children[r].end());
+            }
+            std::sort(rows.begin(), rows.end());
+            parts_.push_back(std::move(rows));
+        }
+        top_ = std::move(top);
+        std::sort(top_.begin(), top_.end());
+    }
+    for (std::size_t t = 0; t < top_.size(); ++t) top_slot_[top_[t]] = int32_t(t);
+}
+
+bool BlockCholesky4::factorize(const Eigen::SparseMatrix<double>& K, ThreadPool* pool) {
     SSC_REQUIRE_ARG(std::size_t(K.nonZeros()) == destination_.size() && K.rows() == Eigen::Index(4 * n_),
                     "block Cholesky: the matrix does not have the analysed structure");
     for (Block& b : upper_) b.setZero();
@@ -90,56 +161,105 @@ bool BlockCholesky4::factorize(const Eigen::SparseMatrix<double>& K) {
     const double* value = K.valuePtr();
     for (std::size_t p = 0; p < destination_.size(); ++p)
         if (destination_[p] >= 0) up[destination_[p]] = value[p];
-    // Up-looking: row k of L from a sparse triangular solve against the rows above it.
-    std::vector<Block, Eigen::aligned_allocator<Block>> x(n_, Block::Zero());
-    std::vector<std::size_t> fill(l_ptr_.begin(), l_ptr_.end() - 1);  // next free slot per column
-    std::vector<uint32_t> mark(n_, UINT32_MAX), stack(n_), path(n_);
-    for (uint32_t k = 0; k < n_; ++k) {
-        // The pattern of row k (ereach): the rows reached from its upper column, in topological order.
-        std::size_t top = n_;
-        mark[k] = k;
-        for (std::size_t p = upper_ptr_[k]; p < upper_ptr_[k + 1]; ++p) {
-            uint32_t i = upper_row_[p];
-            x[i] = upper_[p];  // scatter K(i, k)
-            std::size_t len = 0;
-            for (; mark[i] != k; i = uint32_t(parent_[i])) {
-                path[len++] = i;
-                mark[i] = k;
+    fill_.assign(l_ptr_.begin(), l_ptr_.end() - 1);
+    const bool threads = pool && pool->size() > 1 && parts_.size() > 1;
+    const std::size_t threads_used = threads ? std::min<std::size_t>(pool->size(), parts_.size()) : 1;
+    while (workspaces_.size() < threads_used) workspaces_.emplace_back(n_);
+    std::vector<Workspace>& work = workspaces_;
+    for (Workspace& w : work) std::fill(w.mark.begin(), w.mark.end(), UINT32_MAX);  // a row's marks are its index
+    std::vector<uint8_t> ok(parts_.size(), 1);
+    auto factor_part = [&](std::size_t part, unsigned worker) {
+        for (uint32_t k : parts_[part])
+            if (!factor_row(k, work[worker])) {
+                ok[part] = 0;
+                return;
             }
-            while (len > 0) stack[--top] = path[--len];
-        }
-        Block d = x[k];
-        x[k].setZero();
-        for (std::size_t s = top; s < n_; ++s) {
-            const uint32_t i = stack[s];
-            // L(i, i) L(k, i)^T = x_i  ->  Y = L(k, i)^T
-            const Block Y = diagonal_[i].triangularView<Eigen::Lower>().solve(x[i]);
-            x[i].setZero();
-            for (std::size_t p = l_ptr_[i]; p < fill[i]; ++p) x[l_row_[p]].noalias() -= l_value_[p] * Y;
-            d.noalias() -= Y.transpose() * Y;
-            l_row_[fill[i]] = k;
-            l_value_[fill[i]++] = Y.transpose();
-        }
-        const Eigen::LLT<Block> llt(d);
-        if (llt.info() != Eigen::Success) return false;
-        diagonal_[k] = llt.matrixL();
+    };
+    if (threads) {
+        pool->parallel_for(parts_.size(), factor_part);
+    } else {
+        for (std::size_t part = 0; part < parts_.size(); ++part) factor_part(part, 0);
     }
+    bool success = std::find(ok.begin(), ok.end(), 0) == ok.end();
+    for (std::size_t t = 0; success && t < top_.size(); ++t) success = factor_row(top_[t], work[0]);
+    if (!success) workspaces_.clear();  // a failed row leaves its workspace dirty
+    return success;
+}
+
+// Up-looking: row k of L from a sparse triangular solve against the rows above it.
+bool BlockCholesky4::factor_row(uint32_t k, Workspace& w) {
+    // The pattern of row k (ereach): the rows reached from its upper column, in topological order.
+    std::size_t top = n_;
+    w.mark[k] = k;
+    for (std::size_t p = upper_ptr_[k]; p < upper_ptr_[k + 1]; ++p) {
+        uint32_t i = upper_row_[p];
+        w.x[i] = upper_[p];  // scatter K(i, k)
+        std::size_t len = 0;
+        for (; w.mark[i] != k; i = uint32_t(parent_[i])) {
+            w.path[len++] = i;
+            w.mark[i] = k;
+        }
+        while (len > 0) w.stack[--top] = w.path[--len];
+    }
+    Block d = w.x[k];
+    w.x[k].setZero();
+    for (std::size_t s = top; s < n_; ++s) {
+        const uint32_t i = w.stack[s];
+        // L(i, i) L(k, i)^T = x_i  ->  Y = L(k, i)^T
+        const Block Y = inverse_diagonal_[i] * w.x[i];
+        w.x[i].setZero();
+        for (std::size_t p = l_ptr_[i]; p < fill_[i]; ++p) w.x[l_row_[p]].noalias() -= l_value_[p] * Y;
+        d.noalias() -= Y.transpose() * Y;
+        l_row_[fill_[i]] = k;
+        l_value_[fill_[i]++] = Y.transpose();
+    }
+    const Eigen::LLT<Block> llt(d);
+    if (llt.info() != Eigen::Success) return false;
+    // Its inverse (lower triangular too) makes each later use a fixed-size product: Eigen's
+    // triangular solve took a general path for 4x4 blocks.
+    inverse_diagonal_[k] = Block(llt.matrixL()).triangularView<Eigen::Lower>().solve(Block::Identity());
     return true;
 }
 
-Eigen::MatrixX3d BlockCholesky4::solve(const Eigen::MatrixX3d& B) const {
+Eigen::MatrixX3d BlockCholesky4::solve(const Eigen::MatrixX3d& B, ThreadPool* pool) const {
     SSC_REQUIRE_ARG(B.rows() == Eigen::Index(4 * n_), "block Cholesky: the right-hand side needs 4n rows");
     using Rhs = Eigen::Matrix<double, 4, 3>;
-    std::vector<Rhs, Eigen::aligned_allocator<Rhs>> y(n_);
+    using Rhss = std::vector<Rhs, Eigen::aligned_allocator<Rhs>>;
+    Rhss y(n_);
     for (uint32_t k = 0; k < n_; ++k) y[k] = B.block<4, 3>(4 * Eigen::Index(old_of_new_[k]), 0);
-    for (uint32_t j = 0; j < n_; ++j) {  // L y = b
-        y[j] = diagonal_[j].triangularView<Eigen::Lower>().solve(y[j]);
-        for (std::size_t p = l_ptr_[j]; p < l_ptr_[j + 1]; ++p) y[l_row_[p]].noalias() -= l_value_[p] * y[j];
-    }
-    for (uint32_t j = n_; j-- > 0;) {  // L^T x = y
+    // L y = b: a part's updates of the top's rows are summed apart and added after.
+    std::vector<Rhss> top_update(parts_.size(), Rhss(top_.size(), Rhs::Zero()));
+    auto forward = [&](uint32_t j, Rhss* to_top) {
+        y[j] = inverse_diagonal_[j] * y[j];
+        for (std::size_t p = l_ptr_[j]; p < l_ptr_[j + 1]; ++p) {
+            const uint32_t r = l_row_[p];
+            Rhs& target = to_top && top_slot_[r] >= 0 ? (*to_top)[std::size_t(top_slot_[r])] : y[r];
+            target.noalias() -= l_value_[p] * y[j];
+        }
+    };
+    auto backward = [&](uint32_t j) {
         for (std::size_t p = l_ptr_[j]; p < l_ptr_[j + 1]; ++p) y[j].noalias() -= l_value_[p].transpose() * y[l_row_[p]];
-        y[j] = diagonal_[j].transpose().triangularView<Eigen::Upper>().solve(y[j]);
-    }
+        y[j] = inverse_diagonal_[j].transpose() * y[j];
+    };
+    const bool threads = pool && pool->size() > 1 && parts_.size() > 1;
+    auto each_part = [&](const std::function<void(std::size_t, unsigned)>& fn) {
+        if (threads) {
+            pool->parallel_for(parts_.size(), fn);
+        } else {
+            for (std::size_t part = 0; part < parts_.size(); ++part) fn(part, 0);
+        }
+    };
+    each_part([&](std::size_t part, unsigned) {
+        for (uint32_t j : parts_[part]) forward(j, &top_update[part]);
+    });
+    for (const Rhss& update : top_update)
+        for (std::size_t t = 0; t < top_.size(); ++t) y[top_[t]] += update[t];
+    for (uint32_t j : top_) forward(j, nullptr);
+    // L^T x = y: the top first, then the parts (each reads only its own rows and the top's).
+    for (auto it = top_.rbegin(); it != top_.rend(); ++it) backward(*it);
+    each_part([&](std::size_t part, unsigned) {
+        for (auto it = parts_[part].rbegin(); it != parts_[part].rend(); ++it) backward(*it);
+    });
     Eigen::MatrixX3d X(B.rows(), 3);
     for (uint32_t k = 0; k < n_; ++k) X.block<4, 3>(4 * Eigen::Index(old_of_new_[k]), 0) = y[k];
     return X;

@@ -179,19 +179,20 @@ Eigen::MatrixX3d NonrigidSystem::assemble_rhs(const EnergyWeights& k, const std:
     return R;
 }
 
-void NonrigidSystem::factorize(const EnergyWeights& k, const std::vector<double>& weights, const std::vector<LandmarkTarget>& landmarks) {
+void NonrigidSystem::factorize(const EnergyWeights& k, const std::vector<double>& weights, const std::vector<LandmarkTarget>& landmarks,
+                               ThreadPool* pool) {
     Eigen::SparseMatrix<double> K;
     assemble_matrix(k, weights, landmarks, K);
-    if (!cholesky_.factorize(K)) fail(SSC_ERROR_INTERNAL, "registration: the deformation system could not be factorised");
+    if (!cholesky_.factorize(K, pool)) fail(SSC_ERROR_INTERNAL, "registration: the deformation system could not be factorised");
     factored_k_ = k;
     factored_weights_ = weights;
     factored_ = true;
 }
 
 Eigen::MatrixX3d NonrigidSystem::solve(const std::vector<Vector3d>& targets, const std::vector<LandmarkTarget>& landmarks,
-                                       const Eigen::MatrixX3d& anchor) const {
+                                       const Eigen::MatrixX3d& anchor, ThreadPool* pool) const {
     if (!factored_) fail(SSC_ERROR_INTERNAL, "registration: solve before factorize");
-    return cholesky_.solve(assemble_rhs(factored_k_, targets, factored_weights_, landmarks, anchor));
+    return cholesky_.solve(assemble_rhs(factored_k_, targets, factored_weights_, landmarks, anchor), pool);
 }
 
 }  // namespace ssc::registration

@@ -79,10 +79,12 @@ public:
     // the targets, so one factorisation serves every solve until the weights change. A tiny anchor
     // term (1e-9 |X - anchor|^2) keeps the system definite where nothing else holds the
     // transforms (no data and no landmarks). factorize throws ssc::Error (INTERNAL) should that
-    // fail; solve uses the last factorisation's weights and landmark points.
-    void factorize(const EnergyWeights& k, const std::vector<double>& weights, const std::vector<LandmarkTarget>& landmarks);
+    // fail; solve uses the last factorisation's weights and landmark points. With a pool both
+    // use its threads (block_cholesky.hpp); the results are the same without.
+    void factorize(const EnergyWeights& k, const std::vector<double>& weights, const std::vector<LandmarkTarget>& landmarks,
+                   ThreadPool* pool = nullptr);
     Eigen::MatrixX3d solve(const std::vector<Vector3d>& targets, const std::vector<LandmarkTarget>& landmarks,
-                           const Eigen::MatrixX3d& anchor) const;
+                           const Eigen::MatrixX3d& anchor, ThreadPool* pool = nullptr) const;
 
 private:
     Eigen::Vector4d hom(uint32_t v) const { return Eigen::Vector4d(p_[v].x(), p_[v].y(), p_[v].z(), 1.0); }

@@ -82,8 +82,7 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
     std::vector<Vector3d> normals = scan.cloud.normals.empty() ? std::vector<Vector3d>(points.size(), Vector3d::Zero()) : scan.cloud.normals;
     const fitting::PointIndex index(points);
     const bool oriented = fitting::estimate_missing_normals(points, index, normals);
-    const std::vector<uint8_t> rim = scan.triangles.empty() ? cloud_boundary(points, normals, index, workers)
-                                                             : mesh_boundary(scan.triangles, points.size());
+    const ScanRim rim = scan.triangles.empty() ? ScanRim(points, normals, index) : ScanRim(scan.triangles, points.size());
 
     // The start: the template placed, posed and shaped by the initialisation.
     Registration out;
@@ -182,7 +181,7 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
                 double d2;
                 const uint32_t q = index.nearest(x[v], &d2);
                 const double dot = normals[q].squaredNorm() > 0 ? normals[q].dot(n[v]) : 1.0;
-                const bool ok = d2 <= r.max_distance * r.max_distance && !rim[q] &&
+                const bool ok = d2 <= r.max_distance * r.max_distance && !rim(q) &&
                                 (oriented ? dot : std::abs(dot)) >= std::cos(r.max_angle * M_PI / 180);
                 if (settle_weights) weights[v] = ok ? r.data_weight * area[v] : 0.0;
                 // The point of the scan's tangent plane at q nearest the vertex: a sparse scan's
@@ -199,8 +198,8 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
     // With landmarks, a round without data first brings them into place.
     if (!landmarks.empty() && options.landmarks > 0) {
         std::fill(weights.begin(), weights.end(), 0.0);
-        system.factorize({0.0, options.stiffness, options.landmarks}, weights, landmarks);
-        X = system.solve(targets, landmarks, X);
+        system.factorize({0.0, options.stiffness, options.landmarks}, weights, landmarks, &workers);
+        X = system.solve(targets, landmarks, X, &workers);
         ++out.report.solves;
     }
     const std::vector<double> factors = round_factors(options.schedule);
@@ -210,8 +209,8 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
         std::vector<Vector3d> x = system.deformed(X);
         for (uint32_t it = 0; it < options.max_iterations; ++it) {
             correspond(x, it == 0);
-            if (it == 0) system.factorize(k, weights, landmarks);
-            X = system.solve(targets, landmarks, X);
+            if (it == 0) system.factorize(k, weights, landmarks, &workers);
+            X = system.solve(targets, landmarks, X, &workers);
             ++out.report.solves;
             const std::vector<Vector3d> next = system.deformed(X);
             double moved = 0;

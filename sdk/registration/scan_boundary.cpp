@@ -18,43 +18,48 @@ constexpr std::size_t kNeighbours = 32;
 constexpr double kGap = M_PI / 2;
 }  // namespace
 
+namespace {
+
+// Whether point i's neighbours leave a gap around it (see cloud_boundary).
+bool on_cloud_boundary(std::size_t i, const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
+                       const fitting::PointIndex& index) {
+    uint32_t idx[kNeighbours + 1];
+    double d2[kNeighbours + 1], angle[kNeighbours + 1];
+    const std::size_t found = index.nearest_k(points[i], kNeighbours + 1, idx, d2);
+    Eigen::Vector3d n = normals.empty() ? Eigen::Vector3d::Zero() : normals[i];
+    if (n.squaredNorm() == 0) {  // the neighbours' plane
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (std::size_t k = 0; k < found; ++k) mean += points[idx[k]];
+        mean /= double(found);
+        Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+        for (std::size_t k = 0; k < found; ++k) cov += (points[idx[k]] - mean) * (points[idx[k]] - mean).transpose();
+        n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+    }
+    const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < found; ++k) {
+        if (idx[k] == i) continue;
+        const Eigen::Vector3d d = points[idx[k]] - points[i];
+        if (d.squaredNorm() == 0) continue;
+        angle[count++] = std::atan2(d.dot(v), d.dot(u));
+    }
+    if (count < 3) return true;
+    std::sort(angle, angle + count);
+    double gap = angle[0] + 2 * M_PI - angle[count - 1];
+    for (std::size_t k = 1; k < count; ++k) gap = std::max(gap, angle[k] - angle[k - 1]);
+    return gap > kGap;
+}
+
+}  // namespace
+
 std::vector<uint8_t> cloud_boundary(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
                                     const fitting::PointIndex& index, ThreadPool& pool) {
     std::vector<uint8_t> out(points.size(), 0);
     if (points.size() <= kNeighbours) return std::vector<uint8_t>(points.size(), 1);
     constexpr std::size_t kChunks = 64;
     pool.parallel_for(kChunks, [&](std::size_t c, unsigned) {
-        uint32_t idx[kNeighbours + 1];
-        double d2[kNeighbours + 1];
-        std::vector<double> angle;
-        for (std::size_t i = c * points.size() / kChunks; i < (c + 1) * points.size() / kChunks; ++i) {
-            const std::size_t found = index.nearest_k(points[i], kNeighbours + 1, idx, d2);
-            Eigen::Vector3d n = normals.empty() ? Eigen::Vector3d::Zero() : normals[i];
-            if (n.squaredNorm() == 0) {  // the neighbours' plane
-                Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-                for (std::size_t k = 0; k < found; ++k) mean += points[idx[k]];
-                mean /= double(found);
-                Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-                for (std::size_t k = 0; k < found; ++k) cov += (points[idx[k]] - mean) * (points[idx[k]] - mean).transpose();
-                n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
-            }
-            const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
-            angle.clear();
-            for (std::size_t k = 0; k < found; ++k) {
-                if (idx[k] == i) continue;
-                const Eigen::Vector3d d = points[idx[k]] - points[i];
-                if (d.squaredNorm() == 0) continue;
-                angle.push_back(std::atan2(d.dot(v), d.dot(u)));
-            }
-            if (angle.size() < 3) {
-                out[i] = 1;
-                continue;
-            }
-            std::sort(angle.begin(), angle.end());
-            double gap = angle.front() + 2 * M_PI - angle.back();
-            for (std::size_t k = 1; k < angle.size(); ++k) gap = std::max(gap, angle[k] - angle[k - 1]);
-            out[i] = gap > kGap;
-        }
+        for (std::size_t i = c * points.size() / kChunks; i < (c + 1) * points.size() / kChunks; ++i)
+            out[i] = on_cloud_boundary(i, points, normals, index);
     });
     return out;
 }
@@ -70,6 +75,24 @@ std::vector<uint8_t> mesh_boundary(const std::vector<uint32_t>& triangles, std::
     for (const auto& [edge, count] : uses)
         if (count == 1 && edge.first < vertex_count && edge.second < vertex_count) out[edge.first] = out[edge.second] = 1;
     return out;
+}
+
+ScanRim::ScanRim(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
+                 const fitting::PointIndex& index)
+    : points_(&points), normals_(&normals), index_(&index), tested_(new std::atomic<uint8_t>[points.size()]()) {}
+
+ScanRim::ScanRim(const std::vector<uint32_t>& triangles, std::size_t vertex_count) : mesh_rim_(mesh_boundary(triangles, vertex_count)) {}
+
+bool ScanRim::operator()(uint32_t point) const {
+    if (!tested_) return point < mesh_rim_.size() && mesh_rim_[point];
+    if (points_->size() <= kNeighbours) return true;
+    // Two threads may test the same point at once: both find the same.
+    uint8_t t = tested_[point].load(std::memory_order_relaxed);
+    if (t == 0) {
+        t = on_cloud_boundary(point, *points_, *normals_, *index_) ? 2 : 1;
+        tested_[point].store(t, std::memory_order_relaxed);
+    }
+    return t == 2;
 }
 
 }  // namespace ssc::registration
