@@ -65,6 +65,15 @@ NonrigidSystem::NonrigidSystem(std::vector<Vector3d> vertices, std::vector<std::
     pattern_.setFromTriplets(t.begin(), t.end());
     pattern_.makeCompressed();
     cholesky_.analyze(pattern_);
+    // Where the terms every assembly adds go: a block's four rows are adjacent in each column.
+    block_column_.resize(4 * N);
+    for (uint32_t v = 0; v < N; ++v)
+        for (int b = 0; b < 4; ++b) block_column_[4 * v + std::size_t(b)] = offset(4 * Eigen::Index(v), 4 * Eigen::Index(v) + b);
+    edge_offset_.resize(edges_.size());
+    for (std::size_t e = 0; e < edges_.size(); ++e) {
+        const Eigen::Index i = 4 * Eigen::Index(edges_[e][0]), j = 4 * Eigen::Index(edges_[e][1]);
+        for (int a = 0; a < 4; ++a) edge_offset_[e][std::size_t(a)] = offset(i + a, j + a), edge_offset_[e][std::size_t(4 + a)] = offset(j + a, i + a);
+    }
 }
 
 std::size_t NonrigidSystem::offset(Eigen::Index row, Eigen::Index col) const {
@@ -136,19 +145,21 @@ void NonrigidSystem::assemble_matrix(const EnergyWeights& k, const std::vector<d
             for (int a = 0; a < 4; ++a) value[offset(4 * Eigen::Index(i) + a, 4 * Eigen::Index(j) + b)] += w * ui[a] * uj[b];
     };
     const double data_w = k.data / double(N);
+    auto diagonal = [&](std::size_t v, int a) -> double& { return value[block_column_[4 * v + std::size_t(a)] + std::size_t(a)]; };
     for (uint32_t v = 0; v < N; ++v) {
         const Eigen::Vector4d u = hom(v);
-        add_block(v, v, u, u, data_w * weights[v]);
-        for (int a = 0; a < 4; ++a) value[offset(4 * Eigen::Index(v) + a, 4 * Eigen::Index(v) + a)] += kAnchor;
+        const double w = data_w * weights[v];
+        for (int b = 0; b < 4; ++b)
+            for (int a = 0; a < 4; ++a) value[block_column_[4 * std::size_t(v) + std::size_t(b)] + std::size_t(a)] += w * u[a] * u[b];
+        for (int a = 0; a < 4; ++a) diagonal(v, a) += kAnchor;
     }
     for (std::size_t e = 0; e < edges_.size(); ++e) {
         const double w = k.stiffness * edge_stiffness_[e];
-        const Eigen::Index i = 4 * Eigen::Index(edges_[e][0]), j = 4 * Eigen::Index(edges_[e][1]);
         for (int a = 0; a < 4; ++a) {
-            value[offset(i + a, i + a)] += w * g2_[a];
-            value[offset(j + a, j + a)] += w * g2_[a];
-            value[offset(i + a, j + a)] -= w * g2_[a];
-            value[offset(j + a, i + a)] -= w * g2_[a];
+            diagonal(edges_[e][0], a) += w * g2_[a];
+            diagonal(edges_[e][1], a) += w * g2_[a];
+            value[edge_offset_[e][std::size_t(a)]] -= w * g2_[a];
+            value[edge_offset_[e][std::size_t(4 + a)]] -= w * g2_[a];
         }
     }
     const double mark_w = landmarks.empty() ? 0.0 : k.landmarks / double(landmarks.size());

@@ -102,6 +102,8 @@ private:
                                   const std::vector<LandmarkTarget>& landmarks, const Eigen::MatrixX3d& anchor) const;
 
     Eigen::SparseMatrix<double> pattern_;  // the matrix's structure (values overwritten per assembly)
+    std::vector<std::size_t> block_column_;  // per vertex and column b of its block: where row 0 of it is
+    std::vector<std::array<std::size_t, 8>> edge_offset_;  // per edge (i, j): entries (i+a, j+a), then (j+a, i+a)
     EnergyWeights factored_k_;             // what the factorisation was made with
     std::vector<double> factored_weights_;
     bool factored_ = false;
