@@ -163,14 +163,14 @@ bool BlockCholesky4::factorize(const Eigen::SparseMatrix<double>& K, ThreadPool*
         if (destination_[p] >= 0) up[destination_[p]] = value[p];
     fill_.assign(l_ptr_.begin(), l_ptr_.end() - 1);
     const bool threads = pool && pool->size() > 1 && parts_.size() > 1;
-    const std::size_t threads_used = threads ? std::min<std::size_t>(pool->size(), parts_.size()) : 1;
-    while (workspaces_.size() < threads_used) workspaces_.emplace_back(n_);
+    // One workspace per part (the top uses the first), whichever thread runs it.
+    while (workspaces_.size() < std::max<std::size_t>(parts_.size(), 1)) workspaces_.emplace_back(n_);
     std::vector<Workspace>& work = workspaces_;
     for (Workspace& w : work) std::fill(w.mark.begin(), w.mark.end(), UINT32_MAX);  // a row's marks are its index
     std::vector<uint8_t> ok(parts_.size(), 1);
-    auto factor_part = [&](std::size_t part, unsigned worker) {
+    auto factor_part = [&](std::size_t part, unsigned) {
         for (uint32_t k : parts_[part])
-            if (!factor_row(k, work[worker])) {
+            if (!factor_row(k, work[part])) {
                 ok[part] = 0;
                 return;
             }

@@ -39,7 +39,7 @@ public:
 
 private:
     using Block = Eigen::Matrix4d;
-    struct Workspace {  // one per thread: the row being formed (zero between rows), the row's pattern
+    struct Workspace {  // one per part of the tree: the row being formed (zero between rows), its pattern
         std::vector<Block, Eigen::aligned_allocator<Block>> x;
         std::vector<uint32_t> mark, stack, path;
         explicit Workspace(uint32_t n) : x(n, Block::Zero()), mark(n, UINT32_MAX), stack(n), path(n) {}
