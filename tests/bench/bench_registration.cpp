@@ -29,6 +29,7 @@
 #include "sscape_format/model_io.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -52,6 +53,29 @@ double mean_distance(const std::vector<Vector3d>& a, const std::vector<Vector3d>
     for (std::size_t v = 0; v < a.size(); ++v)
         if (!only || bool((*only)[v]) == inside) sum += (a[v] - b[v]).norm(), ++n;
     return n ? sum / double(n) : 0;
+}
+
+// The legs' vertices' vertical error (x - truth, metres, + up), mean per sixth of the legs' height
+// in `heights` (ankle to crotch); with centre, less the legs' mean (for shapes in another frame).
+std::array<double, 6> legs_by_height(const std::vector<Vector3d>& x, const std::vector<Vector3d>& truth, const std::vector<Vector3d>& heights,
+                                     const registration::BodyRegions& regions, bool centre) {
+    auto is_leg = [&](std::size_t v) { return regions.of_vertex[v] >= 0 && regions.names[std::size_t(regions.of_vertex[v])] == "legs"; };
+    double lo = 1e9, hi = -1e9, all = 0, n = 0;
+    for (std::size_t v = 0; v < x.size(); ++v)
+        if (is_leg(v)) lo = std::min(lo, heights[v].y()), hi = std::max(hi, heights[v].y()), all += (x[v] - truth[v]).y(), n += 1;
+    std::array<double, 6> sum{}, count{};
+    for (std::size_t v = 0; v < x.size(); ++v) {
+        if (!is_leg(v)) continue;
+        const std::size_t b = std::min<std::size_t>(5, std::size_t(6 * (heights[v].y() - lo) / std::max(hi - lo, 1e-9)));
+        sum[b] += (x[v] - truth[v]).y() - (centre ? all / std::max(n, 1.0) : 0.0), count[b] += 1;
+    }
+    for (std::size_t b = 0; b < 6; ++b) sum[b] = count[b] > 0 ? sum[b] / count[b] : 0;
+    return sum;
+}
+
+void print_sixths(const char* what, const std::array<double, 6>& a) {
+    std::printf(" %s", what);
+    for (double x : a) std::printf(" %.1f", x * 1e3);
 }
 
 }  // namespace
@@ -124,6 +148,7 @@ int main(int argc, char** argv) {
     }
 #endif
     std::printf("trial  fit corr  nrd corr  nrd corr (no hands)  hands  scan->reg mean  median  p95   <2mm  <5mm  worst region  time (fit)\n");
+    std::vector<Vector3d> true_rest, best_segments_rest;  // a MakeHuman trial's true body at rest, its best approximation
     std::vector<double> fit_errors, errors, body_errors, scan_means, times, best_errors, best_tangential, best_with_segments;
     // --compare: per method, every vertex's correspondence error over the trials, and its scan
     // distances and times.
@@ -148,6 +173,7 @@ int main(int argc, char** argv) {
             std::vector<Vector3d> rest(model.vertex_count());
             for (uint32_t v = 0; v < model.vertex_count(); ++v) rest[v] = Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
             std::vector<Vector3d> approximation;
+            true_rest = rest;
             best_errors.push_back(simulation::best_approximation_error(model, rest, false, &approximation));
             if (std::getenv("SSCAPE_BENCH_VERBOSE")) {  // how much of the model's own limit lies along the surface
                 const std::vector<Vector3d> normals = registration::vertex_normals(rest, triangles);
@@ -161,7 +187,7 @@ int main(int argc, char** argv) {
                             along / model.vertex_count() * 1e3);
                 best_tangential.push_back(along / model.vertex_count());
                 if (!model.segments().empty()) {  // the same with the segment shape spaces added
-                    best_with_segments.push_back(simulation::best_approximation_error(model, rest, false, nullptr, true));
+                    best_with_segments.push_back(simulation::best_approximation_error(model, rest, false, &best_segments_rest, true));
                     std::printf("  with the segment shape spaces: %.2f mm\n", best_with_segments.back() * 1e3);
                 }
             }
@@ -226,6 +252,33 @@ int main(int argc, char** argv) {
                     sums[4 * g] += std::abs(fn), sums[4 * g + 1] += (f - fn * truth.normals[v]).norm();
                     sums[4 * g + 2] += std::abs(en), sums[4 * g + 3] += (e - en * truth.normals[v]).norm();
                     counts[g] += 1;
+                }
+                {   // the legs' error along the surface split along the leg (the surface's up) and around it
+                    double along = 0, around = 0, count = 0;
+                    for (std::size_t v = 0; v < truth.vertices.size(); ++v) {
+                        const int g = regions.of_vertex[v];
+                        if (g < 0 || regions.names[std::size_t(g)] != "legs") continue;
+                        const Vector3d& nv = truth.normals[v];
+                        const Vector3d e = r.vertices[v] - truth.vertices[v], t = e - e.dot(nv) * nv;
+                        const Vector3d up = Vector3d::UnitY() - nv.y() * nv;
+                        if (up.norm() < 1e-6) continue;
+                        const double a = t.dot(up.normalized());
+                        along += std::abs(a), around += (t - a * up.normalized()).norm(), count += 1;
+                    }
+                    std::printf("  legs along the surface: along the leg %.1f mm, around it %.1f mm; vertical error by sixths of height, ankle to crotch (mm):",
+                                along / std::max(count, 1.0) * 1e3, around / std::max(count, 1.0) * 1e3);
+                    print_sixths("registration", legs_by_height(r.vertices, truth.vertices, truth.vertices, regions, false));
+                    print_sixths("; fit", legs_by_height(fitted, truth.vertices, truth.vertices, regions, false));
+                    if (!true_rest.empty()) {  // the fitted shape alone, at rest, against the true rest body
+                        fitting::FitState at_rest = r.fit.frames[0];
+                        for (auto& q : at_rest.pose) q = Eigen::Quaterniond::Identity();
+                        at_rest.translation.setZero();
+                        print_sixths("; fitted shape at rest (legs' mean off)",
+                                     legs_by_height(simulation::fitted_vertices(model, at_rest), true_rest, true_rest, regions, true));
+                        if (!best_segments_rest.empty())
+                            print_sixths("; best approximation with segments", legs_by_height(best_segments_rest, true_rest, true_rest, regions, false));
+                    }
+                    std::printf("\n");
                 }
                 std::printf("  correspondence by region, normal/tangential, fit -> registration:");
                 for (std::size_t g = 0; g < regions.names.size(); ++g)
