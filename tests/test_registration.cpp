@@ -245,14 +245,13 @@ TEST_CASE("scan boundaries are the rims of holes and of the scan, not its inside
         normals.emplace_back(0, 0, 1);
     }
     const fitting::PointIndex index(points);
-    ThreadPool pool(2);
-    const auto rim = registration::cloud_boundary(points, normals, index, pool);
+    const registration::ScanRim rim(points, normals, index);
     std::size_t hole_rim = 0, hole_ring = 0, inside = 0, inside_rim = 0, edge = 0, edge_rim = 0;
     for (std::size_t i = 0; i < points.size(); ++i) {
         const double r = points[i].norm(), border = 0.2 - std::max(std::abs(points[i].x()), std::abs(points[i].y()));
-        if (r < 0.064) ++hole_ring, hole_rim += rim[i];
-        else if (border < 0.002) ++edge, edge_rim += rim[i];
-        else if (r > 0.08 && border > 0.02) ++inside, inside_rim += rim[i];
+        if (r < 0.064) ++hole_ring, hole_rim += rim(uint32_t(i));
+        else if (border < 0.002) ++edge, edge_rim += rim(uint32_t(i));
+        else if (r > 0.08 && border > 0.02) ++inside, inside_rim += rim(uint32_t(i));
     }
     INFO("hole ring " << hole_rim << " of " << hole_ring << ", edge " << edge_rim << " of " << edge << ", inside " << inside_rim << " of " << inside);
     CHECK(hole_rim > 0.7 * double(hole_ring));

@@ -153,6 +153,14 @@ void BlockCholesky4::split_tree(const std::vector<double>& row_work) {
     for (std::size_t t = 0; t < top_.size(); ++t) top_slot_[top_[t]] = int32_t(t);
 }
 
+void BlockCholesky4::for_each_part(ThreadPool* pool, const std::function<void(std::size_t part)>& fn) const {
+    if (pool && pool->size() > 1 && parts_.size() > 1) {
+        pool->parallel_for(parts_.size(), [&](std::size_t part, unsigned) { fn(part); });
+    } else {
+        for (std::size_t part = 0; part < parts_.size(); ++part) fn(part);
+    }
+}
+
 bool BlockCholesky4::factorize(const Eigen::SparseMatrix<double>& K, ThreadPool* pool) {
     SSC_REQUIRE_ARG(std::size_t(K.nonZeros()) == destination_.size() && K.rows() == Eigen::Index(4 * n_),
                     "block Cholesky: the matrix does not have the analysed structure");
@@ -162,24 +170,18 @@ bool BlockCholesky4::factorize(const Eigen::SparseMatrix<double>& K, ThreadPool*
     for (std::size_t p = 0; p < destination_.size(); ++p)
         if (destination_[p] >= 0) up[destination_[p]] = value[p];
     fill_.assign(l_ptr_.begin(), l_ptr_.end() - 1);
-    const bool threads = pool && pool->size() > 1 && parts_.size() > 1;
     // One workspace per part (the top uses the first), whichever thread runs it.
     while (workspaces_.size() < std::max<std::size_t>(parts_.size(), 1)) workspaces_.emplace_back(n_);
     std::vector<Workspace>& work = workspaces_;
     for (Workspace& w : work) std::fill(w.mark.begin(), w.mark.end(), UINT32_MAX);  // a row's marks are its index
     std::vector<uint8_t> ok(parts_.size(), 1);
-    auto factor_part = [&](std::size_t part, unsigned) {
+    for_each_part(pool, [&](std::size_t part) {
         for (uint32_t k : parts_[part])
             if (!factor_row(k, work[part])) {
                 ok[part] = 0;
                 return;
             }
-    };
-    if (threads) {
-        pool->parallel_for(parts_.size(), factor_part);
-    } else {
-        for (std::size_t part = 0; part < parts_.size(); ++part) factor_part(part, 0);
-    }
+    });
     bool success = std::find(ok.begin(), ok.end(), 0) == ok.end();
     for (std::size_t t = 0; success && t < top_.size(); ++t) success = factor_row(top_[t], work[0]);
     if (!success) workspaces_.clear();  // a failed row leaves its workspace dirty
@@ -241,15 +243,7 @@ Eigen::MatrixX3d BlockCholesky4::solve(const Eigen::MatrixX3d& B, ThreadPool* po
         for (std::size_t p = l_ptr_[j]; p < l_ptr_[j + 1]; ++p) y[j].noalias() -= l_value_[p].transpose() * y[l_row_[p]];
         y[j] = inverse_diagonal_[j].transpose() * y[j];
     };
-    const bool threads = pool && pool->size() > 1 && parts_.size() > 1;
-    auto each_part = [&](const std::function<void(std::size_t, unsigned)>& fn) {
-        if (threads) {
-            pool->parallel_for(parts_.size(), fn);
-        } else {
-            for (std::size_t part = 0; part < parts_.size(); ++part) fn(part, 0);
-        }
-    };
-    each_part([&](std::size_t part, unsigned) {
+    for_each_part(pool, [&](std::size_t part) {
         for (uint32_t j : parts_[part]) forward(j, &top_update[part]);
     });
     for (const Rhss& update : top_update)
@@ -257,7 +251,7 @@ Eigen::MatrixX3d BlockCholesky4::solve(const Eigen::MatrixX3d& B, ThreadPool* po
     for (uint32_t j : top_) forward(j, nullptr);
     // L^T x = y: the top first, then the parts (each reads only its own rows and the top's).
     for (auto it = top_.rbegin(); it != top_.rend(); ++it) backward(*it);
-    each_part([&](std::size_t part, unsigned) {
+    for_each_part(pool, [&](std::size_t part) {
         for (auto it = parts_[part].rbegin(); it != parts_[part].rend(); ++it) backward(*it);
     });
     Eigen::MatrixX3d X(B.rows(), 3);

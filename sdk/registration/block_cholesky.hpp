@@ -19,6 +19,7 @@
 #include <Eigen/SparseCore>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace ssc::registration {
@@ -45,6 +46,8 @@ private:
         explicit Workspace(uint32_t n) : x(n, Block::Zero()), mark(n, UINT32_MAX), stack(n), path(n) {}
     };
     void split_tree(const std::vector<double>& row_work);
+    // fn(part) for every part, on the pool's threads when it has several (fn must not throw).
+    void for_each_part(ThreadPool* pool, const std::function<void(std::size_t part)>& fn) const;
     bool factor_row(uint32_t k, Workspace& w);
     uint32_t n_ = 0;                                 // block rows
     std::vector<uint32_t> new_of_old_, old_of_new_;  // the ordering

@@ -16,11 +16,10 @@ namespace {
 // at its holes), few enough to see a hole of a few point spacings.
 constexpr std::size_t kNeighbours = 32;
 constexpr double kGap = M_PI / 2;
-}  // namespace
 
-namespace {
-
-// Whether point i's neighbours leave a gap around it (see cloud_boundary).
+// Point clouds: a point is on a boundary when its nearest neighbours, seen in its tangent plane,
+// leave a gap wider than 90 degrees around it (an interior point is surrounded). normals: unit or
+// zero (then the neighbours' plane).
 bool on_cloud_boundary(std::size_t i, const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
                        const fitting::PointIndex& index) {
     uint32_t idx[kNeighbours + 1];
@@ -51,18 +50,6 @@ bool on_cloud_boundary(std::size_t i, const std::vector<Eigen::Vector3d>& points
 }
 
 }  // namespace
-
-std::vector<uint8_t> cloud_boundary(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
-                                    const fitting::PointIndex& index, ThreadPool& pool) {
-    std::vector<uint8_t> out(points.size(), 0);
-    if (points.size() <= kNeighbours) return std::vector<uint8_t>(points.size(), 1);
-    constexpr std::size_t kChunks = 64;
-    pool.parallel_for(kChunks, [&](std::size_t c, unsigned) {
-        for (std::size_t i = c * points.size() / kChunks; i < (c + 1) * points.size() / kChunks; ++i)
-            out[i] = on_cloud_boundary(i, points, normals, index);
-    });
-    return out;
-}
 
 std::vector<uint8_t> mesh_boundary(const std::vector<uint32_t>& triangles, std::size_t vertex_count) {
     std::map<std::pair<uint32_t, uint32_t>, int> uses;

@@ -3,7 +3,6 @@
 // shape (carried by smoothness) rather than pulled to their rim.
 #pragma once
 
-#include "common/thread_pool.hpp"
 #include "fitting/nearest.hpp"
 
 #include <Eigen/Core>
@@ -15,17 +14,13 @@
 
 namespace ssc::registration {
 
-// Point clouds: a point is on a boundary when its nearest neighbours, seen in its tangent plane,
-// leave a gap wider than 90 degrees around it (an interior point is surrounded). normals: unit or
-// zero (then the neighbours' plane). index: over points. Runs on the pool's threads.
-std::vector<uint8_t> cloud_boundary(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& normals,
-                                    const fitting::PointIndex& index, ThreadPool& pool);
-
 // Meshes: the vertices of edges that only one triangle uses.
 std::vector<uint8_t> mesh_boundary(const std::vector<uint32_t>& triangles, std::size_t vertex_count);
 
 // A scan's rim as a registration asks for it: a mesh's up front; a cloud's point by point, tested
-// (as cloud_boundary does) the first time it is asked for. A registration only asks about the
+// the first time it is asked for (a point is on a cloud's rim when its 32 nearest neighbours,
+// seen in its tangent plane, leave a gap wider than 90 degrees around it; an interior point is
+// surrounded). A registration only asks about the
 // points nearest the template, about a seventh of a 60,000-point booth scan's, so testing them
 // all first took most of the time. Safe to ask from several threads; the arrays it was made
 // from must outlive it.
