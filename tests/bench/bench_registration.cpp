@@ -1,11 +1,14 @@
 // Scan registration accuracy and speed on simulated scans with known correspondence.
 //
 //   sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--no-segments|--all-segments] [--segment-prior W] [--stiffness B] [--threads N]
-//                         [--makehuman DIR] [--landmarks] [--png PREFIX] [--compare OUT.png]
+//                         [--makehuman DIR] [--landmarks [--landmark-noise SD] [--landmark-sigma S] [--landmark-weight C]]
+//                         [--png PREFIX] [--compare OUT.png]
 // --compare: the papers' comparison on the same scans: the model fit alone, rigid + deformation,
 // rbf + deformation (both from the landmarks), model fit + deformation with relaxed and with
 // constant weights; a table and the share of vertices within each correspondence error as a plot.
-// --landmarks: the CAESAR landmarks (but the hands'), exact, join the scan (always with --init rigid or rbf).
+// --landmarks: the CAESAR landmarks (but the hands'), exact, join the scan (always with --init rigid or rbf);
+// --landmark-noise SD: placed with Gaussian error (metres per axis); --landmark-sigma S: the model
+// fit's FitOptions::landmark_sigma; --landmark-weight C: the deformation's first landmark weight.
 // --fit-points N, --fit-iterations N: the model fit's FitOptions::max_points and max_iterations.
 //
 // Each trial, by default: a random body and pose of the default model, with smooth bumps and dents
@@ -84,6 +87,7 @@ int main(int argc, char** argv) {
     int trials = 5;
     std::string png, makehuman, compare;
     bool with_landmarks = false;
+    double landmark_noise = 0;  // metres, per axis
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     registration::RegistrationOptions options;
     double segment_prior = options.fit.segment_prior;
@@ -102,6 +106,9 @@ int main(int argc, char** argv) {
         else if (a == "--no-segments") options.segments = false;
         else if (a == "--all-segments") options.segments = true, options.segments_left_out.clear();
         else if (a == "--segment-prior" && i + 1 < argc) segment_prior = std::atof(argv[++i]);
+        else if (a == "--landmark-noise" && i + 1 < argc) landmark_noise = std::atof(argv[++i]);
+        else if (a == "--landmark-weight" && i + 1 < argc) options.landmarks = std::atof(argv[++i]);
+        else if (a == "--landmark-sigma" && i + 1 < argc) options.fit.landmark_sigma = std::atof(argv[++i]);
         else if (a == "--fit-points" && i + 1 < argc) options.fit.max_points = uint32_t(std::atoi(argv[++i]));
         else if (a == "--fit-iterations" && i + 1 < argc) options.fit.max_iterations = uint32_t(std::atoi(argv[++i]));
         else if (a == "--constant") options.schedule = registration::Schedule::Constant;
@@ -111,7 +118,7 @@ int main(int argc, char** argv) {
                                      : v == "rbf" ? registration::Initialisation::Rbf
                                                   : registration::Initialisation::Model;
         } else {
-            std::fprintf(stderr, "usage: sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--no-segments|--all-segments] [--segment-prior W] [--stiffness B] [--threads N] [--makehuman DIR] [--landmarks] [--png PREFIX]\n");
+            std::fprintf(stderr, "usage: sscape_register_bench [--trials N] [--init model|rigid|rbf] [--constant] [--no-segments|--all-segments] [--segment-prior W] [--stiffness B] [--threads N] [--makehuman DIR] [--landmarks [--landmark-noise SD] [--landmark-sigma S] [--landmark-weight C]] [--png PREFIX]\n");
             return 2;
         }
     }
@@ -225,7 +232,7 @@ int main(int argc, char** argv) {
             continue;
         }
         if (options.initialisation != registration::Initialisation::Model || with_landmarks)
-            scan.landmarks = simulation::simulate_landmarks(model, truth, 0.0, true, rng);
+            scan.landmarks = simulation::simulate_landmarks(model, truth, landmark_noise, true, rng);
         const registration::Registration r = registration::register_scan(lin, scan, options, {}, &pool);
         const double fit_err = r.fit.frames.empty() ? 0 : simulation::mean_vertex_error(simulation::fitted_vertices(model, r.fit.frames[0]), truth.vertices);
         const double err = mean_distance(r.vertices, truth.vertices), body = mean_distance(r.vertices, truth.vertices, &hand, false),
