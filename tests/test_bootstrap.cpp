@@ -11,6 +11,8 @@
 #include "anatomy/joint_limits.hpp"
 #include "common/error.hpp"
 #include "common/files.hpp"
+#include "fitting/kinematics.hpp"
+#include "fitting/solver.hpp"
 #include "io/readers.hpp"
 #include "simulation/simulate.hpp"
 #include "sscape_format/model_io.hpp"
@@ -225,6 +227,46 @@ TEST_CASE("a person's decisions file: their rows, not the tool's, with quoted re
     CHECK_THROWS_WITH(decisions("b1,reject\n"), Catch::Contains("the first line must be the header"));
     CHECK_THROWS_WITH(decisions("scan,decision\nb1,perhaps\n"), Catch::Contains("decisions_test.csv:2: expected scan,accept|reject"));
     CHECK_THROWS_WITH(decisions("scan,decision\nb1,accept\nb1,reject\n"), Catch::Contains("scan b1 is decided twice"));
+}
+
+TEST_CASE("a simulated collection writes each scan's landmarks beside it and the scans it writes without them", "[bootstrap][makehuman]") {
+    const std::string root = test::makehuman_root();
+    if (root.empty()) {
+        WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");
+        return;
+    }
+    const Model& m = test::default_cpp_model();
+    const std::string folder = "collection_landmarks_test";
+    std::filesystem::remove_all(folder);
+    learning::CollectionSpec cs;
+    cs.scans = 2;
+    cs.extra = 0;
+    cs.points = 5000;
+    const learning::SimulatedCollection bare = learning::simulate_collection(root, m, cs, folder + "/bare");
+    cs.landmark_noise = 0;
+    const learning::SimulatedCollection marked = learning::simulate_collection(root, m, cs, folder + "/marked");
+    REQUIRE(marked.scans.size() == 2);
+    for (std::size_t s = 0; s < 2; ++s) {
+        CHECK(bare.scans[s].landmarks.empty());
+        CHECK(read_regular_file(bare.scans[s].path, 1 << 24) == read_regular_file(marked.scans[s].path, 1 << 24));
+        REQUIRE(!marked.scans[s].landmarks.empty());
+        // Exact placement: each landmark on the true posed body, to the file's 0.01 mm.
+        const std::vector<io::LandmarkRecord> records = io::read_lnd(marked.scans[s].landmarks);
+        std::size_t hands = 0;
+        for (const auto& l : m.data().landmarks) hands += fitting::is_hand_landmark(l.name);
+        CHECK(records.size() == m.data().landmarks.size() - hands);
+        for (const auto& r : records) {
+            REQUIRE(r.index >= 1);
+            REQUIRE(r.index <= m.data().landmarks.size());
+            CHECK(r.name == m.data().landmarks[r.index - 1].name);
+            CHECK_FALSE(fitting::is_hand_landmark(r.name));
+            const fitting::SurfacePoint p = fitting::landmark_point(m.data(), r.index - 1);
+            Vector3d at = Vector3d::Zero();
+            for (int i = 0; i < 3; ++i) at += p.weight[i] * marked.truth[s][p.vertex[i]];
+            CHECK((at - r.position).norm() < 2e-5);
+        }
+    }
+    std::filesystem::remove_all(folder);
 }
 
 TEST_CASE("one round of bootstrapping on 20 MakeHuman booth scans: most accepted, close to the truth, a usable model", "[bootstrap][makehuman]") {

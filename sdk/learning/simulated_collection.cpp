@@ -1,6 +1,7 @@
 #include "learning/simulated_collection.hpp"
 
 #include "export/mesh_writers.hpp"
+#include "io/writers.hpp"
 #include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
 #include "training/makehuman/assets.hpp"
@@ -30,6 +31,7 @@ SimulatedCollection simulate_collection(const std::string& makehuman, const Mode
         out.rest.push_back(std::move(rest));
     }
     std::filesystem::create_directories(folder);
+    std::mt19937 placement(spec.variation_seed + 1);  // the landmarks' own draws: the scans stay the same
     for (uint32_t s = 0; s < spec.scans; ++s) {
         out.poses.push_back(simulation::scanning_pose(model, rng, spec.pose_spread));
         const simulation::TrueBody body = simulation::pose_rest_vertices(model, out.rest[s], out.poses.back(), Eigen::Vector3d::Zero());
@@ -48,7 +50,15 @@ SimulatedCollection simulate_collection(const std::string& makehuman, const Mode
         mesh.positions = xyz.data();
         mesh.normals = normals.data();
         exporters::write_ply(path, mesh);
-        out.scans.push_back({name, path, ""});
+        std::string landmarks;
+        if (spec.landmark_noise >= 0) {
+            landmarks = (std::filesystem::path(folder) / (std::string(name) + ".lnd")).string();
+            std::vector<io::LandmarkRecord> records;
+            for (const auto& t : simulation::simulate_landmarks(model, body, spec.landmark_noise, true, placement))
+                records.push_back({t.landmark + 1, model.data().landmarks[t.landmark].name, t.position});
+            io::write_lnd(landmarks, std::string("simulated ") + name, records);
+        }
+        out.scans.push_back({name, path, landmarks});
     }
     return out;
 }

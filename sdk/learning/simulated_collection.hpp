@@ -23,6 +23,11 @@ struct CollectionSpec {
     double pose_spread = 10;  // degrees (simulation::scanning_pose)
     uint32_t seed = 2027;          // the population
     uint32_t variation_seed = 7;   // the modifiers beyond the model, the poses, the scanner's noise
+    // Metres per axis, >= 0: each scan also gets its CAESAR landmarks (but the hands', which scanned
+    // people's closed hands hide) as NAME.lnd beside it, placed with this Gaussian error, as
+    // anthropometric collections come. Negative: none. Drawn apart, so the scans are the same
+    // either way.
+    double landmark_noise = -1;
 };
 
 struct SimulatedCollection {
@@ -32,7 +37,8 @@ struct SimulatedCollection {
     std::vector<std::vector<Eigen::Vector3d>> rest;  // the scanned people's rest meshes, then the extra people's
 };
 
-// Writes the scans as PLY (points and normals, metres, +Y up) into `folder` (created). The people
+// Writes the scans as PLY (points and normals, metres, +Y up) into `folder` (created), and their
+// landmarks as .lnd (millimetres) when spec.landmark_noise >= 0. The people
 // are posed with `model`'s skeleton and skinning (the template's topology). Throws ssc::Error: IO,
 // or as training::mh::load_assets for a missing or broken asset folder.
 SimulatedCollection simulate_collection(const std::string& makehuman, const Model& model, const CollectionSpec& spec, const std::string& folder);

@@ -11,10 +11,11 @@
 //
 // usage: sscape_bootstrap_bench --makehuman DIR [--scans 200] [--heldout 50] [--rounds 3]
 //                               [--components 20] [--points 30000] [--out DIR] [--threads N] [--start weak|template|default]
-//                               [--segment-components K] [--no-fit-segments]
+//                               [--segment-components K] [--no-fit-segments] [--landmarks SD]
 // --start default: the built-in model (which has segment shape spaces); --segment-components: the
 // rounds' models learn them too; every round registers with them in the model fit where its model
-// has them (--no-fit-segments: the whole body's components only).
+// has them (--no-fit-segments: the whole body's components only). --landmarks SD: each scan comes
+// with its CAESAR landmarks (but the hands'), placed with SD metres of error per axis.
 #include "common/files.hpp"
 #include "learning/bootstrap.hpp"
 #include "learning/evaluate_learning.hpp"
@@ -87,6 +88,7 @@ int main(int argc, char** argv) {
     std::string makehuman, out = "bootstrap_bench", start = "weak";
     uint32_t scans = 200, heldout = 50, rounds = 3, components = 20, points = 30000, threads = 0, segment_components = 0;
     bool fit_segments = true;
+    double landmark_noise = -1;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -102,9 +104,10 @@ int main(int argc, char** argv) {
         else if (a == "--segment-components") segment_components = uint32_t(std::stoul(next()));
         else if (a == "--fit-segments") fit_segments = true;  // the default
         else if (a == "--no-fit-segments") fit_segments = false;
+        else if (a == "--landmarks") landmark_noise = std::stod(next());
         else {
             std::fprintf(stderr, "usage: sscape_bootstrap_bench --makehuman DIR [--scans N] [--heldout N] [--rounds N] [--components K] [--points N] [--out DIR] [--threads N] "
-                                 "[--start weak|template|default] [--segment-components K] [--no-fit-segments]\n");
+                                 "[--start weak|template|default] [--segment-components K] [--no-fit-segments] [--landmarks SD]\n");
             return 2;
         }
     }
@@ -123,6 +126,7 @@ int main(int argc, char** argv) {
     cs.scans = scans;
     cs.extra = heldout + 50;
     cs.points = points;
+    cs.landmark_noise = landmark_noise;
     const learning::SimulatedCollection collection = learning::simulate_collection(makehuman, model, cs, out + "/scans");
     const auto& rest = collection.rest;
     const auto& truth = collection.truth;
