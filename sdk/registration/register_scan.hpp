@@ -45,8 +45,8 @@ inline fitting::FitOptions registration_fit() {
     o.segment_prior = 10;
     // Landmarks weigh as if placed to 2 mm, whatever their real placement error: the scan's
     // thousands of points share the model's errors (a head turned to match a face the model cannot
-    // make), so they outvote 60 landmarks far beyond their count. At the fitter's 1 cm, one
-    // booth scan's head ended 22 degrees turned against exact landmarks 25-37 mm off; at 2 mm
+    // make), so they outvote some 60 landmarks far beyond their count. At the fitter's 1 cm, one
+    // booth scan's head ended 22 degrees turned against exact landmarks 21-37 mm off; at 2 mm
     // the benchmark's registrations with landmarks fell from 4.61 to 3.94 mm (exact), 4.89 to 4.33
     // (placed to 5 mm) and 5.49 to 5.06 mm (to 10 mm): landmarks beyond 2 sigmas count linearly
     // (fitting/data_term.hpp), so badly placed ones pull boundedly (docs/registration.md).
