@@ -364,6 +364,11 @@ TEST_CASE("landmarks given with a scan hold the model fit and the registration t
     CHECK(fit.second < 0.015);
     CHECK(registered.first < fit.first);  // the deformation's landmark term brings them closer still
     CHECK(r.report.landmarks == s.scan.landmarks.size());
+    // The deformation leaves out the wrists' four (within 3 cm of the hands, which the fit placed).
+    std::size_t wrists = 0;
+    for (const auto& l : s.scan.landmarks) wrists += m.data().landmarks[l.landmark].name.find("Styloid") != std::string::npos;
+    CHECK(wrists == 4);
+    CHECK(r.report.deformation_landmarks == s.scan.landmarks.size() - wrists);
 }
 
 TEST_CASE("with the segment shape spaces, a fit with an arm astray is restarted before they join", "[registration][segments]") {
@@ -396,6 +401,7 @@ TEST_CASE("registration starts from landmarks alone (rigid, rbf), and refuses wh
     CHECK(r.fit.frames.empty());
     INFO("rigid start: scan to registration mean " << r.report.quality.scan_to_registration.mean * 1e3 << " mm");
     CHECK(r.report.quality.scan_to_registration.mean < 0.006);  // the weak baseline: the template at rest, placed
+    CHECK(r.report.deformation_landmarks == s.scan.landmarks.size());  // every landmark pulls: nothing else places the hands
     auto status = [&](const registration::Scan& scan, const registration::RegistrationOptions& o, const registration::RegistrationProgress& p = {}) {
         try {
             registration::register_scan(lin, scan, o, p);

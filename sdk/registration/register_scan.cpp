@@ -26,6 +26,9 @@ constexpr double kRelaxedRange = 1000;
 constexpr double kSettled = 0.0005;
 // Scans smaller than this are no body scan.
 constexpr std::size_t kMinPoints = 100;
+// Metres: from the model start, landmarks this close to the hands (the wrists' styloids, any on
+// the hands) pull in the model fit only, not in the deformation.
+constexpr double kNearHands = 0.03;
 
 // A template point on the given vertex positions.
 Vector3d point_on(const std::vector<Vector3d>& vertices, const fitting::SurfacePoint& p) {
@@ -145,11 +148,25 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
     const auto edges = mesh_edges(triangles, V);
     std::vector<double> edge_stiffness;
     for (const auto& e : edges) edge_stiffness.push_back(0.5 * (rule_of(e[0]).stiffness + rule_of(e[1]).stiffness));
+    // The landmarks the deformation pulls. From the model start, not those within kNearHands of
+    // the hands: the fit has placed the hands, and the wrists' landmarks pulled them about 1 mm
+    // along the surface (they have little data to hold them); the fit uses every landmark. From
+    // the rigid and rbf starts every one: nothing else brings the hands to their place
+    // (docs/registration.md).
+    std::vector<Vector3d> hand_vertices;
+    if (options.initialisation == Initialisation::Model)
+        for (uint32_t v = 0; v < V; ++v)
+            if (region[v] >= 0 && region_names[std::size_t(region[v])] == "hands") hand_vertices.push_back(start[v]);
     std::vector<TemplatePoint> marks;
     std::vector<LandmarkTarget> landmarks;
     for (const auto& l : scan.landmarks) {
-        marks.push_back(fitting::landmark_point(d, l.landmark));
-        landmarks.push_back({marks.back(), l.position});
+        const fitting::SurfacePoint p = fitting::landmark_point(d, l.landmark);
+        const Vector3d at = point_on(start, p);
+        bool near_hands = false;
+        for (const Vector3d& h : hand_vertices) near_hands |= (h - at).squaredNorm() < kNearHands * kNearHands;
+        if (near_hands) continue;
+        marks.push_back(p);
+        landmarks.push_back({p, l.position});
     }
     NonrigidSystem system(start, edges, edge_stiffness, marks, options.gamma);
     // Each vertex's data weight is its share of the surface (a third of its triangles' area, over
@@ -229,6 +246,7 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
                                               region_names, points, normals, oriented, index, workers);
     out.report.scan_points = scan.cloud.points.size();
     out.report.landmarks = scan.landmarks.size();
+    out.report.deformation_landmarks = landmarks.size();
     out.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }

@@ -88,6 +88,7 @@ struct RegistrationReport {
     uint32_t rounds = 0, solves = 0;
     std::size_t valid = 0;  // template vertices that ended on a compatible scan point
     std::size_t scan_points = 0, landmarks = 0;  // what the scan gave
+    std::size_t deformation_landmarks = 0;       // of those, the ones the deformation pulled (register_scan.cpp)
     RegistrationQuality quality;
 };
 
