@@ -19,7 +19,7 @@ namespace {
 struct Options {
     std::string model_path, prefix, depth;
     uint32_t seed = 1;
-    double pose_amount = 1, landmark_noise = 0.01, heading = 0;
+    double pose_amount = 1, landmark_noise = 0.003, heading = 0;
     simulation::CloudSpec spec;
     simulation::DepthCameraSpec camera_spec;
 };
@@ -110,7 +110,7 @@ Run add_simulate(CLI::App& app) {
         ->check(finite_in(0, 0.95))->capture_default_str();
     c->add_option("--outliers", o->spec.outliers, "fraction of points replaced by clutter around the body")
         ->check(finite_in(0, 0.95))->capture_default_str();
-    c->add_option("--landmark-noise", o->landmark_noise, "landmark placement noise, metres")->check(finite_in(0, 0.1))->capture_default_str();
+    c->add_option("--landmark-noise", o->landmark_noise, "landmark placement noise, metres per axis (3 mm: about 5 mm in space, as a person places them)")->check(finite_in(0, 0.1))->capture_default_str();
     c->add_option("--pose-amount", o->pose_amount, "how far the random pose goes: 0 rest, 1 the usual range, up to 3")
         ->check(finite_in(0, 3))->capture_default_str();
     c->add_option("--heading", o->heading, "turn the body about the vertical, degrees")->check(finite_in(-360, 360))->capture_default_str();
