@@ -82,6 +82,45 @@ void component_picture(const std::string& path, const format::ModelData& data, c
     render::write_png(path, img);
 }
 
+// The fitted pose's error against the pose the truth was given: the mean rotation angle over the
+// spine's, clavicles', limbs' and head's joints, and over every joint (degrees).
+std::pair<double, double> pose_error_degrees(const format::ModelData& data, const fitting::FitState& fit, const std::vector<float>& true_pose) {
+    static const char* const moved[] = {"spine_01", "spine_02", "spine_03", "clavicle_l", "clavicle_r", "upperarm_l", "upperarm_r", "lowerarm_l",
+                                        "lowerarm_r", "head", "thigh_l", "thigh_r", "calf_l", "calf_r"};
+    double limbs = 0, every = 0;
+    int n_limbs = 0;
+    const uint32_t J = data.joint_count();
+    for (uint32_t j = 0; j < J; ++j) {
+        const Eigen::Quaterniond truth(true_pose[4 * j + 3], true_pose[4 * j], true_pose[4 * j + 1], true_pose[4 * j + 2]);
+        const double angle = Eigen::AngleAxisd(fit.pose[j].normalized() * truth.normalized().conjugate()).angle() * 180 / M_PI;
+        every += angle / J;
+        if (std::find_if(std::begin(moved), std::end(moved), [&](const char* n) { return data.skeleton.joint_names[j] == n; }) != std::end(moved))
+            limbs += angle, ++n_limbs;
+    }
+    return {limbs / std::max(1, n_limbs), every};
+}
+
+// How far a learned model's mean lies from the true rest meshes' model's mean (both in the
+// template's frame; their mean offset taken off), per vertex, over the body and per region.
+void print_mean_offset(const char* name, const format::ModelData& learned, const format::ModelData& truth) {
+    const uint32_t V = truth.vertex_count();
+    auto diff = [&](uint32_t v) {
+        return Vector3d(double(learned.shape.mean[3 * v]) - truth.shape.mean[3 * v], double(learned.shape.mean[3 * v + 1]) - truth.shape.mean[3 * v + 1],
+                        double(learned.shape.mean[3 * v + 2]) - truth.shape.mean[3 * v + 2]);
+    };
+    Vector3d shift = Vector3d::Zero();
+    for (uint32_t v = 0; v < V; ++v) shift += diff(v) / V;
+    double all = 0;
+    for (uint32_t v = 0; v < V; ++v) all += (diff(v) - shift).norm() / V;
+    std::printf("%-38s %5.2f mm", name, 1e3 * all);
+    for (const auto& set : truth.vertex_sets) {
+        double r = 0;
+        for (uint32_t v : set.vertices) r += (diff(v) - shift).norm() / double(set.vertices.size());
+        std::printf("   %s %.2f", set.name.c_str(), 1e3 * r);
+    }
+    std::printf("\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -89,6 +128,7 @@ int main(int argc, char** argv) {
     uint32_t scans = 200, heldout = 50, rounds = 3, components = 20, points = 30000, threads = 0, segment_components = 0;
     bool fit_segments = true;
     double landmark_noise = -1;
+    std::string posture = "skeleton";
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -105,9 +145,10 @@ int main(int argc, char** argv) {
         else if (a == "--fit-segments") fit_segments = true;  // the default
         else if (a == "--no-fit-segments") fit_segments = false;
         else if (a == "--landmarks") landmark_noise = std::stod(next());
+        else if (a == "--posture") posture = next();
         else {
             std::fprintf(stderr, "usage: sscape_bootstrap_bench --makehuman DIR [--scans N] [--heldout N] [--rounds N] [--components K] [--points N] [--out DIR] [--threads N] "
-                                 "[--start weak|template|default] [--segment-components K] [--no-fit-segments] [--landmarks SD]\n");
+                                 "[--start weak|template|default] [--segment-components K] [--no-fit-segments] [--landmarks SD] [--posture none|skeleton|laplacian]\n");
             return 2;
         }
     }
@@ -154,6 +195,7 @@ int main(int argc, char** argv) {
     spec.threads = threads;
     spec.learn.components = components;
     spec.learn.segment_components = segment_components;
+    spec.learn.posture = learning::posture_from_name(posture);
     spec.registration.segments = fit_segments;
     spec.sheet_entries = 12;
     const std::vector<learning::RoundReport> reports = learning::bootstrap(weak, spec, [&](const std::string& line) {
@@ -167,7 +209,7 @@ int main(int argc, char** argv) {
     for (const auto& set : default_data.vertex_sets)
         if (set.name == "hands")
             for (uint32_t v : set.vertices) hand[v] = 1;
-    std::printf("\nround  accepted  rejected  failed  error all (mm)  accepted (mm)  without hands (mm)  registering s/scan\n");
+    std::printf("\nround  accepted  rejected  failed  error all (mm)  accepted (mm)  without hands (mm)  registering s/scan  pose error: limbs, all (deg)\n");
     std::vector<learning::RegisteredScan> last_accepted, last_true_pose;  // the latter unposed with the pose the truth was given
     for (const auto& r : reports) {
         const std::string dir = spec.out_dir + "/round_" + std::to_string(r.round);
@@ -179,7 +221,7 @@ int main(int argc, char** argv) {
         while (dec && std::fgets(line, sizeof line, dec))
             if (std::strstr(line, ",accept,")) accepted_names.push_back(std::string(line, std::strchr(line, ',') - line));
         if (dec) std::fclose(dec);
-        double all = 0, acc = 0, body = 0;
+        double all = 0, acc = 0, body = 0, pose_limbs = 0, pose_all = 0;
         std::size_t n_all = 0, n_acc = 0;
         if (r.round == reports.back().round) last_accepted.clear();
         for (uint32_t s = 0; s < scans; ++s) {
@@ -194,6 +236,8 @@ int main(int argc, char** argv) {
                 if (!hand[v]) eb += d, ++nb;
             }
             all += e, ++n_all;
+            const auto pose_error = pose_error_degrees(default_data, rec.registered.fit, true_pose[s]);
+            pose_limbs += pose_error.first, pose_all += pose_error.second;
             if (std::find(accepted_names.begin(), accepted_names.end(), spec.scans[s].name) != accepted_names.end()) {
                 acc += e, body += eb / double(nb), ++n_acc;
                 if (r.round == reports.back().round) {
@@ -205,9 +249,9 @@ int main(int argc, char** argv) {
                 }
             }
         }
-        std::printf("%5u  %8zu  %8zu  %6zu  %14.2f  %13.2f  %18.2f  %18.2f\n", r.round, r.accepted, r.rejected, r.failed, 1e3 * all / double(n_all),
+        std::printf("%5u  %8zu  %8zu  %6zu  %14.2f  %13.2f  %18.2f  %18.2f  %13.2f %12.2f\n", r.round, r.accepted, r.rejected, r.failed, 1e3 * all / double(n_all),
                     1e3 * acc / double(std::max<std::size_t>(1, n_acc)), 1e3 * body / double(std::max<std::size_t>(1, n_acc)),
-                    r.register_seconds / double(scans));
+                    r.register_seconds / double(scans), pose_limbs / double(std::max<std::size_t>(1, n_all)), pose_all / double(std::max<std::size_t>(1, n_all)));
     }
 
     // The learned model against a model learned directly from the true rest meshes, on held-out
@@ -223,6 +267,7 @@ int main(int argc, char** argv) {
     const format::ModelData registered_with = format::read_model_file(last_model);
     learning::LearnSpec wide = spec.learn;
     wide.components = std::min<uint32_t>(50, uint32_t(last_accepted.size()) - 1);
+    wide.posture = learning::Posture::Skeleton;
     const format::ModelData skeleton = learning::learn_model(registered_with, last_accepted, wide);
     const format::ModelData known_pose = learning::learn_model(registered_with, last_true_pose, wide);
     wide.posture = learning::Posture::None;
@@ -268,6 +313,11 @@ int main(int argc, char** argv) {
         }
         std::printf("\n");
     }
+    std::printf("\nthe mean shape's distance from the true rest meshes' model's mean (mean offset taken off)\n");
+    print_mean_offset("from final registrations, skeleton", skeleton, direct);
+    print_mean_offset("  the same, unposed with the true pose", known_pose, direct);
+    print_mean_offset("from final registrations, none", none, direct);
+    print_mean_offset("from final registrations, laplacian", laplacian, direct);
     component_picture(out + "/components_skeleton.png", skeleton, "posture skeleton");
     component_picture(out + "/components_none.png", none, "posture none");
     component_picture(out + "/components_laplacian.png", laplacian, "posture laplacian");
