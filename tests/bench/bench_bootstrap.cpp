@@ -82,20 +82,21 @@ void component_picture(const std::string& path, const format::ModelData& data, c
     render::write_png(path, img);
 }
 
+// Joint j's rotation in a pose stored as xyzw per joint (the simulator's and the format's order).
+Eigen::Quaterniond joint_rotation(const std::vector<float>& pose, uint32_t j) {
+    return Eigen::Quaterniond(pose[4 * j + 3], pose[4 * j], pose[4 * j + 1], pose[4 * j + 2]);
+}
+
 // The fitted pose's error against the pose the truth was given: the mean rotation angle over the
-// spine's, clavicles', limbs' and head's joints, and over every joint (degrees).
-std::pair<double, double> pose_error_degrees(const format::ModelData& data, const fitting::FitState& fit, const std::vector<float>& true_pose) {
-    static const char* const moved[] = {"spine_01", "spine_02", "spine_03", "clavicle_l", "clavicle_r", "upperarm_l", "upperarm_r", "lowerarm_l",
-                                        "lowerarm_r", "head", "thigh_l", "thigh_r", "calf_l", "calf_r"};
+// joints `moved` marks (the spine's, clavicles', limbs' and head's), and over every joint (degrees).
+std::pair<double, double> pose_error_degrees(const std::vector<uint8_t>& moved, const fitting::FitState& fit, const std::vector<float>& true_pose) {
     double limbs = 0, every = 0;
     int n_limbs = 0;
-    const uint32_t J = data.joint_count();
+    const uint32_t J = uint32_t(moved.size());
     for (uint32_t j = 0; j < J; ++j) {
-        const Eigen::Quaterniond truth(true_pose[4 * j + 3], true_pose[4 * j], true_pose[4 * j + 1], true_pose[4 * j + 2]);
-        const double angle = Eigen::AngleAxisd(fit.pose[j].normalized() * truth.normalized().conjugate()).angle() * 180 / M_PI;
+        const double angle = Eigen::AngleAxisd(fit.pose[j].normalized() * joint_rotation(true_pose, j).normalized().conjugate()).angle() * 180 / M_PI;
         every += angle / J;
-        if (std::find_if(std::begin(moved), std::end(moved), [&](const char* n) { return data.skeleton.joint_names[j] == n; }) != std::end(moved))
-            limbs += angle, ++n_limbs;
+        if (moved[j]) limbs += angle, ++n_limbs;
     }
     return {limbs / std::max(1, n_limbs), every};
 }
@@ -105,8 +106,7 @@ std::pair<double, double> pose_error_degrees(const format::ModelData& data, cons
 void print_mean_offset(const char* name, const format::ModelData& learned, const format::ModelData& truth) {
     const uint32_t V = truth.vertex_count();
     auto diff = [&](uint32_t v) {
-        return Vector3d(double(learned.shape.mean[3 * v]) - truth.shape.mean[3 * v], double(learned.shape.mean[3 * v + 1]) - truth.shape.mean[3 * v + 1],
-                        double(learned.shape.mean[3 * v + 2]) - truth.shape.mean[3 * v + 2]);
+        return Vector3d((Eigen::Map<const Eigen::Vector3f>(&learned.shape.mean[3 * std::size_t(v)]) - Eigen::Map<const Eigen::Vector3f>(&truth.shape.mean[3 * std::size_t(v)])).cast<double>());
     };
     Vector3d shift = Vector3d::Zero();
     for (uint32_t v = 0; v < V; ++v) shift += diff(v) / V;
@@ -209,6 +209,10 @@ int main(int argc, char** argv) {
     for (const auto& set : default_data.vertex_sets)
         if (set.name == "hands")
             for (uint32_t v : set.vertices) hand[v] = 1;
+    std::vector<uint8_t> moved(model.joint_count(), 0);  // the joints whose pose error is reported apart
+    for (const char* name : {"spine_01", "spine_02", "spine_03", "clavicle_l", "clavicle_r", "upperarm_l", "upperarm_r", "lowerarm_l", "lowerarm_r", "head",
+                             "thigh_l", "thigh_r", "calf_l", "calf_r"})
+        if (const int64_t j = model.find_joint(name); j >= 0) moved[std::size_t(j)] = 1;
     std::printf("\nround  accepted  rejected  failed  error all (mm)  accepted (mm)  without hands (mm)  registering s/scan  pose error: limbs, all (deg)\n");
     std::vector<learning::RegisteredScan> last_accepted, last_true_pose;  // the latter unposed with the pose the truth was given
     for (const auto& r : reports) {
@@ -236,7 +240,7 @@ int main(int argc, char** argv) {
                 if (!hand[v]) eb += d, ++nb;
             }
             all += e, ++n_all;
-            const auto pose_error = pose_error_degrees(default_data, rec.registered.fit, true_pose[s]);
+            const auto pose_error = pose_error_degrees(moved, rec.registered.fit, true_pose[s]);
             pose_limbs += pose_error.first, pose_all += pose_error.second;
             if (std::find(accepted_names.begin(), accepted_names.end(), spec.scans[s].name) != accepted_names.end()) {
                 acc += e, body += eb / double(nb), ++n_acc;
@@ -244,7 +248,7 @@ int main(int argc, char** argv) {
                     last_accepted.push_back(rec.registered);
                     learning::RegisteredScan known = rec.registered;
                     for (uint32_t j = 0; j < model.joint_count(); ++j)
-                        known.fit.pose[j] = Eigen::Quaterniond(true_pose[s][4 * j + 3], true_pose[s][4 * j], true_pose[s][4 * j + 1], true_pose[s][4 * j + 2]);
+                        known.fit.pose[j] = joint_rotation(true_pose[s], j);
                     last_true_pose.push_back(known);
                 }
             }
