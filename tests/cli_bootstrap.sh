@@ -27,6 +27,10 @@ done
 [ "$(wc -l < "$out/run/round_1/decisions.csv")" -eq 8 ] || fail "a decision per scan"
 accepted=$(grep -c ",accept," "$out/run/round_1/decisions.csv")
 [ "$accepted" -ge 3 ] || fail "only $accepted of 6 accepted"
+# The built-in model poses the accepted scans (the posture model by default): here it is also the
+# round's model, so its registration fits are kept as the posture fits.
+grep -q "round 1: the accepted scans posed by '" "$out/first.txt" || fail "the posture model's line"
+[ "$(ls "$out/run/posture_fits" | wc -l)" -eq "$accepted" ] || fail "a posture fit per accepted scan"
 "$sscape" info "$out/run/model.sscape" > "$out/info.txt" 2>&1 || { cat "$out/info.txt"; fail "info on the learned model"; }
 grep -q "bootstrap round 1;" "$out/info.txt" || { cat "$out/info.txt"; fail "the model's provenance"; }
 "$sscape" synth "$out/run/model.sscape" --random 1 -o "$out/body.obj" > /dev/null 2>&1 || fail "a body of the learned model"
@@ -105,6 +109,10 @@ printf 'scan,decision\nb1,maybe\n' > "$out/maybe.csv"
 expect 1 "maybe.csv:2: expected scan,accept|reject" "$out/scans" --decisions "$out/maybe.csv" -o "$out/bad"
 printf 'scan,age\nb1,31\n' > "$out/few_ages.csv"
 expect 1 "few_ages.csv has no row for scan b2" "$out/scans" --attributes "$out/few_ages.csv" -o "$out/bad"
+expect 1 "posture model" "$out/scans" --posture-model "$out/ages.csv" -o "$out/bad"
+"$sscape" make-test-model -o "$out/other_rig.sscape" --components 4 > /dev/null || fail "make-test-model"
+expect 1 "does not share the mesh, skeleton and skinning" "$out/scans" --posture-model "$out/other_rig.sscape" -o "$out/bad"
+[ ! -e "$out/bad" ] || fail "a refused bootstrap wrote $out/bad"
 mkdir -p "$out/two" && cp "$out/scans/b1.ply" "$out/scans/b2.ply" "$out/two/"
 expect 2 "holds 2 scans (.ply or .obj); bootstrapping needs at least 3" "$out/two" -o "$out/bad"
 echo "bootstrap: one round learned, resumed, decided by a person; refusals clear"

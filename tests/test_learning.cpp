@@ -227,6 +227,32 @@ TEST_CASE("a model learned from posed registrations: skeleton normalization keep
     CHECK(attributes.find("age") >= 0);
     CHECK(attributes.find("stature") >= 0);
     CHECK(skeleton.metadata.provenance.find("24 registrations") != std::string::npos);
+
+    // A posture model (posture_fit.hpp): the registrations' fits are the default model's, learned
+    // again onto the learned model as the template. With the posture model they unpose exactly as
+    // before; read as the template's own fits (their first 8 values in its components) the joints
+    // land elsewhere and the unposed bodies carry it.
+    learning::LearnSpec posed_by = spec;
+    posed_by.posture = learning::Posture::Skeleton;
+    posed_by.attributes = {};
+    posed_by.posture_model = std::make_shared<const format::ModelData>(m.data());
+    const format::ModelData relearned = learning::learn_model(skeleton, train, posed_by);
+    CHECK(relearned.metadata.provenance.find("with the poses of model '" + m.data().metadata.name + "'") != std::string::npos);
+    std::vector<learning::RegisteredScan> misread = train;
+    for (auto& scan : misread) scan.fit.shape.resize(8);
+    learning::LearnSpec own = posed_by;
+    own.posture_model = nullptr;
+    const format::ModelData misread_model = learning::learn_model(skeleton, misread, own);
+    const Model relearned_model(relearned, nullptr), misread_runtime(misread_model, nullptr);
+    double relearned_error = 0, misread_error = 0;
+    for (const Sample& s : test) {
+        relearned_error += simulation::best_approximation_error(relearned_model, s.rest, true) / kTest;
+        misread_error += simulation::best_approximation_error(misread_runtime, s.rest, true) / kTest;
+    }
+    INFO("held-out rest bodies, registrations unposed by the default model's fits: with it as the posture model " << relearned_error * 1e3
+                                                                                                                 << " mm, read as the template's fits " << misread_error * 1e3 << " mm");
+    CHECK(relearned_error < 0.5e-3);
+    CHECK(misread_error > 20 * relearned_error);
 }
 
 TEST_CASE("evaluation: six shape directions generalize fully at six components, posture does not", "[learning]") {
@@ -322,6 +348,11 @@ TEST_CASE("learning refuses bad registrations with a clear message", "[learning]
     refuses(scans, attrs, "2 values for 4");
     attrs.attributes = {{"age", "years", "", true, {30, 40, std::nan(""), 20}}};
     refuses(scans, attrs, "not finite");
+    learning::LearnSpec other_rig = spec;
+    auto moved = std::make_shared<format::ModelData>(m.data());
+    moved->skeleton.rest_orientations[4] += 0.2f;  // a joint's rest frame turned: its poses mean other rotations
+    other_rig.posture_model = moved;
+    refuses(scans, other_rig, "does not share the mesh, skeleton and skinning");
 }
 
 TEST_CASE("Procrustes with scale brings every body to one size and keeps their proportions", "[learning]") {

@@ -156,6 +156,13 @@ typedef struct ssc_bootstrap_def {
     uint32_t contact_sheet_entries;   /**< Registrations per contact sheet page, 0..100; 0: none. Default 12. */
     uint32_t fit_segments;            /**< Each round's model fits with its segment shape spaces (as
                                            ssc_registration_def.fit_segments), where it has them. Default 1. */
+    const char* posture_model_path;   /**< SSC_POSTURE_SKELETON: each accepted registration is unposed with this
+                                           model's fit to its scan (made once per scan, kept in posture_fits/), not
+                                           with the round's own fit; the model must share the starting model's mesh,
+                                           skeleton and skinning. NULL (default): the built-in model where it shares
+                                           them, else the rounds' own fits; "": the rounds' own fits. A model whose
+                                           shape space holds no posture poses bodies better than one learned from
+                                           posed scans (docs/learning.md, "Posture fits"). */
 } ssc_bootstrap_def;
 
 typedef struct ssc_bootstrap ssc_bootstrap;

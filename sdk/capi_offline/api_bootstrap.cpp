@@ -6,6 +6,7 @@
 #include "capi/registration_report.hpp"
 #include "common/files.hpp"
 #include "learning/bootstrap.hpp"
+#include "learning/posture_fit.hpp"
 #include <sscape/sscape_offline.h>
 #include "sscape_format/model_io.hpp"
 
@@ -24,25 +25,57 @@ struct ssc_bootstrap {
 
 namespace {
 
+// The built-in model, written out as a model file.
+std::vector<unsigned char> builtin_model(ssc_context* ctx) {
+    ssc_model* m = nullptr;
+    const ssc_status status = ssc_model_load_default(ctx, &m);
+    if (status != SSC_OK) fail(status, ssc_last_error());
+    std::vector<unsigned char> bytes;
+    try {
+        bytes = format::write_model(m->model.data());
+    } catch (...) {
+        ssc_model_release(m);
+        throw;
+    }
+    ssc_model_release(m);
+    return bytes;
+}
+
 std::vector<unsigned char> starting_model(ssc_context* ctx, const ssc_bootstrap_def& d) {
     std::vector<unsigned char> bytes;
     if (d.init_model_path) {
         const std::string s = read_regular_file(d.init_model_path, 1ull << 30);
         bytes.assign(s.begin(), s.end());
-    } else {  // the built-in model, written out as a model file
-        ssc_model* m = nullptr;
-        const ssc_status status = ssc_model_load_default(ctx, &m);
-        if (status != SSC_OK) fail(status, ssc_last_error());
-        try {
-            bytes = format::write_model(m->model.data());
-        } catch (...) {
-            ssc_model_release(m);
-            throw;
-        }
-        ssc_model_release(m);
+    } else {
+        bytes = builtin_model(ctx);
     }
     if (d.template_only) bytes = format::write_model(learning::template_only(format::read_model(bytes.data(), bytes.size())));
     else format::read_model(bytes.data(), bytes.size());  // refuses a bad model now
+    return bytes;
+}
+
+// The posture model's file bytes; empty: the rounds' own fits (see posture_model_path).
+std::vector<unsigned char> posture_model(ssc_context* ctx, const ssc_bootstrap_def& d, const std::vector<unsigned char>& start) {
+    if (d.posture != SSC_POSTURE_SKELETON || (d.posture_model_path && !*d.posture_model_path)) return {};
+    const format::ModelData start_data = format::read_model(start.data(), start.size());
+    if (d.posture_model_path) {
+        const std::string s = read_regular_file(d.posture_model_path, 1ull << 30);
+        std::vector<unsigned char> bytes(s.begin(), s.end());
+        format::ModelData posture;
+        try {
+            posture = format::read_model(bytes.data(), bytes.size());
+        } catch (const Error& e) {
+            throw Error(SSC_ERROR_INVALID_ARGUMENT, std::string("the posture model ") + d.posture_model_path + ": " + e.what());
+        }
+        learning::check_posture_model(start_data, posture);
+        return bytes;
+    }
+    std::vector<unsigned char> bytes = builtin_model(ctx);
+    try {
+        learning::check_posture_model(start_data, format::read_model(bytes.data(), bytes.size()));
+    } catch (const Error&) {
+        return {};  // a starting model of another template: its rounds' own fits
+    }
     return bytes;
 }
 
@@ -106,6 +139,7 @@ ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, 
         if (d.decisions_path) spec.decisions = learning::read_decisions(d.decisions_path);
         if (d.attributes_path) spec.attributes = learning::read_attribute_table(d.attributes_path);
         b->initial_model = starting_model(ctx, d);
+        spec.posture_model = posture_model(ctx, d, b->initial_model);
         *out = b.release();
     });
 }

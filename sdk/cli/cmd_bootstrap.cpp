@@ -19,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Options {
-    std::string scans, init, out, posture = "skeleton", units, up, decisions, attributes, name = "sscape-learned", license;
+    std::string scans, init, out, posture = "skeleton", posture_model, units, up, decisions, attributes, name = "sscape-learned", license;
     uint32_t rounds = 3, components = 20, threads = 0, segment_components = 0;
     double segment_band_mm = 80;
     bool scale = false, template_only = false, fit_segments = true;  // add_bootstrap: the library's default
@@ -53,6 +53,7 @@ int run_bootstrap(const Options& o) {
     def.name = o.name.c_str();
     def.license = o.license.empty() ? nullptr : o.license.c_str();
     def.threads = o.threads;
+    def.posture_model_path = o.posture_model.empty() ? nullptr : o.posture_model == "own" ? "" : o.posture_model.c_str();
     ssc_bootstrap* b = nullptr;
     check(ssc_bootstrap_create(nullptr, &def, &b), "bootstrap");
     std::unique_ptr<ssc_bootstrap, void (*)(ssc_bootstrap*)> owned(b, ssc_bootstrap_destroy);
@@ -101,6 +102,11 @@ Run add_bootstrap(CLI::App& app) {
     c->add_option("--components", o->components, "shape components of each learned model (default 20; fewer when fewer scans are accepted)")
         ->check(CLI::Range(1u, 1000u));
     c->add_option("--posture", o->posture, "posture normalization before PCA: skeleton (default), laplacian or none")->check(CLI::IsMember(kPostureNames));
+    c->add_option("--posture-model", o->posture_model,
+                  "skeleton posture normalization: unpose each accepted registration with this model's fit to its scan, made once per "
+                  "scan (default: the built-in model, whose shape space holds no posture, where it shares the starting model's mesh and "
+                  "skeleton); own: with each round's own fit")
+        ->type_name("MODEL.sscape|own");
     c->add_flag("--template-only", o->template_only, "start from the starting model's template alone (its mean body, skeleton and "
                                                      "skinning; no shape components): the weakest start");
     c->add_flag("--scale", o->scale, "learn with Procrustes alignment with scale (proportions only, no stature)");

@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/files.hpp"
 #include "common/rigid.hpp"
+#include "learning/posture_fit.hpp"
 #include "learning/scan_tables.hpp"
 #include "registration/registrar.hpp"
 #include "runtime/runtime_model.hpp"
@@ -43,6 +44,7 @@ struct ScanState {
     Inspection inspection;
     bool accepted = false, by_person = false;
     std::string reason;
+    fitting::FitState posture_fit;  // with a posture model, when accepted
 };
 
 void check_spec(const BootstrapSpec& spec) {
@@ -94,12 +96,19 @@ std::string round_registration_path(const std::string& out_dir, uint32_t round, 
 
 void prepare_bootstrap(const std::vector<unsigned char>& initial_model, const BootstrapSpec& spec) {
     check_spec(spec);
-    fs::create_directories(round_dir(spec.out_dir, 0));
     const std::string start_path = round_model_path(spec.out_dir, 0);
-    if (!fs::exists(start_path) || read_bytes(start_path) != initial_model) {
-        format::read_model(initial_model.data(), initial_model.size());  // refuses a bad model before anything is written
-        write_file_atomically(start_path, initial_model.data(), initial_model.size());
+    const format::ModelData start = format::read_model(initial_model.data(), initial_model.size());  // refuses a bad model before anything is written
+    if (!spec.posture_model.empty() && spec.learn.posture == Posture::Skeleton) {
+        format::ModelData posture;
+        try {
+            posture = format::read_model(spec.posture_model.data(), spec.posture_model.size());
+        } catch (const Error& e) {
+            throw Error(SSC_ERROR_INVALID_ARGUMENT, std::string("bootstrap: the posture model: ") + e.what());
+        }
+        check_posture_model(start, posture);
     }
+    fs::create_directories(round_dir(spec.out_dir, 0));
+    if (!fs::exists(start_path) || read_bytes(start_path) != initial_model) write_file_atomically(start_path, initial_model.data(), initial_model.size());
 }
 
 ScanFileJob round_registration_job(const BootstrapSpec& spec, uint32_t round, const ScanInput& scan) {
@@ -117,6 +126,10 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         if (progress && !progress(line)) throw Error(SSC_ERROR_CANCELLED, "bootstrap: stopped; run it again to resume");
     };
     ThreadPool pool(spec.threads ? spec.threads : std::max(1u, std::thread::hardware_concurrency()));
+
+    // The posture model (Posture::Skeleton only): its fits unpose every round's registrations.
+    std::unique_ptr<const PostureModel> posture;
+    if (!spec.posture_model.empty() && spec.learn.posture == Posture::Skeleton) posture = std::make_unique<const PostureModel>(spec.posture_model, spec.registration);
 
     std::vector<RoundReport> reports;
     std::string rounds_csv = "round,scans,registered,reused,failed,accepted,rejected,register_seconds,learn_seconds,components\n";
@@ -166,6 +179,19 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
                 st.accepted = person->second.accept && st.ok;  // a failed registration has nothing to learn from
                 st.reason = person->second.reason.empty() ? "decided by a person" : person->second.reason;
             }
+            if (st.accepted && posture) {
+                // The round's own fit is the posture fit when the round registered with the posture model.
+                const fitting::FitState* known = digest == posture->digest() && st.record.registered.has_fit ? &st.record.registered.fit : nullptr;
+                try {
+                    bool reused = false;
+                    st.posture_fit = posture->fit(in, spec.reading, posture_fit_path(spec.out_dir, in.name), known, &pool, &reused);
+                    if (!reused) ++rep.posture_fitted;
+                } catch (const Error& e) {
+                    if (e.status() != SSC_ERROR_INVALID_ARGUMENT) throw;
+                    st.accepted = false;
+                    st.reason = std::string("the posture model could not be fitted: ") + e.what();
+                }
+            }
             st.accepted ? ++rep.accepted : ++rep.rejected;
             char line[160];
             std::snprintf(line, sizeof line, "round %u: %s %zu of %zu: %s %s", round, in.name.c_str(), i + 1, spec.scans.size(),
@@ -173,6 +199,11 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
             say(std::string(line) + (st.accepted || st.reason.empty() ? "" : " (" + st.reason + ")"));
         }
         rep.register_seconds = since(t_register);
+        if (spec.learn.posture == Posture::Skeleton && !posture)
+            say("round " + std::to_string(round) + ": the accepted scans posed by their own fits (no posture model)");
+        if (posture)
+            say("round " + std::to_string(round) + ": the accepted scans posed by '" + posture->data()->metadata.name + "' (" + std::to_string(rep.posture_fitted) +
+                " new fits, the others' found in " + (fs::path(spec.out_dir) / "posture_fits").string() + ")");
 
         // The verdicts, then the figures they were drawn from (for review; read_decisions reads the first four columns).
         std::string decisions = "scan,decision,reason,by,lowest_region,lowest_within_20mm,most_unexplained_pct,folded_pct,stretched_pct,worst_joint,joint_excess_deg\n";
@@ -244,7 +275,10 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         std::vector<RegisteredScan> accepted;
         std::vector<std::string> accepted_names;
         for (std::size_t i = 0; i < states.size(); ++i)
-            if (states[i].accepted) accepted.push_back(states[i].record.registered), accepted_names.push_back(spec.scans[i].name);
+            if (states[i].accepted) {
+                accepted.push_back(states[i].record.registered), accepted_names.push_back(spec.scans[i].name);
+                if (posture) accepted.back().fit = states[i].posture_fit;
+            }
         if (accepted.size() < 3)
             throw Error(SSC_ERROR_INVALID_ARGUMENT, "bootstrap: round " + std::to_string(round) + " accepted " + std::to_string(accepted.size()) + " of " +
                                                         std::to_string(states.size()) + " registrations; a model needs at least 3 (see " + dir +
@@ -258,11 +292,13 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         prov << "bootstrap round " << round << "; " << accepted.size() << " of " << states.size() << " registrations accepted";
         learn.provenance = prov.str();
         learn.threads = pool.size();
+        learn.posture_model = posture ? posture->data() : nullptr;  // the fits in `accepted` are its
         nlohmann::ordered_json settings{{"start_model_digest", digest}, {"accepted", accepted_names}, {"components", learn.components},
                                         {"posture", posture_name(learn.posture)}, {"name", learn.name}, {"license", learn.license},
                                         {"provenance", learn.provenance}, {"segment_components", learn.segment_components},
                                         {"segment_band", learn.segment_band}, {"scale", learn.scale}};
         for (const auto& a : learn.attributes) settings["attributes"][a.name] = a.values;
+        if (posture) settings["posture_model_digest"] = posture->digest();
         // The registrations themselves: one made again (another reading of its scan) relearns the model.
         for (const auto& name : accepted_names)
             settings["registrations"].push_back(file_digest(read_regular_file(record_report_path(round_registration_path(spec.out_dir, round, name)), 64ull << 20)));

@@ -4,6 +4,7 @@
 #include "common/thread_pool.hpp"
 #include "common/rigid.hpp"
 #include "learning/laplacian_posture.hpp"
+#include "learning/posture_fit.hpp"
 #include "semantics/attribute_model.hpp"
 #include "sscape_format/basis_codec.hpp"
 #include "sscape_format/model_io.hpp"
@@ -42,6 +43,7 @@ void check_inputs(const format::ModelData& t, const std::vector<RegisteredScan>&
         SSC_REQUIRE_ARG_S(spec.segment_band >= 0.005 && spec.segment_band <= 0.5, "learn: the segments' blend band is " << spec.segment_band << " m; it must lie in [0.005, 0.5]");
         training::segment_layout(t, spec.segment_band);  // refuses a template without body parts now, not after the PCA
     }
+    if (spec.posture == Posture::Skeleton && spec.posture_model) check_posture_model(t, *spec.posture_model);
     for (const auto& a : spec.attributes) {
         SSC_REQUIRE_ARG_S(!a.name.empty(), "learn: an attribute has no name");
         SSC_REQUIRE_ARG_S(a.values.size() == scans.size(), "learn: attribute " << a.name << " has " << a.values.size() << " values for "
@@ -76,7 +78,8 @@ void align_to_template(training::SampleMatrix& X, const format::ModelData& t) {
 }  // namespace
 
 training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale,
-                                         uint32_t threads) {
+                                         uint32_t threads, const Model* posture_model) {
+    const Model& rig = posture_model ? *posture_model : model;
     const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
     for (const RegisteredScan& s : scans) {
         SSC_REQUIRE_ARG_S(s.vertices.size() == V, "learn: " << s.name << " has " << s.vertices.size() << " vertices; the model has " << V);
@@ -92,7 +95,7 @@ training::SampleMatrix normalized_bodies(const Model& model, const std::vector<R
     std::exception_ptr failure;
     pool.parallel_for(N, [&](std::size_t i, unsigned) {
         try {
-            const std::vector<Eigen::Vector3d> rest = posture == Posture::Skeleton    ? unpose_skeleton(model, scans[i].fit, scans[i].vertices)
+            const std::vector<Eigen::Vector3d> rest = posture == Posture::Skeleton    ? unpose_skeleton(rig, scans[i].fit, scans[i].vertices)
                                                       : posture == Posture::Laplacian ? laplacian->unpose(scans[i].vertices)
                                                                                       : scans[i].vertices;
             for (uint32_t v = 0; v < V; ++v)
@@ -116,9 +119,13 @@ format::ModelData learn_model(const format::ModelData& template_model, const std
     check_inputs(template_model, scans, spec);
     const Model model(template_model, nullptr);
     const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
+    const bool own_posture_model = spec.posture == Posture::Skeleton && spec.posture_model;
+    std::unique_ptr<const Model> posture_model;
+    if (own_posture_model) posture_model = std::make_unique<const Model>(*spec.posture_model, nullptr);
 
-    say(std::string("posture normalization: ") + posture_name(spec.posture) + (spec.scale ? ", Procrustes alignment with scale" : ", Procrustes alignment"));
-    training::SampleMatrix X = normalized_bodies(model, scans, spec.posture, spec.scale, spec.threads);
+    say(std::string("posture normalization: ") + posture_name(spec.posture) + (own_posture_model ? " (poses of '" + spec.posture_model->metadata.name + "')" : "") +
+        (spec.scale ? ", Procrustes alignment with scale" : ", Procrustes alignment"));
+    training::SampleMatrix X = normalized_bodies(model, scans, spec.posture, spec.scale, spec.threads, posture_model.get());
 
     say("PCA of " + std::to_string(N) + " registrations");
     const training::Pca p = training::pca(X, N, spec.components, spec.seed);
@@ -131,7 +138,8 @@ format::ModelData learn_model(const format::ModelData& template_model, const std
     m.metadata.description = "Body shape space (S-SCAPE) learned from " + std::to_string(N) + " registered scans.";
     std::ostringstream prov;
     prov << "Learned from " << N << " registrations of model '" << template_model.metadata.name
-         << "'; posture normalization " << posture_name(spec.posture) << (spec.scale ? "; Procrustes with scale (sizes removed)" : "") << "; " << K
+         << "'; posture normalization " << posture_name(spec.posture)
+         << (own_posture_model ? " with the poses of model '" + spec.posture_model->metadata.name + "'" : std::string()) << (spec.scale ? "; Procrustes with scale (sizes removed)" : "") << "; " << K
          << " components";
     if (!spec.provenance.empty()) prov << "\n" << spec.provenance;
     m.metadata.provenance = prov.str();

@@ -11,6 +11,7 @@
 #include "training/segment_shapes.hpp"
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,10 @@ struct LearnSpec {
     uint32_t segment_components = 0;
     double segment_band = 0.08;       // metres on each side of a segment border
     uint32_t threads = 0;             // posture normalization's worker threads; 0: every hardware thread
+    // Posture::Skeleton: the scans' fits are this model's (posture_fit.hpp), not the template's, and
+    // each registration is unposed with its skeleton; it must share the template's mesh, skeleton
+    // and skinning. Null: the template's own fits.
+    std::shared_ptr<const format::ModelData> posture_model;
 };
 
 struct LearnReport {
@@ -66,13 +71,15 @@ using LearnProgress = std::function<void(const std::string& stage)>;
 // aligned, and moved as one onto the model's mean standing on its ground. Throws ssc::Error
 // (INVALID_ARGUMENT) for a scan of another vertex count, or without its fit for Posture::Skeleton.
 // The bodies are normalized on `threads` threads (0: every hardware thread); the result does not
-// depend on the count.
+// depend on the count. posture_model: Posture::Skeleton unposes with its skeleton (the scans' fits
+// are its fits; it shares the model's mesh and rig); null: the model's.
 training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale = false,
-                                         uint32_t threads = 0);
+                                         uint32_t threads = 0, const Model* posture_model = nullptr);
 
 // Throws ssc::Error (INVALID_ARGUMENT) for fewer than 3 scans, a scan of another vertex count,
 // non-finite vertices, Posture::Skeleton with a scan lacking its fit, components (or segment components)
-// outside [1, bodies - 1], segments on a template without the body-part vertex sets, or attributes without one finite value per scan.
+// outside [1, bodies - 1], segments on a template without the body-part vertex sets, attributes without one finite value per scan, or a
+// posture model that does not share the template's mesh and rig.
 format::ModelData learn_model(const format::ModelData& template_model, const std::vector<RegisteredScan>& scans, const LearnSpec& spec,
                               LearnReport* report = nullptr, const LearnProgress& progress = {});
 

@@ -5,6 +5,7 @@
 #include "common/rigid.hpp"
 #include "export/mesh_writers.hpp"
 #include "io/readers.hpp"
+#include "learning/fit_json.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -85,17 +86,7 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
     ordered_json regions = ordered_json::object();
     for (const auto& q : r.quality.regions) regions[q.region] = quality_json(q.scan_to_registration, q.below);
     j["regions"] = regions;
-    if (r.registered.has_fit) {
-        const auto& f = r.registered.fit;
-        std::vector<double> rotations;
-        for (const auto& q : f.pose) rotations.insert(rotations.end(), {q.x(), q.y(), q.z(), q.w()});
-        // The whole body's coefficients, then the segments' when the fit had them.
-        const std::size_t K = std::min<std::size_t>(f.shape.size(), model.component_count());
-        const std::vector<double> whole(f.shape.begin(), f.shape.begin() + std::ptrdiff_t(K)), segments(f.shape.begin() + std::ptrdiff_t(K), f.shape.end());
-        j["fit"] = {{"shape", whole}, {"rotations_xyzw", rotations}, {"translation_m", {f.translation.x(), f.translation.y(), f.translation.z()}},
-                    {"scale", f.scale}, {"frame", "the scan's, turned so that scan_up is +Y, in metres"}};
-        if (!segments.empty()) j["fit"]["segment_shape"] = segments;
-    }
+    if (r.registered.has_fit) j["fit"] = fit_to_json(model, r.registered.fit);
     if (!r.quality.vertex_distance.empty()) {
         std::vector<double> mm;  // rounded to 0.01 mm: the report stays small
         for (double d : r.quality.vertex_distance) mm.push_back(d < 0 ? -1.0 : std::round(d * 1e5) / 100);
@@ -118,7 +109,7 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
     }
     RegistrationRecord r;
     r.registered.name = mesh_path;
-    const uint32_t V = model.vertex_count(), J = model.joint_count();
+    const uint32_t V = model.vertex_count();
     try {
         SSC_REQUIRE_ARG(j.is_object(), "not a JSON object");
         r.scan = j.value("scan", "");
@@ -152,23 +143,7 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
             SSC_REQUIRE_ARG(r.valid.size() == V, "valid has a flag per vertex of another model");
         }
         if (j.contains("fit")) {
-            const auto& fit = j.at("fit");
-            std::vector<double> shape = fit.at("shape");
-            const std::vector<double> rotations = fit.at("rotations_xyzw"), translation = fit.at("translation_m");
-            const std::vector<double> segments = fit.contains("segment_shape") ? fit.at("segment_shape").get<std::vector<double>>() : std::vector<double>();
-            SSC_REQUIRE_ARG(rotations.size() == 4 * std::size_t(J) && translation.size() == 3 && shape.size() <= model.component_count() &&
-                                segments.size() <= model.segment_coefficient_count() && (segments.empty() || shape.size() == model.component_count()),
-                            "the fit's sizes do not match the model");
-            shape.insert(shape.end(), segments.begin(), segments.end());
-            r.registered.fit.shape = shape;
-            for (uint32_t k = 0; k < J; ++k)
-                r.registered.fit.pose.emplace_back(rotations[4 * k + 3], rotations[4 * k], rotations[4 * k + 1], rotations[4 * k + 2]);
-            r.registered.fit.translation = Eigen::Vector3d(translation[0], translation[1], translation[2]);
-            r.registered.fit.scale = fit.at("scale").get<double>();
-            bool finite = std::isfinite(r.registered.fit.scale) && r.registered.fit.scale > 0 && r.registered.fit.translation.allFinite();
-            for (double x : shape) finite &= std::isfinite(x);
-            for (const auto& q : r.registered.fit.pose) finite &= q.coeffs().allFinite() && q.norm() > 0.5;
-            SSC_REQUIRE_ARG(finite, "the fit holds values that are not finite or not rotations");
+            r.registered.fit = fit_from_json(j.at("fit"), model);
             r.registered.has_fit = true;
         }
     } catch (const nlohmann::json::exception& e) {

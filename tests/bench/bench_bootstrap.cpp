@@ -11,17 +11,20 @@
 //
 // usage: sscape_bootstrap_bench --makehuman DIR [--scans 200] [--heldout 50] [--rounds 3]
 //                               [--components 20] [--points 30000] [--out DIR] [--threads N] [--start weak|template|default]
-//                               [--segment-components K] [--no-fit-segments] [--landmarks SD]
+//                               [--segment-components K] [--no-fit-segments] [--landmarks SD] [--posture-model builtin|own]
 // --start default: the built-in model (which has segment shape spaces); --segment-components: the
 // rounds' models learn them too; every round registers with them in the model fit where its model
 // has them (--no-fit-segments: the whole body's components only). --landmarks SD: each scan comes
 // with its CAESAR landmarks (but the hands'), placed with SD metres of error per axis.
+// --posture-model: the skeleton normalization unposes with the built-in model's fits to the scans
+// (the default, as sscape bootstrap's) or with each round's own fits.
 #include "common/files.hpp"
 #include "common/rigid.hpp"
 #include "common/thread_pool.hpp"
 #include "fitting/nearest.hpp"
 #include "learning/bootstrap.hpp"
 #include "learning/evaluate_learning.hpp"
+#include "learning/posture_fit.hpp"
 #include "learning/registration_record.hpp"
 #include "learning/simulated_collection.hpp"
 #include "registration/registration_quality.hpp"
@@ -203,7 +206,7 @@ int main(int argc, char** argv) {
     uint32_t scans = 200, heldout = 50, rounds = 3, components = 20, points = 30000, threads = 0, segment_components = 0;
     bool fit_segments = true;
     double landmark_noise = -1;
-    std::string posture = "skeleton";
+    std::string posture = "skeleton", posture_model = "builtin";
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -221,13 +224,15 @@ int main(int argc, char** argv) {
         else if (a == "--no-fit-segments") fit_segments = false;
         else if (a == "--landmarks") landmark_noise = std::stod(next());
         else if (a == "--posture") posture = next();
+        else if (a == "--posture-model") posture_model = next();
         else {
             std::fprintf(stderr, "usage: sscape_bootstrap_bench --makehuman DIR [--scans N] [--heldout N] [--rounds N] [--components K] [--points N] [--out DIR] [--threads N] "
-                                 "[--start weak|template|default] [--segment-components K] [--no-fit-segments] [--landmarks SD] [--posture none|skeleton|laplacian]\n");
+                                 "[--start weak|template|default] [--segment-components K] [--no-fit-segments] [--landmarks SD] [--posture none|skeleton|laplacian] [--posture-model builtin|own]\n");
             return 2;
         }
     }
-    if (makehuman.empty() || scans < 10 || (start != "weak" && start != "template" && start != "default")) {
+    if (makehuman.empty() || scans < 10 || (start != "weak" && start != "template" && start != "default") ||
+        (posture_model != "builtin" && posture_model != "own")) {
         std::fprintf(stderr, "sscape_bootstrap_bench: --makehuman DIR is required (../shared/makehuman), and at least 10 scans\n");
         return 2;
     }
@@ -272,6 +277,7 @@ int main(int argc, char** argv) {
     spec.learn.segment_components = segment_components;
     spec.learn.posture = learning::posture_from_name(posture);
     spec.registration.segments = fit_segments;
+    if (posture_model == "builtin") spec.posture_model = format::write_model(default_data);
     spec.sheet_entries = 12;
     const std::vector<learning::RoundReport> reports = learning::bootstrap(weak, spec, [&](const std::string& line) {
         if (line.find(" of ") == std::string::npos || line.find("learning") != std::string::npos) std::printf("[%5.0f s] %s\n", now(), line.c_str());
@@ -290,6 +296,10 @@ int main(int argc, char** argv) {
         if (const int64_t j = model.find_joint(name); j >= 0) moved[std::size_t(j)] = 1;
     std::printf("\nround  accepted  rejected  failed  error all (mm)  accepted (mm)  without hands (mm)  registering s/scan  pose error: limbs, all (deg)\n");
     std::vector<learning::RegisteredScan> last_accepted, last_true_pose;  // the latter unposed with the pose the truth was given
+    std::vector<learning::RegisteredScan> last_posture_fitted;            // with the posture model's fits (--posture-model builtin)
+    double posture_limbs = 0, posture_all = 0;
+    std::unique_ptr<const learning::PostureModel> posture_fitter;
+    if (!spec.posture_model.empty()) posture_fitter = std::make_unique<const learning::PostureModel>(spec.posture_model, spec.registration);
     for (const auto& r : reports) {
         const std::string dir = spec.out_dir + "/round_" + std::to_string(r.round);
         const std::vector<unsigned char> bytes = file_bytes(spec.out_dir + "/round_" + std::to_string(r.round - 1) + "/model.sscape");
@@ -325,12 +335,23 @@ int main(int argc, char** argv) {
                     for (uint32_t j = 0; j < model.joint_count(); ++j)
                         known.fit.pose[j] = joint_rotation(true_pose[s], j);
                     last_true_pose.push_back(known);
+                    if (posture_fitter) {  // the posture fit the bootstrap made (found on disk)
+                        learning::RegisteredScan posed_by = rec.registered;
+                        posed_by.fit = posture_fitter->fit(spec.scans[s], spec.reading, learning::posture_fit_path(spec.out_dir, spec.scans[s].name));
+                        const auto e = pose_error_degrees(moved, posed_by.fit, true_pose[s]);
+                        posture_limbs += e.first, posture_all += e.second;
+                        last_posture_fitted.push_back(posed_by);
+                    }
                 }
             }
         }
         std::printf("%5u  %8zu  %8zu  %6zu  %14.2f  %13.2f  %18.2f  %18.2f  %13.2f %12.2f\n", r.round, r.accepted, r.rejected, r.failed, 1e3 * all / double(n_all),
                     1e3 * acc / double(std::max<std::size_t>(1, n_acc)), 1e3 * body / double(std::max<std::size_t>(1, n_acc)),
                     r.register_seconds / double(scans), pose_limbs / double(std::max<std::size_t>(1, n_all)), pose_all / double(std::max<std::size_t>(1, n_all)));
+    }
+    if (posture_fitter) {
+        const double n = double(std::max<std::size_t>(1, last_posture_fitted.size()));
+        std::printf("the posture fits (the built-in model's) of the last round's accepted scans: pose error %.2f, %.2f deg\n", posture_limbs / n, posture_all / n);
     }
 
     // The learned model against a model learned directly from the true rest meshes, on held-out
@@ -347,7 +368,11 @@ int main(int argc, char** argv) {
     learning::LearnSpec wide = spec.learn;
     wide.components = std::min<uint32_t>(50, uint32_t(last_accepted.size()) - 1);
     wide.posture = learning::Posture::Skeleton;
-    const format::ModelData skeleton = learning::learn_model(registered_with, last_accepted, wide);
+    // As the bootstrap learns (with the posture fits when it has them), and with the rounds' own fits.
+    const format::ModelData own_fits = learning::learn_model(registered_with, last_accepted, wide);
+    wide.posture_model = std::make_shared<const format::ModelData>(default_data);
+    const format::ModelData skeleton = posture_fitter ? learning::learn_model(registered_with, last_posture_fitted, wide) : own_fits;
+    wide.posture_model = nullptr;
     const format::ModelData known_pose = learning::learn_model(registered_with, last_true_pose, wide);
     wide.posture = learning::Posture::None;
     const format::ModelData none = learning::learn_model(registered_with, last_accepted, wide);
@@ -376,9 +401,10 @@ int main(int argc, char** argv) {
     std::printf("\n");
     for (const Named& n : {Named{start == "template" ? "start: the template alone" : "weak start (50 true bodies, 5 comp)", &weak_data}, Named{"bootstrapped (final round)", &final_data},
                            Named{"from final registrations, skeleton", &skeleton}, Named{"  the same, unposed with the true pose", &known_pose},
-                           Named{"from final registrations, none", &none}, Named{"from final registrations, laplacian", &laplacian},
+                           Named{posture_fitter ? "  the same, each round's own fits" : nullptr, &own_fits}, Named{"from final registrations, none", &none}, Named{"from final registrations, laplacian", &laplacian},
                            Named{"from the true rest meshes", &direct}, Named{"from the true posed meshes, none", &posed_none},
                            Named{"from the true posed meshes, laplacian", &posed_laplacian}}) {
+        if (!n.name) continue;  // a line this run has not
         std::printf("%-38s", n.name);
         if (n.m->shape.stddev.empty()) {  // the template alone has nothing to measure
             std::printf("   (no shape components)\n");
@@ -397,8 +423,10 @@ int main(int argc, char** argv) {
     std::printf("\n");
     ThreadPool surface_pool(threads ? threads : std::max(1u, std::thread::hardware_concurrency()));
     for (const Named& n : {Named{"bootstrapped (final round)", &final_data}, Named{"from final registrations, skeleton", &skeleton},
-                           Named{"  the same, unposed with the true pose", &known_pose}, Named{"from final registrations, none", &none},
+                           Named{"  the same, unposed with the true pose", &known_pose},
+                           Named{posture_fitter ? "  the same, each round's own fits" : nullptr, &own_fits}, Named{"from final registrations, none", &none},
                            Named{"from final registrations, laplacian", &laplacian}, Named{"from the true rest meshes", &direct}}) {
+        if (!n.name) continue;
         std::printf("%-38s", n.name);
         for (double g : surface_generalization(*n.m, held, es.components, surface_pool)) g < 0 ? std::printf("   %5s", "-") : std::printf("   %5.2f", 1e3 * g);
         std::printf("\n");

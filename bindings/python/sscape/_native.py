@@ -90,7 +90,8 @@ class BootstrapDef(ctypes.Structure):
                 ("template_only", c_uint32), ("components", c_uint32), ("posture", c_int32), ("scale", c_uint32),
                 ("segment_components", c_uint32), ("segment_band", c_float), ("units", c_char_p), ("up", c_char_p),
                 ("decisions_path", c_char_p), ("attributes_path", c_char_p), ("name", c_char_p), ("license", c_char_p),
-                ("threads", c_uint32), ("contact_sheet_entries", c_uint32), ("fit_segments", c_uint32)]
+                ("threads", c_uint32), ("contact_sheet_entries", c_uint32), ("fit_segments", c_uint32),
+                ("posture_model_path", c_char_p)]
 
 
 #: int (*ssc_stage_progress_fn)(void* user, const char* stage, uint32_t done, uint32_t total)

@@ -33,6 +33,9 @@ def main(argv=None) -> int:
     b.add_argument("--rounds", type=int, default=3)
     b.add_argument("--components", type=int, default=20)
     b.add_argument("--posture", choices=["skeleton", "none", "laplacian"], default="skeleton")
+    b.add_argument("--posture-model", metavar="MODEL.sscape|own",
+                   help="skeleton: the model whose fits to the scans unpose the registrations (default: the built-in model; "
+                        "own: each round's own fits; as sscape bootstrap)")
     b.add_argument("--template-only", action="store_true")
     b.add_argument("--scale", action="store_true")
     b.add_argument("--segment-components", type=int, default=0)
@@ -87,7 +90,8 @@ def main(argv=None) -> int:
         rows = bootstrap(a.scans, a.init, a.rounds, a.output, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet,
                          components=a.components, posture=a.posture, template_only=a.template_only, scale=a.scale,
                          segment_components=a.segment_components, fit_segments=a.fit_segments, units=a.units, up=a.up, decisions=a.decisions,
-                         attributes=a.attributes, name=a.name, license=a.license)
+                         attributes=a.attributes, name=a.name, license=a.license,
+                         posture_model="" if a.posture_model == "own" else a.posture_model)
         for row in rows:
             print(f"round {row['round']}: {row['accepted']} accepted, {row['rejected']} rejected, {row['failed']} failed")
         print(f"wrote {a.output}/model.sscape")

@@ -28,16 +28,17 @@ class Bootstrapping(Handle):
                  posture: str = "skeleton", template_only: bool = False, scale: bool = False, segment_components: int = 0,
                  segment_band_mm: float = 80.0, units: Optional[str] = None, up: Optional[str] = None,
                  decisions: Optional[str] = None, attributes: Optional[str] = None, name: Optional[str] = None,
-                 license: Optional[str] = None, threads: int = 0, contact_sheet_entries: int = 12, fit_segments: bool = True):
+                 license: Optional[str] = None, threads: int = 0, contact_sheet_entries: int = 12, fit_segments: bool = True,
+                 posture_model: Optional[str] = None):
         need_offline("sscape.pipeline.bootstrap")
         if posture not in _POSTURES:
             raise ValueError(f"posture must be one of {', '.join(_POSTURES)}, not {posture!r}")
         d = BootstrapDef()
         lib.ssc_bootstrap_def_init(ctypes.byref(d), ctypes.sizeof(BootstrapDef))
         text = lambda v: None if v is None else os.fsencode(v)
-        self._strings = [text(v) for v in (scans_dir, out_dir, init_model, units, up, decisions, attributes, name, license)]
+        self._strings = [text(v) for v in (scans_dir, out_dir, init_model, units, up, decisions, attributes, name, license, posture_model)]
         (d.scans_dir, d.out_dir, d.init_model_path, d.units, d.up, d.decisions_path, d.attributes_path, d.name,
-         d.license) = self._strings
+         d.license, d.posture_model_path) = self._strings
         d.components, d.posture, d.template_only, d.scale = int(components), _POSTURES[posture], int(template_only), int(scale)
         d.segment_components, d.segment_band = int(segment_components), float(segment_band_mm) * 1e-3
         d.threads, d.contact_sheet_entries = int(threads), int(contact_sheet_entries)
@@ -94,8 +95,10 @@ def bootstrap(scans_dir: str, init_model: Optional[str] = None, rounds: int = 3,
     (with manifest.json: each registration task's status and error), model.sscape and rounds.csv.
 
     init_model: the starting .sscape (None: the built-in model). settings: components, posture
-    ("skeleton" or "none"), template_only, scale, segment_components, segment_band_mm, fit_segments, units,
-    up, decisions, attributes, name, license, threads (of the learning here), contact_sheet_entries.
+    ("skeleton", "none" or "laplacian"), posture_model (skeleton: the model whose fits to the scans unpose
+    the registrations, made here; None: the built-in model where it shares the starting model's rig; "":
+    each round's own fits), template_only, scale, segment_components, segment_band_mm, fit_segments,
+    units, up, decisions, attributes, name, license, threads (of the learning here), contact_sheet_entries.
     Cluster as register_collection's. Returns rounds.csv's rows."""
     say = log or (lambda line: print(line, file=sys.stderr))
     b = Bootstrapping(scans_dir, out_dir, init_model, **settings)
