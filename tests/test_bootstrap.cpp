@@ -364,75 +364,71 @@ TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan mad
     spec.learn.components = 2;
     spec.sheet_entries = 0;
     // The built-in model poses the scans of a round that registers with the template alone (a
-    // model of another digest, so every accepted scan is fitted).
-    // The template alone registers some of them poorly: a person accepts them all here, so that
-    // every scan is posed (the posture fits do not depend on the registration).
+    // model of another digest, so every accepted scan is fitted). The template alone registers
+    // some of them poorly: a person accepts them all, so that every scan is posed (the posture
+    // fits do not depend on the registration).
     const std::vector<unsigned char> start = format::write_model(learning::template_only(m.data()));
     spec.posture_model = format::write_model(m.data());
     for (const auto& scan : c.scans) spec.decisions[scan.name] = {true, "accepted for the test"};
 
-    SECTION("fitted once, used, found again on resuming") {
-        const std::vector<learning::RoundReport> first = learning::bootstrap(start, spec);
-        REQUIRE(first.size() == 1);
-        REQUIRE(first[0].failed == 0);
-        CHECK(first[0].accepted == c.scans.size());
-        CHECK(first[0].posture_fitted == c.scans.size());
-        const std::string round_json = read_regular_file(spec.out_dir + "/round_1/round.json", 1 << 20);
-        CHECK(round_json.find("posture_model_digest") != std::string::npos);
-        const std::string decisions = read_regular_file(spec.out_dir + "/round_1/decisions.csv", 1 << 20);
-        const Model template_model(learning::template_only(m.data()), nullptr);
-        const learning::PostureModel posture(spec.posture_model, spec.registration);
-        double posture_error = 0, own_error = 0;
-        int accepted = 0;
-        for (std::size_t s = 0; s < c.scans.size(); ++s) {
-            const std::string path = learning::posture_fit_path(spec.out_dir, c.scans[s].name);
-            const bool was_accepted = decisions.find("\n" + c.scans[s].name + ",accept,") != std::string::npos;
-            CHECK(std::filesystem::exists(path) == was_accepted);
-            if (!was_accepted) continue;
-            // The posture fit's pose and the round's own (the template alone's) against the pose the truth was given.
-            bool reused = false;
-            const fitting::FitState posture_fit = posture.fit(c.scans[s], spec.reading, path, nullptr, nullptr, &reused);
-            CHECK(reused);
-            const learning::RegistrationRecord own =
-                learning::read_registration_record(learning::round_registration_path(spec.out_dir, 1, c.scans[s].name), template_model, true);
-            for (uint32_t j = 0; j < m.joint_count(); ++j) {
-                const std::vector<float>& t = c.poses[s];
-                const Eigen::Quaterniond truth(t[4 * j + 3], t[4 * j], t[4 * j + 1], t[4 * j + 2]);
-                posture_error += Eigen::AngleAxisd(posture_fit.pose[j].normalized() * truth.normalized().conjugate()).angle() / m.joint_count();
-                own_error += Eigen::AngleAxisd(own.registered.fit.pose[j].normalized() * truth.normalized().conjugate()).angle() / m.joint_count();
-            }
-            ++accepted;
+    // A posture model of another rig, or no model at all: refused before anything is written.
+    format::ModelData moved = m.data();
+    moved.skeleton.parents[5] = 0;
+    for (const std::vector<unsigned char>& bad : {format::write_model(moved), std::vector<unsigned char>{'n', 'o'}}) {
+        spec.posture_model = bad;
+        try {
+            learning::bootstrap(start, spec);
+            FAIL("a bad posture model accepted");
+        } catch (const Error& e) {
+            CHECK(e.status() == SSC_ERROR_INVALID_ARGUMENT);
+            CHECK(std::string(e.what()).find("posture model") != std::string::npos);
         }
-        posture_error /= accepted, own_error /= accepted;
-        INFO("mean joint rotation error: the built-in model's fits " << posture_error * 180 / M_PI << " deg, the template alone's " << own_error * 180 / M_PI
-                                                                     << " deg");
-        CHECK(posture_error < own_error);
-        CHECK(posture_error * 180 / M_PI < 8);
+        CHECK_FALSE(std::filesystem::exists(spec.out_dir));
+    }
+    spec.posture_model = format::write_model(m.data());
 
-        const std::vector<learning::RoundReport> again = learning::bootstrap(start, spec);
-        CHECK(again[0].posture_fitted == 0);
-        CHECK(again[0].model_reused);
-        // The rounds' own fits instead: the same registrations, another model.
-        learning::BootstrapSpec own_fits = spec;
-        own_fits.posture_model.clear();
-        const std::vector<learning::RoundReport> own = learning::bootstrap(start, own_fits);
-        CHECK(own[0].reused == own[0].registered + own[0].reused);
-        CHECK_FALSE(own[0].model_reused);
-    }
-    SECTION("a posture model of another rig or no model at all: refused before anything is written") {
-        format::ModelData moved = m.data();
-        moved.skeleton.parents[5] = 0;
-        for (const std::vector<unsigned char>& bad : {format::write_model(moved), std::vector<unsigned char>{'n', 'o'}}) {
-            spec.posture_model = bad;
-            try {
-                learning::bootstrap(start, spec);
-                FAIL("a bad posture model accepted");
-            } catch (const Error& e) {
-                CHECK(e.status() == SSC_ERROR_INVALID_ARGUMENT);
-                CHECK(std::string(e.what()).find("posture model") != std::string::npos);
-            }
-            CHECK_FALSE(std::filesystem::exists(spec.out_dir));
+    // Fitted once, used, found again on resuming.
+    const std::vector<learning::RoundReport> first = learning::bootstrap(start, spec);
+    REQUIRE(first.size() == 1);
+    REQUIRE(first[0].failed == 0);
+    CHECK(first[0].accepted == c.scans.size());
+    CHECK(first[0].posture_fitted == c.scans.size());
+    const std::string round_json = read_regular_file(spec.out_dir + "/round_1/round.json", 1 << 20);
+    CHECK(round_json.find("posture_model_digest") != std::string::npos);
+    const std::string decisions = read_regular_file(spec.out_dir + "/round_1/decisions.csv", 1 << 20);
+    const Model template_model(learning::template_only(m.data()), nullptr);
+    const learning::PostureModel posture(spec.posture_model, spec.registration);
+    double posture_error = 0, own_error = 0;
+    for (std::size_t s = 0; s < c.scans.size(); ++s) {
+        const std::string path = learning::posture_fit_path(spec.out_dir, c.scans[s].name);
+        REQUIRE(std::filesystem::exists(path));
+        // The posture fit's pose and the round's own (the template alone's) against the pose the truth was given.
+        bool reused = false;
+        const fitting::FitState posture_fit = posture.fit(c.scans[s], spec.reading, path, nullptr, nullptr, &reused);
+        CHECK(reused);
+        const learning::RegistrationRecord own =
+            learning::read_registration_record(learning::round_registration_path(spec.out_dir, 1, c.scans[s].name), template_model, true);
+        for (uint32_t j = 0; j < m.joint_count(); ++j) {
+            const std::vector<float>& t = c.poses[s];
+            const Eigen::Quaterniond truth(t[4 * j + 3], t[4 * j], t[4 * j + 1], t[4 * j + 2]);
+            posture_error += Eigen::AngleAxisd(posture_fit.pose[j].normalized() * truth.normalized().conjugate()).angle() / m.joint_count();
+            own_error += Eigen::AngleAxisd(own.registered.fit.pose[j].normalized() * truth.normalized().conjugate()).angle() / m.joint_count();
         }
     }
+    posture_error /= double(c.scans.size()), own_error /= double(c.scans.size());
+    INFO("mean joint rotation error: the built-in model's fits " << posture_error * 180 / M_PI << " deg, the template alone's " << own_error * 180 / M_PI
+                                                                 << " deg");
+    CHECK(posture_error < own_error);
+    CHECK(posture_error * 180 / M_PI < 8);
+
+    const std::vector<learning::RoundReport> again = learning::bootstrap(start, spec);
+    CHECK(again[0].posture_fitted == 0);
+    CHECK(again[0].model_reused);
+    // The rounds' own fits instead: the same registrations, another model.
+    learning::BootstrapSpec own_fits = spec;
+    own_fits.posture_model.clear();
+    const std::vector<learning::RoundReport> own = learning::bootstrap(start, own_fits);
+    CHECK(own[0].registered == 0);
+    CHECK_FALSE(own[0].model_reused);
     std::filesystem::remove_all(folder);
 }
