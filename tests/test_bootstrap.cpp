@@ -343,7 +343,7 @@ TEST_CASE("one round of bootstrapping on 20 MakeHuman booth scans: most accepted
     std::filesystem::remove_all(folder);
 }
 
-TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan made once, kept and used; another rig refused", "[bootstrap][makehuman]") {
+TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan made once, kept and used, another rig refused", "[bootstrap][makehuman]") {
     const std::string root = test::makehuman_root();
     if (root.empty()) {
         WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");

@@ -129,7 +129,7 @@ TEST_CASE("rotating one joint by 90 degrees moves its skinned vertices as the ma
     SECTION("bone-aligned rest orientations") { check_rotation(true); }
 }
 
-TEST_CASE("axis-angle and quaternion poses agree; translation moves everything", "[synthesis]") {
+TEST_CASE("axis-angle and quaternion poses agree, and translation moves everything", "[synthesis]") {
     Fixture f(true);
     std::vector<float> aa(3ull * f.J, 0.f), q(4ull * f.J, 0.f);
     for (uint32_t j = 0; j < f.J; ++j) {
@@ -192,7 +192,7 @@ TEST_CASE("normals are unit length and point out of the surface", "[synthesis]")
     CHECK(n[3 * lm.vertex + 1] > 0.99f);  // the top of the head faces up
 }
 
-TEST_CASE("strided output equals packed output; landmarks follow the body", "[synthesis]") {
+TEST_CASE("strided output equals packed output, and landmarks follow the body", "[synthesis]") {
     Fixture f;
     const auto packed = test::posed(f.model.get(), f.body.get());
     std::vector<float> wide(5ull * f.V, -7.f);
