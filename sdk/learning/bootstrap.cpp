@@ -98,15 +98,7 @@ void prepare_bootstrap(const std::vector<unsigned char>& initial_model, const Bo
     check_spec(spec);
     const std::string start_path = round_model_path(spec.out_dir, 0);
     const format::ModelData start = format::read_model(initial_model.data(), initial_model.size());  // refuses a bad model before anything is written
-    if (!spec.posture_model.empty() && spec.learn.posture == Posture::Skeleton) {
-        format::ModelData posture;
-        try {
-            posture = format::read_model(spec.posture_model.data(), spec.posture_model.size());
-        } catch (const Error& e) {
-            throw Error(SSC_ERROR_INVALID_ARGUMENT, std::string("bootstrap: the posture model: ") + e.what());
-        }
-        check_posture_model(start, posture);
-    }
+    if (!spec.posture_model.empty() && spec.learn.posture == Posture::Skeleton) check_posture_model(start, read_posture_model(spec.posture_model));
     fs::create_directories(round_dir(spec.out_dir, 0));
     if (!fs::exists(start_path) || read_bytes(start_path) != initial_model) write_file_atomically(start_path, initial_model.data(), initial_model.size());
 }

@@ -25,8 +25,6 @@ void check_posture_model(const format::ModelData& t, const format::ModelData& p)
                               "' (its poses would not unpose that model's registrations)");
 }
 
-namespace {
-
 format::ModelData read_posture_model(const std::vector<unsigned char>& file) {
     try {
         return format::read_model(file.data(), file.size());
@@ -34,8 +32,6 @@ format::ModelData read_posture_model(const std::vector<unsigned char>& file) {
         throw Error(SSC_ERROR_INVALID_ARGUMENT, std::string("the posture model: ") + e.what());
     }
 }
-
-}  // namespace
 
 PostureModel::PostureModel(const std::vector<unsigned char>& file, const registration::RegistrationOptions& options)
     : data_(std::make_shared<const format::ModelData>(read_posture_model(file))),

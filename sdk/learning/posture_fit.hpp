@@ -26,6 +26,10 @@ namespace ssc::learning {
 // Where bootstrapping keeps a scan's posture fit.
 std::string posture_fit_path(const std::string& out_dir, const std::string& scan_name);
 
+// A posture model's file bytes read; ssc::Error (INVALID_ARGUMENT, saying it is the posture
+// model) for a bad file.
+format::ModelData read_posture_model(const std::vector<unsigned char>& file);
+
 // Throws ssc::Error (INVALID_ARGUMENT) unless `posture` shares the template's mesh (vertex count,
 // triangles), skeleton (joint names, parents, rest orientations) and skinning: the poses of one
 // must unpose the other's registrations.
