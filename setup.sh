@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # sscape setup: installs the Debian packages the build needs, builds, and runs a job.
-#   ./setup.sh         install, build (Release), run the main job: random bodies of the default model
-#   ./setup.sh test    install, build, run the whole test suite, also under ASan + UBSan, then fuzz
-# Environment: JOBS (parallel build jobs, default: number of cores), FUZZ_SECONDS (per fuzz target, default 30).
+#   ./setup.sh         install, build the library and the command line (Release), run the main job:
+#                      random bodies of the default model
+#   ./setup.sh test    install, build everything (tests, benchmarks, samples), run the whole test suite,
+#                      also under ASan + UBSan, then fuzz; prints each stage's time at the end
+# Environment: JOBS (parallel build jobs, default: number of cores), FUZZ_SECONDS (per fuzz target,
+# default 30), SSCAPE_CCACHE=0 (compile without ccache).
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -10,12 +13,31 @@ mode="${1:-run}"
 case "$mode" in run|test) ;; *) echo "usage: $0 [run|test]" >&2; exit 2 ;; esac
 jobs="${JOBS:-$(nproc)}"
 
-packages=(cmake make g++ pkg-config libeigen3-dev libnanoflann-dev libflatbuffers-dev flatbuffers-compiler
-          libzstd-dev libxxhash-dev libpng-dev nlohmann-json3-dev libcli11-dev catch2 libbenchmark-dev)
-# The test suite also fuzzes, with clang's libFuzzer, and tests the Python package (Debian's python3)
-# and the C#, Rust and JavaScript bindings.
-if [ "$mode" = test ]; then packages+=(clang libclang-rt-14-dev python3-numpy python3-pytest python3-venv python3-setuptools python3-wheel
-                                     python3-distributed python3-tqdm)
+# Stage times, printed at the end (also when a stage fails).
+stage_names=() stage_seconds=()
+stage_start=$SECONDS stage_name=""
+stage() {  # stage NAME: closes the running stage, starts NAME
+  if [ -n "$stage_name" ]; then stage_names+=("$stage_name"); stage_seconds+=($((SECONDS - stage_start))); fi
+  stage_name="$1" stage_start=$SECONDS
+}
+print_stages() {
+  local rc=$? i
+  stage ""
+  echo "setup: stage times ($mode, $([ "$rc" -eq 0 ] && echo passed || echo "FAILED, exit $rc")):"
+  for i in "${!stage_names[@]}"; do
+    printf 'setup:   %-28s %4d min %02d s\n' "${stage_names[i]}" $((stage_seconds[i] / 60)) $((stage_seconds[i] % 60))
+  done
+  printf 'setup:   %-28s %4d min %02d s\n' total $((SECONDS / 60)) $((SECONDS % 60))
+}
+trap print_stages EXIT
+
+stage "Debian packages"
+packages=(cmake ninja-build ccache g++ pkg-config libeigen3-dev libnanoflann-dev libflatbuffers-dev flatbuffers-compiler
+          libzstd-dev libxxhash-dev libpng-dev nlohmann-json3-dev libcli11-dev)
+# The test suite also builds the tests (Catch2) and benchmarks (Google Benchmark), fuzzes with clang's
+# libFuzzer, and tests the Python package (Debian's python3) and the C#, Rust and JavaScript bindings.
+if [ "$mode" = test ]; then packages+=(catch2 libbenchmark-dev clang libclang-rt-14-dev python3-numpy python3-pytest python3-venv
+                                     python3-setuptools python3-wheel python3-distributed python3-tqdm)
   # The bindings' toolchains: Mono for C#; cargo for Rust unless rustup's is there; Node.js for JavaScript.
   packages+=(mono-mcs mono-runtime)
   command -v cargo > /dev/null 2>&1 || [ -x "$HOME/.cargo/bin/cargo" ] || packages+=(cargo)
@@ -35,11 +57,28 @@ else
   echo "setup: all Debian packages present"
 fi
 
-build() {  # build DIR [cmake args...]; TARGET=name builds only that target
+# Ninja, and ccache with its cache outside the clone (ccache's own default, ~/.cache/ccache): a
+# second build of the same sources, in this clone or another one (paths are taken relative to the
+# clone, CCACHE_BASEDIR), compiles nothing again. Nested builds of the tests (the runtime-only build,
+# the install consumers) take both from the environment, as CMake does.
+export CMAKE_GENERATOR="${CMAKE_GENERATOR:-Ninja}"
+if [ "${SSCAPE_CCACHE:-1}" != 0 ] && command -v ccache > /dev/null 2>&1; then
+  export CMAKE_C_COMPILER_LAUNCHER=ccache CMAKE_CXX_COMPILER_LAUNCHER=ccache
+  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true CCACHE_MAXSIZE="${CCACHE_MAXSIZE:-10G}"
+fi
+
+build() {  # build DIR [cmake args...]; TARGET="a b" builds only those targets
   local dir="$1"; shift
   echo "setup: building in $dir"
-  cmake -S . -B "$dir" "$@" > "$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; exit 1; }
-  cmake --build "$dir" -j "$jobs" ${TARGET:+--target "$TARGET"}
+  local generator_args=()
+  # A folder configured earlier keeps its generator (CMake refuses to switch).
+  if [ -f "$dir/CMakeCache.txt" ]; then
+    generator_args=(-G "$(sed -n 's/^CMAKE_GENERATOR:INTERNAL=//p' "$dir/CMakeCache.txt")")
+  fi
+  mkdir -p "$dir"
+  cmake -S . -B "$dir" "${generator_args[@]}" "$@" > "$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; exit 1; }
+  # shellcheck disable=SC2086
+  cmake --build "$dir" -j "$jobs" ${TARGET:+--target $TARGET}
 }
 
 # npm packages (pinned): the Khronos glTF validator for the export test; koffi and TypeScript for the
@@ -58,8 +97,17 @@ npm_tools() {  # npm_tools DIR PACKAGE@VERSION...
   fi
 }
 
+# The main build: Release. The main job needs only the library and the command line; the test
+# command adds the tests, benchmarks and samples to the same folder (the same objects, reused).
+with_tests=OFF
+[ "$mode" = test ] && with_tests=ON
+release_args=(-DCMAKE_BUILD_TYPE=Release -DSSCAPE_BUILD_TESTS=$with_tests -DSSCAPE_BUILD_BENCHMARKS=$with_tests
+              -DSSCAPE_BUILD_SAMPLES=$with_tests)
+
 if [ "$mode" = run ]; then
-  build build -DCMAKE_BUILD_TYPE=Release
+  stage "build (library, command)"
+  TARGET="sscape sscape_cli" build build "${release_args[@]}"
+  stage "main job"
   mkdir -p out
   # The main job: random bodies of the default model (built into the library) as OBJ, glTF and a picture.
   ./build/bin/sscape info
@@ -67,9 +115,13 @@ if [ "$mode" = run ]; then
   ./build/bin/sscape synth --random 5 --seed 1 -o out/body.glb
   echo "setup: bodies written to out/ (body_*.obj, body_*.glb, bodies.png)"
 else
-  build build -DCMAKE_BUILD_TYPE=Release
+  stage "Release build"
+  build build "${release_args[@]}"
+  stage "npm packages"
   npm_tools build "$gltf_validator" koffi@3.3.4 typescript@5.9.3
+  stage "Release tests"
   (cd build && ctest -j "$jobs" --output-on-failure)
+  stage "sanitizer build"
   # Line tables only (-g1): enough for the sanitizers' reports, 15 % less compile time than -g.
   lines_only=(-DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG")
   # The command line's and the tests' own files at -O0 (SSCAPE_UNOPTIMIZED_CLIENTS), the libraries at
@@ -77,9 +129,12 @@ else
   build build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "${lines_only[@]}" -DSSCAPE_SANITIZE=ON -DSSCAPE_BUILD_BENCHMARKS=OFF \
       -DSSCAPE_UNOPTIMIZED_CLIENTS=ON
   npm_tools build-sanitize "$gltf_validator"
+  stage "sanitizer tests"
   (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest -j "$jobs" --output-on-failure)
   # The fuzz targets (model loading, each reader), half a minute each (two at a time); long runs: see README.
+  stage "fuzz build"
   CC=clang CXX=clang++ TARGET=fuzz_all build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo "${lines_only[@]}" -DSSCAPE_FUZZ=ON \
       -DSSCAPE_BUILD_TESTS=OFF -DSSCAPE_BUILD_BENCHMARKS=OFF -DSSCAPE_BUILD_TRAINING=OFF -DSSCAPE_BUILD_SAMPLES=OFF
+  stage "fuzzing"
   tests/fuzz/run.sh build-fuzz "${FUZZ_SECONDS:-30}"
 fi

@@ -20,6 +20,11 @@ if(SSCAPE_ARCH AND CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64")
   endif()
 endif()
 
+# Objects name their sources relative to the checkout (__FILE__, debug info): the same bytes from
+# any clone, so a compiler cache (setup.sh uses ccache) shares them between clones, and a build is
+# reproducible wherever it was made.
+add_compile_options(-ffile-prefix-map=${PROJECT_SOURCE_DIR}/=)
+
 # Hardening of what ships: stack protector everywhere, fortified libc calls where optimising
 # (glibc needs -O; the sanitizers replace those checks), full RELRO and immediate binding for the
 # shared library and programs.

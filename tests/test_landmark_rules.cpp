@@ -245,7 +245,7 @@ TEST_CASE("the default model's landmarks follow the CAESAR definitions on women,
 TEST_CASE("the shipped landmarks are what the rules place on the model's mean", "[landmarks]") {
     // Compared as positions: a build with other floating-point contractions (the shipped model was
     // made by an x86-64-v3 build) moves a ray's hit in the last bits.
-    const auto data = ssc::format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH);
+    const auto data = ssc::format::read_model_file(test::default_model_file());
     const auto& mean = data.shape.mean;
     const auto placed = ssc::training::place_caesar_landmarks(ssc::training::landmark_template(data, mean.data()));
     auto position = [&](const ssc::format::Landmark& l) { return ssc::training::landmark_position(l, mean.data(), data.mesh.triangles.data()); };

@@ -141,7 +141,7 @@ TEST_CASE("a scan file is registered into its record, reused while current, and 
     CHECK(read_regular_file(mesh, 1u << 30) == bytes);
 
     // The same model file's bytes loaded another way: the same digest, reused.
-    const std::string model_bytes = read_regular_file(SSCAPE_DEFAULT_MODEL_PATH, 1u << 30);
+    const std::string model_bytes = read_regular_file(test::default_model_file(), 1u << 30);
     ssc_model* same = nullptr;
     REQUIRE(ssc_model_load_memory(nullptr, model_bytes.data(), model_bytes.size(), &same) == SSC_OK);
     ssc_registration* reg_same = nullptr;
