@@ -6,8 +6,10 @@
 #   small (the sanitizer build): without the second registration of every scan under another up axis,
 #   which runs the same code as the first, and the template-only start on 3 of the scans.
 set -u
-sscape=$1 out=$2/bootstrap scale=${3:-full}
-rm -rf "$out" && mkdir -p "$out/scans" "$out/truth"
+# Under a long folder name, as users' paths are: no line may be cut (a fixed-width line once lost
+# the "reused" this test looks for).
+sscape=$1 out=$2/bootstrap/a_folder_with_a_name_as_long_as_the_paths_of_real_collections_on_real_disks_are_every_day scale=${3:-full}
+rm -rf "$2/bootstrap" && mkdir -p "$out/scans" "$out/truth"
 fail() { echo "FAIL: $*"; exit 1; }
 for i in 1 2 3 4 5 6; do
     "$sscape" simulate -o "$out/truth/b$i" --seed "$((40 + i))" --points 8000 --pose-amount 0.3 > /dev/null || fail "simulate $i"

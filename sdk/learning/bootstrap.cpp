@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/files.hpp"
 #include "common/rigid.hpp"
+#include "common/text.hpp"
 #include "learning/posture_fit.hpp"
 #include "learning/scan_tables.hpp"
 #include "registration/registrar.hpp"
@@ -185,10 +186,9 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
                 }
             }
             st.accepted ? ++rep.accepted : ++rep.rejected;
-            char line[160];
-            std::snprintf(line, sizeof line, "round %u: %s %zu of %zu: %s %s", round, in.name.c_str(), i + 1, spec.scans.size(),
-                          st.ok ? how.c_str() : "failed", st.accepted ? "accepted" : "rejected");
-            say(std::string(line) + (st.accepted || st.reason.empty() ? "" : " (" + st.reason + ")"));
+            const std::string line = format_text("round %u: %s %zu of %zu: %s %s", round, in.name.c_str(), i + 1, spec.scans.size(),
+                                                 st.ok ? how.c_str() : "failed", st.accepted ? "accepted" : "rejected");
+            say(line + (st.accepted || st.reason.empty() ? "" : " (" + st.reason + ")"));
         }
         rep.register_seconds = since(t_register);
         if (spec.learn.posture == Posture::Skeleton && !posture)
@@ -316,14 +316,11 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         rep.learn_seconds = since(t_learn);
         rep.components = learn.components;
         rep.model_path = model_path;
-        char line[200];
-        std::snprintf(line, sizeof line, "round %u: %zu registered, %zu reused, %zu failed; %zu accepted, %zu rejected; model %s (%u components)%s",
-                      round, rep.registered, rep.reused, rep.failed, rep.accepted, rep.rejected, model_path.c_str(), rep.components,
-                      rep.model_reused ? ", reused" : "");
-        say(line);
-        std::snprintf(line, sizeof line, "%u,%zu,%zu,%zu,%zu,%zu,%zu,%.1f,%.1f,%u\n", round, states.size(), rep.registered, rep.reused, rep.failed,
-                      rep.accepted, rep.rejected, rep.register_seconds, rep.learn_seconds, rep.components);
-        rounds_csv += line;
+        say(format_text("round %u: %zu registered, %zu reused, %zu failed; %zu accepted, %zu rejected; model %s (%u components)%s", round,
+                        rep.registered, rep.reused, rep.failed, rep.accepted, rep.rejected, model_path.c_str(), rep.components,
+                        rep.model_reused ? ", reused" : ""));
+        rounds_csv += format_text("%u,%zu,%zu,%zu,%zu,%zu,%zu,%.1f,%.1f,%u\n", round, states.size(), rep.registered, rep.reused, rep.failed,
+                                  rep.accepted, rep.rejected, rep.register_seconds, rep.learn_seconds, rep.components);
         reports.push_back(rep);
     }
     const std::vector<unsigned char> last = read_bytes(reports.back().model_path);
