@@ -25,4 +25,5 @@ mcs -r:Sscape.dll -out:Bodies.exe "$here/Examples/Bodies.cs"
 mono Bodies.exe "$work" | tee "$work/example.log"
 mcs -r:Sscape.dll -warn:4 -warnaserror -out:Bench.exe "$here/Examples/Bench.cs"  # builds (tests/bench/bindings_bench.sh runs it)
 grep -q "wrote .*body_0.glb" "$work/example.log"
+grep -Eq "^sscape [0-9]+\.[0-9]+\.[0-9]+: " "$work/example.log" || { echo "the example's version is not written as major.minor.patch"; exit 1; }
 [ -s "$work/body_0.glb" ]

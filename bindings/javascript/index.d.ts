@@ -14,7 +14,7 @@ export class SscapeError extends Error {
 }
 
 /** The loaded library's version (ssc_version). */
-export function version(): { major: number; minor: number; patch: number; number: number };
+export function version(): { major: number; minor: number; patch: number; number: number; text: string };
 
 /** The C API major version this package is written for; the loaded library must have the same. */
 export const ABI_MAJOR: number;

@@ -22,6 +22,7 @@ npm install --silent --no-audit --no-fund --prefer-offline --install-links "$her
   || { cat "$work/npm.log"; exit 1; }
 node node_modules/sscape/examples/bodies.js "$work" | tee "$work/example.log"
 grep -q "wrote .*body_0.glb" "$work/example.log"
+grep -Eq "^sscape [0-9]+\.[0-9]+\.[0-9]+: " "$work/example.log" || { echo "the example's version is not written as major.minor.patch"; exit 1; }
 [ -s "$work/body_0.glb" ]
 
 # The TypeScript declarations, against the installed package (tsc from NODE_PATH, where setup.sh puts it).

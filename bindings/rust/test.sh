@@ -17,4 +17,5 @@ cargo test --offline --locked
 # The README's example, as written there.
 cargo run --offline --locked --example bodies -- "$work" | tee "$work/example.log"
 grep -q "wrote .*body_0.glb" "$work/example.log"
+grep -Eq "^sscape [0-9]+\.[0-9]+\.[0-9]+: " "$work/example.log" || { echo "the example's version is not written as major.minor.patch"; exit 1; }
 [ -s "$work/body_0.glb" ]

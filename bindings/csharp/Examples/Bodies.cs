@@ -13,7 +13,7 @@ static class Bodies
         using (Body body = model.CreateBody())
         {
             Console.WriteLine("sscape {0}: {1} vertices, {2} joints, {3} shape components",
-                              Library.Version, model.VertexCount, model.JointCount, model.ShapeCount);
+                              Library.VersionText, model.VertexCount, model.JointCount, model.ShapeCount);
             int k = model.ShapeCount;
             float[] shapes = model.SampleShapes(5, 1);
             for (int i = 0; i < 5; ++i)

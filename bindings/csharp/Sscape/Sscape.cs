@@ -43,6 +43,11 @@ namespace Sscape
         /// <summary>The loaded library's version number (major * 10000 + minor * 100 + patch).</summary>
         public static uint Version { get { return Api.ssc_version(); } }
 
+        /// <summary>The loaded library's version as people write it: "0.1.0".</summary>
+        public static string VersionText { get { return Text(Api.ssc_version()); } }
+
+        static string Text(uint number) { return string.Format("{0}.{1}.{2}", number / 10000, number / 100 % 100, number % 100); }
+
         /// <summary>Throws unless the loaded library's ABI major is this binding's.</summary>
         public static void CheckAbi()
         {
@@ -50,7 +55,7 @@ namespace Sscape
             uint version = Api.ssc_version();
             if (version / 10000 != AbiMajor)
                 throw new SscapeException(ssc_status.SSC_ERROR_UNSUPPORTED_VERSION, string.Format(
-                    "the loaded libsscape is version {0}; this binding is for ABI major {1}", version, AbiMajor));
+                    "the loaded libsscape is version {0}; this binding is for ABI major {1}", Text(version), AbiMajor));
             abiChecked = true;
         }
 

@@ -136,6 +136,8 @@ static class Tests
         {
             Library.CheckAbi();
             Assert(Library.Version / 10000 == Library.AbiMajor, "version " + Library.Version);
+            Assert(Library.VersionText == string.Format("{0}.{1}.{2}", Library.Version / 10000, Library.Version / 100 % 100, Library.Version % 100),
+                   "version text " + Library.VersionText);
         });
 
         Run("errors become SscapeException with the status and message", delegate

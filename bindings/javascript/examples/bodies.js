@@ -6,7 +6,7 @@ const sscape = require('..');
 
 const out = process.argv[2] || '.';
 const model = sscape.Model.loadDefault();
-console.log(`sscape ${sscape.version().number}: ${model.vertexCount} vertices, ${model.jointCount} joints, ${model.shapeCount} shape components`);
+console.log(`sscape ${sscape.version().text}: ${model.vertexCount} vertices, ${model.jointCount} joints, ${model.shapeCount} shape components`);
 const shapes = model.sampleShapes(5, { seed: 1 });
 const body = model.createBody();
 for (let i = 0; i < 5; ++i) {

@@ -47,7 +47,7 @@ function library() {
     const number = lib.func('uint32_t ssc_version()')();
     const major = Math.floor(number / 10000);
     if (major !== native.VERSION_MAJOR) {
-      throw new Error(`sscape: ${name} has ABI major ${major} (version ${number}); this package is for major ${native.VERSION_MAJOR}`);
+      throw new Error(`sscape: ${name} has ABI major ${major} (version ${major}.${Math.floor(number / 100) % 100}.${number % 100}); this package is for major ${native.VERSION_MAJOR}`);
     }
     loaded = { lib, api: native.declare(koffi, lib) };
     return loaded;
@@ -71,10 +71,11 @@ function call(name, ...args) {
   check(api()[name](...args), name);
 }
 
-/** The loaded library's version: { major, minor, patch, number }. */
+/** The loaded library's version: { major, minor, patch, number, text } (text: "0.1.0"). */
 function version() {
   const number = api().ssc_version();
-  return { major: Math.floor(number / 10000), minor: Math.floor(number / 100) % 100, patch: number % 100, number };
+  const major = Math.floor(number / 10000), minor = Math.floor(number / 100) % 100, patch = number % 100;
+  return { major, minor, patch, number, text: `${major}.${minor}.${patch}` };
 }
 
 function floats(values, count, what) {

@@ -68,6 +68,7 @@ test('every function of the header is declared', () => {
 test('the library\'s ABI major is the package\'s', () => {
   assert.strictEqual(sscape.version().major, sscape.ABI_MAJOR);
   assert.strictEqual(sscape.version().number, sscape.native.ssc_version());
+  assert.match(sscape.version().text, /^\d+\.\d+\.\d+$/);
 });
 
 test('a library of another ABI major is refused with a message', (t) => {

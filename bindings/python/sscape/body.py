@@ -121,6 +121,7 @@ class Body(Handle):
         check(lib.ssc_body_set_segment_shape(self.handle, index, c.ctypes.data_as(c_float_p), c.shape[0]))
 
     def segment_shape(self, segment: Union[int, str]) -> np.ndarray:
+        """One segment's (by index or name) shape coefficients on this body, standard deviations."""
         index = self._segment_index(segment)
         out = np.empty(self.model.segments[index].shape_count, np.float32)
         check(lib.ssc_body_get_segment_shape(self.handle, index, out.ctypes.data_as(c_float_p), out.shape[0]))
@@ -189,20 +190,34 @@ class Body(Handle):
         return bool(converged.value)
 
     # Outputs.
-    def _vertices(self, fn, n: int) -> np.ndarray:
-        out = np.empty((n, 3), np.float32)
+    def _vertices(self, fn, n: int, out: Optional[np.ndarray] = None) -> np.ndarray:
+        if out is None:
+            out = np.empty((n, 3), np.float32)
+        elif not (isinstance(out, np.ndarray) and out.dtype == np.float32 and out.shape == (n, 3) and out.flags.c_contiguous
+                  and out.flags.writeable):
+            got = f"{out.dtype} {out.shape}" if isinstance(out, np.ndarray) else type(out).__name__
+            raise ValueError(f"out must be a writable C-contiguous float32 array of shape ({n}, 3); got {got}")
         check(fn(self.handle, out.ctypes.data_as(c_float_p), n, 12))
         return out
 
     @property
     def vertices(self) -> np.ndarray:
-        """(V, 3) float32 posed vertices, metres."""
+        """(V, 3) float32 posed vertices, metres (a new array; get_vertices(out=) fills one you keep)."""
         return self._vertices(lib.ssc_body_get_vertices, self._V)
 
     @property
     def normals(self) -> np.ndarray:
-        """(V, 3) float32 unit vertex normals of the posed body."""
+        """(V, 3) float32 unit vertex normals of the posed body (a new array; get_normals(out=) fills one)."""
         return self._vertices(lib.ssc_body_get_normals, self._V)
+
+    def get_vertices(self, out: Optional[np.ndarray] = None) -> np.ndarray:
+        """(V, 3) float32 posed vertices written into out (float32, C-contiguous, shape (V, 3)) without
+        a copy, or into a new array; returns it. For loops over many bodies: no allocation per body."""
+        return self._vertices(lib.ssc_body_get_vertices, self._V, out)
+
+    def get_normals(self, out: Optional[np.ndarray] = None) -> np.ndarray:
+        """(V, 3) float32 unit vertex normals written into out (as get_vertices) or a new array; returns it."""
+        return self._vertices(lib.ssc_body_get_normals, self._V, out)
 
     @property
     def rest_vertices(self) -> np.ndarray:

@@ -16,6 +16,9 @@ _OPTIONS = {"shape_count", "fit_scale", "max_iterations", "landmark_sigma", "poi
             "max_points", "seed", "joint_limits"}
 
 
+_FLAGS = ("converged", "implausible")  # the fit report's yes/no fields
+
+
 def _points(values, what: str) -> np.ndarray:
     a = np.ascontiguousarray(values, dtype=np.float32)
     if a.ndim != 2 or a.shape[1] != 3:
@@ -52,6 +55,7 @@ class Fitter(Handle):
 
     @property
     def frame_count(self) -> int:
+        """Frames of this fit (one shape shared by all, a pose each); observations go to frame 0 unless told."""
         return lib.ssc_fitter_frame_count(self.handle)
 
     def _frame(self, frame: Optional[int]) -> int:
@@ -168,10 +172,13 @@ class Fitter(Handle):
             raise errors[0]
         check(status)
         self._report = report
-        return {name: getattr(report, name) for name, _ in FitReport._fields_ if name not in ("struct_size", "reserved")}
+        # The C flags (uint32 0 / 1) as Python's bool, so `report["converged"] is True` reads as it should.
+        return {name: bool(getattr(report, name)) if name in _FLAGS else getattr(report, name)
+                for name, _ in FitReport._fields_ if name not in ("struct_size", "reserved")}
 
     @property
     def shape(self) -> np.ndarray:
+        """(K,) float32 the fitted shape coefficients, standard deviations (shared by every frame)."""
         out = np.empty(self.model.shape_count, np.float32)
         check(lib.ssc_fitter_get_shape(self.handle, out.ctypes.data_as(c_float_p), out.shape[0]))
         return out

@@ -80,12 +80,14 @@ class Model(Handle):
 
     @classmethod
     def from_file(cls, path: Union[str, os.PathLike], context: Union[Context, None] = None) -> "Model":
+        """Loads and verifies a .sscape model file (SscapeError if it is missing, corrupt or of another version)."""
         handle = ctypes.c_void_p()
         check(lib.ssc_model_load_file(None if context is None else context.handle, os.fsencode(path), ctypes.byref(handle)))
         return cls(_handle=handle.value)
 
     @classmethod
     def from_bytes(cls, data: bytes, context: Union[Context, None] = None) -> "Model":
+        """Loads and verifies a model from the bytes of a .sscape file (copied; the caller may drop them)."""
         handle = ctypes.c_void_p()
         buffer = bytes(data)
         check(lib.ssc_model_load_memory(None if context is None else context.handle, buffer, len(buffer), ctypes.byref(handle)))
@@ -94,14 +96,17 @@ class Model(Handle):
     # Counts.
     @property
     def vertex_count(self) -> int:
+        """Vertices of every body of this model (13380 for the default model)."""
         return lib.ssc_model_vertex_count(self.handle)
 
     @property
     def triangle_count(self) -> int:
+        """Triangles of the fixed mesh that every body shares."""
         return lib.ssc_model_triangle_count(self.handle)
 
     @property
     def joint_count(self) -> int:
+        """Joints of the skeleton (53 for the default model); pose arrays have one row per joint."""
         return lib.ssc_model_joint_count(self.handle)
 
     @property
@@ -111,6 +116,7 @@ class Model(Handle):
 
     @property
     def landmark_count(self) -> int:
+        """Named landmarks on the surface (the 73 CAESAR landmarks for the default model)."""
         return lib.ssc_model_landmark_count(self.handle)
 
     # Topology and names.
@@ -180,10 +186,12 @@ class Model(Handle):
 
     @property
     def joint_names(self) -> List[str]:
+        """The joints' names, in pose order (parents before children)."""
         return [self._name(lib.ssc_model_get_joint_name, j) for j in range(self.joint_count)]
 
     @property
     def landmark_names(self) -> List[str]:
+        """The landmarks' names, in Body.landmarks order."""
         return [self._name(lib.ssc_model_get_landmark_name, i) for i in range(self.landmark_count)]
 
     def index(self, kind: str, name: str) -> int:

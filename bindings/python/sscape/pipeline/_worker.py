@@ -114,7 +114,7 @@ def fit_job(job: dict) -> dict:
                 body.set_pose(rotations, translation)
                 body.write(job["body"])
             fitter.write_params(job["params"])
-        return {"status": "fitted", "report": {k: (bool(v) if k in ("converged", "implausible") else v) for k, v in report.items()}}
+        return {"status": "fitted", "report": report}
 
     return _failing_alone({"name": job["name"], "scan": job["scan"], "body": job["body"], "params": job["params"], "key": job.get("key"),
                            "status": "failed", "error": None, "pid": os.getpid()}, work)

@@ -51,6 +51,7 @@ class Bootstrapping(Handle):
 
     @property
     def scan_names(self) -> List[str]:
+        """The collection's scans, by name (the file name without its extension), in the run's order."""
         names = []
         for i in range(lib.ssc_bootstrap_scan_count(self.handle)):
             name = ctypes.c_char_p()
