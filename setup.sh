@@ -64,7 +64,8 @@ fi
 export CMAKE_GENERATOR="${CMAKE_GENERATOR:-Ninja}"
 if [ "${SSCAPE_CCACHE:-1}" != 0 ] && command -v ccache > /dev/null 2>&1; then
   export CMAKE_C_COMPILER_LAUNCHER=ccache CMAKE_CXX_COMPILER_LAUNCHER=ccache
-  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true CCACHE_MAXSIZE="${CCACHE_MAXSIZE:-10G}"
+  # Depend mode: a miss costs no extra preprocessor run (the compiler's -MD list is the manifest).
+  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true CCACHE_DEPEND=true CCACHE_MAXSIZE="${CCACHE_MAXSIZE:-10G}"
 fi
 
 build() {  # build DIR [cmake args...]; TARGET="a b" builds only those targets
@@ -106,7 +107,9 @@ release_args=(-DCMAKE_BUILD_TYPE=Release -DSSCAPE_BUILD_TESTS=$with_tests -DSSCA
 
 if [ "$mode" = run ]; then
   stage "build (library, command)"
-  TARGET="sscape sscape_cli" build build "${release_args[@]}"
+  # libsscape.so (the runtime), libsscape_offline.so (with the scan tools, for the Python pipeline),
+  # the sscape command.
+  TARGET="sscape sscape_offline sscape_cli" build build "${release_args[@]}"
   stage "main job"
   mkdir -p out
   # The main job: random bodies of the default model (built into the library) as OBJ, glTF and a picture.

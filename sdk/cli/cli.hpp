@@ -87,6 +87,10 @@ struct Handles {
 // Loads MODEL, or the default model compiled into the library when path is empty.
 ssc_model* load_model(const std::string& path);
 
+// Creates the folder an output file goes into (and its parents) when it is missing, as users expect
+// of `-o new/folder/body.obj`; a std::runtime_error naming the folder when it cannot be made.
+void create_parent_folder(const std::string& path);
+
 // path with suffix inserted before its extension: ("out/fit.obj", "_frame1") -> "out/fit_frame1.obj".
 std::string with_suffix(const std::string& path, const std::string& suffix);
 

@@ -1,7 +1,8 @@
 // `sscape simulate`: a random body of the model measured as a scanner would: a point cloud with
 // noise, holes and outliers (PLY with normals), landmarks with placement noise (CAESAR .lnd, mm),
 // optionally depth images from cameras in front of and behind the body (16-bit PGM in mm with the
-// camera in its header), and the true mesh (OBJ) to compare fits with.
+// camera in its header), and the true mesh (OBJ) to compare fits with; or a collection of them
+// (--count), scans and truths in separate folders.
 #include "cli.hpp"
 
 #include "capi/cpp_access.hpp"
@@ -10,7 +11,12 @@
 #include "simulation/depth_camera.hpp"
 #include "simulation/simulate.hpp"
 
+#include "common/text.hpp"
+#include "progress.hpp"
+
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 namespace ssc::cli {
 
@@ -18,28 +24,28 @@ namespace {
 
 struct Options {
     std::string model_path, prefix, depth;
-    uint32_t seed = 1;
+    uint32_t seed = 1, count = 0;
     double pose_amount = 1, landmark_noise = 0.003, heading = 0;
     simulation::CloudSpec spec;
     simulation::DepthCameraSpec camera_spec;
 };
 
-int run_simulate(const Options& o) {
-    const std::string& model_path = o.model_path;
-    const std::string& prefix = o.prefix;
-    const uint32_t seed = o.seed;
-    const double pose_amount = o.pose_amount, landmark_noise = o.landmark_noise, heading = o.heading;
+// Where one simulated body's files go: the scan, its landmarks and depth images side by side (what
+// a scanner gives), the truth apart where asked (so a folder of scans holds only scans).
+struct Paths {
+    std::string scan, landmarks, depth_prefix, truth;
+};
+
+// One random body measured; returns what was written, for the command's line.
+std::string simulate_one(const Model& m, const Options& o, uint32_t seed, const Paths& to) {
     const simulation::CloudSpec& spec = o.spec;
     const simulation::DepthCameraSpec& camera_spec = o.camera_spec;
     std::vector<std::string> views;  // "front", "back"
     if (o.depth == "front" || o.depth == "back") views = {o.depth};
     else if (!o.depth.empty()) views = {"front", "back"};
-    ssc_model* model = load_model(model_path);
-    const Handles guard(model);
-    const Model& m = model_of(model);
     std::mt19937 rng(seed);
-    auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, pose_amount), Eigen::Vector3d::Zero());
-    simulation::transform_body(truth, Eigen::AngleAxisd(heading * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d::Zero());
+    auto truth = simulation::make_body(m, simulation::random_shape(m, rng), simulation::random_pose(m, rng, o.pose_amount), Eigen::Vector3d::Zero());
+    simulation::transform_body(truth, Eigen::AngleAxisd(o.heading * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix(), Eigen::Vector3d::Zero());
     const auto cloud = simulation::simulate_cloud(m, truth, spec, rng);
     std::vector<float> pts, nrm;
     for (std::size_t i = 0; i < cloud.points.size(); ++i)
@@ -48,11 +54,11 @@ int run_simulate(const Options& o) {
     pv.vertex_count = uint32_t(cloud.points.size());
     pv.positions = pts.data();
     pv.normals = nrm.data();
-    exporters::write_ply(prefix + "_scan.ply", pv);
+    exporters::write_ply(to.scan, pv);
     std::vector<io::LandmarkRecord> lnd;
-    for (const auto& t : simulation::simulate_landmarks(m, truth, landmark_noise, false, rng))
+    for (const auto& t : simulation::simulate_landmarks(m, truth, o.landmark_noise, false, rng))
         lnd.push_back({t.landmark + 1, m.data().landmarks[t.landmark].name, t.position});
-    io::write_lnd(prefix + ".lnd", "simulated seed " + std::to_string(seed), lnd);
+    io::write_lnd(to.landmarks, "simulated seed " + std::to_string(seed), lnd);
     std::string depth_note;
     if (!views.empty()) {
         // Cameras 2.8 m from the body's centre at its height, in front (+z) and behind (-z): a
@@ -70,13 +76,11 @@ int run_simulate(const Options& o) {
             img.fx = cam.fx, img.fy = cam.fy, img.cx = cam.cx, img.cy = cam.cy;
             img.camera_to_world.topLeftCorner<3, 3>() = cam.rotation;
             img.camera_to_world.topRightCorner<3, 1>() = cam.position;
-            const std::string path = prefix + "_" + view + ".pgm";
+            const std::string path = to.depth_prefix + "_" + view + ".pgm";
             io::write_pgm_depth(path, img);
             depth_note += ", " + path;
         }
-        char note[96];
-        std::snprintf(note, sizeof note, " (%u x %u depth in mm, %.1f mm noise)", camera_spec.width, camera_spec.height, camera_spec.noise * 1e3);
-        depth_note += note;
+        depth_note += format_text(" (%u x %u depth in mm, %.1f mm noise)", camera_spec.width, camera_spec.height, camera_spec.noise * 1e3);
     }
     std::vector<float> tv;
     for (const auto& v : truth.vertices)
@@ -86,11 +90,43 @@ int run_simulate(const Options& o) {
     mv.positions = tv.data();
     mv.triangle_count = m.triangle_count();
     mv.triangles = m.data().mesh.triangles.data();
-    exporters::write_obj(prefix + "_truth.obj", mv);
-    std::printf("wrote %s_scan.ply (%zu points: %.1f mm noise, %.0f %% missing, %.1f %% outliers), %s.lnd (%zu landmarks, %.1f mm noise), "
-                "%s_truth.obj%s\n",
-                prefix.c_str(), cloud.points.size(), spec.noise * 1e3, spec.missing * 100, spec.outliers * 100, prefix.c_str(), lnd.size(),
-                landmark_noise * 1e3, prefix.c_str(), depth_note.c_str());
+    exporters::write_obj(to.truth, mv);
+    return format_text("%s (%zu points: %.1f mm noise, %.0f %% missing, %.1f %% outliers), %s (%zu landmarks, %.1f mm noise), %s%s",
+                       to.scan.c_str(), cloud.points.size(), spec.noise * 1e3, spec.missing * 100, spec.outliers * 100,
+                       to.landmarks.c_str(), lnd.size(), o.landmark_noise * 1e3, to.truth.c_str(), depth_note.c_str());
+}
+
+int run_simulate(const Options& o) {
+    ssc_model* model = load_model(o.model_path);
+    const Handles guard(model);
+    const Model& m = model_of(model);
+    if (o.count == 0) {
+        create_parent_folder(o.prefix);
+        const std::string& p = o.prefix;
+        std::printf("wrote %s\n", simulate_one(m, o, o.seed, {p + "_scan.ply", p + ".lnd", p, p + "_truth.obj"}).c_str());
+        return 0;
+    }
+    // A collection: OUT/scans holds what a scanner gives (NAME.ply with NAME.lnd beside it, as a scan
+    // folder is read), OUT/truth the true meshes (NAME.obj), which no scan folder should hold.
+    const std::filesystem::path out(o.prefix), scans = out / "scans", truths = out / "truth";
+    std::filesystem::create_directories(scans);
+    std::filesystem::create_directories(truths);
+    const int digits = std::max(3, int(std::to_string(o.count).size()));
+    Progress progress("simulate");
+    for (uint32_t i = 0; i < o.count; ++i) {
+        if (!progress.update("scan " + std::to_string(i + 1) + " of " + std::to_string(o.count))) {
+            std::fprintf(stderr, "sscape simulate: cancelled (Ctrl-C) after %u of %u scans; those %u are complete, in %s\n", i, o.count, i,
+                         scans.string().c_str());
+            return 130;
+        }
+        const std::string name = format_text("sim_%0*u", digits, i + 1);
+        const std::string stem = (scans / name).string();
+        const std::string line = simulate_one(m, o, o.seed + i, {stem + ".ply", stem + ".lnd", stem, (truths / (name + ".obj")).string()});
+        progress.clear();
+        std::printf("wrote %s\n", line.c_str());
+    }
+    std::printf("wrote %u scans with their landmarks to %s and their true meshes to %s\n", o.count, scans.string().c_str(),
+                truths.string().c_str());
     return 0;
 }
 
@@ -102,8 +138,12 @@ Run add_simulate(CLI::App& app) {
                                                  "holes, outliers), PREFIX.lnd (CAESAR landmarks in mm), optional depth images "
                                                  "PREFIX_front.pgm / PREFIX_back.pgm, and the truth PREFIX_truth.obj");
     add_model_argument(*c, o->model_path);
-    c->add_option("-o,--output", o->prefix, "where the files go: PREFIX_scan.ply, PREFIX.lnd, ...")->required()->type_name("PREFIX");
-    c->add_option("--seed", o->seed, "random seed (shape, pose, noise)")->capture_default_str();
+    c->add_option("-o,--output", o->prefix, "where the files go: PREFIX_scan.ply, PREFIX.lnd, ... (with --count: a folder)")
+        ->required()->type_name("PREFIX|DIR");
+    c->add_option("--seed", o->seed, "random seed (shape, pose, noise); with --count, the first scan's (then SEED+1, ...)")->capture_default_str();
+    c->add_option("--count", o->count, "a collection of N scans: DIR/scans/sim_001.ply with sim_001.lnd (and depth images) beside it, "
+                                       "the true meshes in DIR/truth/sim_001.obj; Ctrl-C stops it, keeping the scans already written")
+        ->check(CLI::Range(1u, 100000u))->type_name("N");
     c->add_option("--points", o->spec.points, "points in the scan")->check(CLI::Range(16u, 10000000u))->capture_default_str();
     c->add_option("--noise", o->spec.noise, "scan noise, metres (standard deviation)")->check(finite_in(0, 0.1))->capture_default_str();
     c->add_option("--missing", o->spec.missing, "fraction of the surface left out, as 20 round holes")

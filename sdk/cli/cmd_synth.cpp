@@ -9,8 +9,12 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <random>
 #include <sstream>
 
@@ -171,6 +175,41 @@ void render_bodies(const std::string& path, const std::vector<std::vector<float>
     render::write_png(path, img);
 }
 
+// Many bodies are written into a hidden folder beside their destination and moved into place once
+// all are written: a run stopped by Ctrl-C or an error leaves nothing behind (one body is written
+// atomically by the library itself).
+class Staging {
+public:
+    Staging(const std::string& out, uint32_t n) {
+        if (n <= 1) return;
+        const std::filesystem::path parent = std::filesystem::path(out).parent_path();
+        std::string pattern = ((parent.empty() ? std::filesystem::path(".") : parent) / ".sscape-synth-XXXXXX").string();
+        if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a folder beside " + out + ": " + std::strerror(errno));
+        folder_ = pattern;
+    }
+    ~Staging() {
+        std::error_code ignored;
+        if (!folder_.empty()) std::filesystem::remove_all(folder_, ignored);
+    }
+    Staging(const Staging&) = delete;
+    Staging& operator=(const Staging&) = delete;
+    // Where the body meant for path is written now.
+    std::string path(const std::string& final_path) {
+        if (folder_.empty()) return final_path;
+        finals_.push_back(final_path);
+        return (std::filesystem::path(folder_) / std::filesystem::path(final_path).filename()).string();
+    }
+    // Moves every written body into place (renames within one file system).
+    void commit() {
+        for (const auto& final_path : finals_)
+            std::filesystem::rename(std::filesystem::path(folder_) / std::filesystem::path(final_path).filename(), final_path);
+    }
+
+private:
+    std::string folder_;
+    std::vector<std::string> finals_;
+};
+
 std::string numbered(const std::string& out, uint32_t i, uint32_t n) {
     if (n <= 1) return out;
     char buf[16];
@@ -287,11 +326,14 @@ int run_synth(Options o) {
     const uint32_t n = o.random ? o.random : 1;
     std::vector<float> verts(3ull * V);
     std::vector<std::vector<float>> rendered;
-    std::printf("%-28s %9s %9s %9s   first shape coefficients\n", "file", "height_m", "width_m", "depth_m");
+    create_parent_folder(o.out);
+    Staging staging(o.out, n);
+    std::vector<float> first_vertices, first_landmarks;
+    std::string first_path;
     Progress progress("synth");
     for (uint32_t i = 0; i < n; ++i) {
         if (!progress.update("body " + std::to_string(i + 1) + " of " + std::to_string(n))) {
-            std::fprintf(stderr, "sscape synth: cancelled (Ctrl-C) after %u of %u bodies\n", i, n);
+            std::fprintf(stderr, "sscape synth: cancelled (Ctrl-C) after %u of %u bodies; nothing written\n", i, n);
             return 130;
         }
         std::vector<float> shape = o.params.empty() ? o.shape : fitted.shape;
@@ -305,16 +347,14 @@ int run_synth(Options o) {
         check(ssc_body_get_vertices(guard.body, verts.data(), V, 0), "vertices");
         // The library writes the file: OBJ with normals and UVs, binary PLY, or rigged glTF.
         const std::string path = numbered(o.out, i, n);
-        check(ssc_body_write_file(guard.body, path.c_str(), SSC_FILE_FORMAT_BY_EXTENSION), path);
+        check(ssc_body_write_file(guard.body, staging.path(path).c_str(), SSC_FILE_FORMAT_BY_EXTENSION), path);
         if (!o.png.empty() && rendered.size() < 20) rendered.push_back(verts);
-        if (!o.landmarks_png.empty() && i == 0) {
+        if (!o.landmarks_png.empty() && i == 0) {  // drawn once every body is written
             const uint32_t L = ssc_model_landmark_count(model);
             if (L == 0) throw std::runtime_error("--landmarks-png: the model has no landmarks");
-            std::vector<float> at(3ull * L);
-            check(ssc_body_get_landmarks(guard.body, at.data(), L, 0), "landmarks");
-            render::write_landmark_picture(o.landmarks_png, verts, tris, at);
-            std::printf("drew the %u landmarks of %s (front, back, side; head and trunk close up) to %s\n", L, path.c_str(),
-                        o.landmarks_png.c_str());
+            first_landmarks.resize(3ull * L);
+            check(ssc_body_get_landmarks(guard.body, first_landmarks.data(), L, 0), "landmarks");
+            first_vertices = verts, first_path = path;
         }
         float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
         for (uint32_t v = 0; v < V; ++v)
@@ -323,9 +363,16 @@ int run_synth(Options o) {
                 hi[a] = std::max(hi[a], verts[3 * v + a]);
             }
         progress.clear();  // the row goes where the progress line was
+        if (i == 0) std::printf("%-28s %9s %9s %9s   first shape coefficients\n", "file", "height_m", "width_m", "depth_m");
         std::printf("%-28s %9.3f %9.3f %9.3f  ", path.c_str(), hi[1] - lo[1], hi[0] - lo[0], hi[2] - lo[2]);
         for (std::size_t k = 0; k < std::min<std::size_t>(3, shape.size()); ++k) std::printf(" %+.2f", shape[k]);
         std::printf("\n");
+    }
+    staging.commit();
+    if (!first_landmarks.empty()) {
+        render::write_landmark_picture(o.landmarks_png, first_vertices, tris, first_landmarks);
+        std::printf("drew the %zu landmarks of %s (front, back, side; head and trunk close up) to %s\n", first_landmarks.size() / 3,
+                    first_path.c_str(), o.landmarks_png.c_str());
     }
     std::printf("wrote %u bod%s of %u vertices, %u triangles\n", n, n == 1 ? "y" : "ies", V, T);
     if (!o.png.empty()) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 namespace ssc::cli {
@@ -107,6 +108,15 @@ std::string with_suffix(const std::string& path, const std::string& suffix) {
     const std::size_t dot = path.find_last_of('.');
     if (dot == std::string::npos) return path + suffix;
     return path.substr(0, dot) + suffix + path.substr(dot);
+}
+
+void create_parent_folder(const std::string& path) {
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    if (parent.empty()) return;
+    std::error_code error;
+    std::filesystem::create_directories(parent, error);
+    if (error || !std::filesystem::is_directory(parent))
+        throw std::runtime_error("cannot create the output folder " + parent.string() + (error ? ": " + error.message() : ""));
 }
 
 ssc_model* load_model(const std::string& path) {
