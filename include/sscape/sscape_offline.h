@@ -26,8 +26,10 @@ extern "C" {
 /* ---------------------------------------------------------------------------------------------- */
 /* Scan files                                                                                      */
 
-/** A folder's scans: every .ply and .obj in it, sorted by name, each with its landmark file NAME.lnd
- *  beside it (or PREFIX.lnd for the simulator's PREFIX_scan.ply) when there is one. */
+/** A folder's scans: every .ply and .obj file in it (any case; not in its subfolders, not hidden ones), sorted
+ *  by name, each with its landmark file NAME.lnd beside it (or PREFIX.lnd for the simulator's
+ *  PREFIX_scan.ply) when there is one. Every such file counts as a scan, so keep other meshes (a
+ *  simulator's true meshes, earlier results) in another folder, as `sscape simulate --count` does. */
 typedef struct ssc_scan_list ssc_scan_list;
 
 /** Lists the folder. @return SSC_ERROR_IO when it cannot be listed; SSC_ERROR_INVALID_ARGUMENT for NULL. */

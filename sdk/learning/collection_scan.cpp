@@ -35,6 +35,8 @@ std::vector<ScanInput> find_scans(const std::string& folder) {
     if (ec) throw Error(SSC_ERROR_IO, folder + ": cannot list the folder: " + ec.message());
     for (const auto& entry : it) {
         if (!entry.is_regular_file()) continue;
+        // Hidden files are no scans: temporaries, a copier's "._" resource forks.
+        if (entry.path().filename().string().rfind('.', 0) == 0) continue;
         std::string ext = entry.path().extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
         if (ext != ".ply" && ext != ".obj") continue;

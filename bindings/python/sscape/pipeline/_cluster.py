@@ -22,11 +22,33 @@ def client_for(client=None, scheduler: Optional[str] = None, workers: Optional[i
     from distributed import Client, LocalCluster
     if scheduler:
         with Client(scheduler) as c:
+            say_dashboard(c)
             yield c
         return
     n = workers or os.cpu_count() or 1
-    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, Client(cluster) as c:
+    # Dask serves its dashboard (tasks, workers, memory) only where bokeh is installed: offered then,
+    # on a free port, and its address said.
+    dashboard = ":0" if has_bokeh() else None
+    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=dashboard) as cluster, Client(cluster) as c:
+        say_dashboard(c)
         yield c
+
+
+def has_bokeh() -> bool:
+    """Whether bokeh, which Dask's dashboard needs, can be imported here."""
+    try:
+        import bokeh  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def say_dashboard(client) -> None:
+    """Prints the dashboard's address to stderr when the scheduler serves one: its web server runs
+    either way, the dashboard's pages only where the scheduler's python has bokeh."""
+    with contextlib.suppress(Exception):
+        if "dashboard" in client.scheduler_info().get("services", {}) and client.run_on_scheduler(has_bokeh):
+            print(f"sscape.pipeline: the Dask dashboard is at {client.dashboard_link}", file=sys.stderr)
 
 
 def remove_stale_temporaries(folder: str) -> None:

@@ -17,7 +17,9 @@ class Scan(NamedTuple):
 
 
 def list_scans(folder: Union[str, os.PathLike]) -> List[Scan]:
-    """The scans of a folder, sorted by name (ssc_scan_list_create)."""
+    """The scans of a folder, sorted by name (ssc_scan_list_create): every .ply and .obj file in it
+    (not in subfolders, not hidden), each with NAME.lnd beside it when there is one. Keep other
+    meshes (true meshes, results) elsewhere, as `sscape simulate --count` does."""
     need_offline("sscape.pipeline")
     handle = ctypes.c_void_p()
     check(lib.ssc_scan_list_create(os.fsencode(folder), ctypes.byref(handle)))
