@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -54,10 +55,29 @@ TEST_CASE("MakeHuman macro rules follow the asset README", "[training]") {
 TEST_CASE("training reports its stages and bodies and stops when the progress callback says so", "[training][makehuman]") {
     ssc::training::TrainSpec spec;
     if (!small_training(spec)) return;
+    // Sampling the population (each body's stature and weight calibrated) reports every body and
+    // stops at once: it once ran for a minute and a half deaf to Ctrl-C.
+    {
+        uint32_t sampled = 0, of = 0;
+        const ssc::training::Progress stop_sampling = [&](const std::string& stage, uint32_t done, uint32_t total) {
+            if (stage == "sampling bodies") sampled = done, of = total;
+            return !(stage == "sampling bodies" && done == 3);
+        };
+        ssc::training::TrainReport report;
+        try {
+            ssc::training::train_model(spec, report, stop_sampling);
+            FAIL("sampling went on after the callback returned false");
+        } catch (const ssc::Error& e) {
+            CHECK(e.status() == SSC_ERROR_CANCELLED);
+        }
+        CHECK(sampled == 3);
+        CHECK(of == 160);
+    }
     std::vector<std::string> stages;
-    uint32_t last_done = 0, total = 0;
+    uint32_t last_done = 0, total = 0, sampled = 0;
     const ssc::training::Progress stop_at_body_5 = [&](const std::string& stage, uint32_t done, uint32_t of) {
         if (stages.empty() || stages.back() != stage) stages.push_back(stage);
+        if (stage == "sampling bodies") sampled = std::max(sampled, done + 1);
         if (of) last_done = done, total = of;
         return !(stage == "generating bodies" && done == 5);
     };
@@ -68,7 +88,9 @@ TEST_CASE("training reports its stages and bodies and stops when the progress ca
     } catch (const ssc::Error& e) {
         CHECK(e.status() == SSC_ERROR_CANCELLED);
     }
-    REQUIRE(stages.size() == 3);  // loading, sampling, generating
+    REQUIRE(stages.size() == 4);  // loading, sampling (announced, then body by body), generating
+    CHECK(stages[2] == "sampling bodies");
+    CHECK(sampled == 160);
     CHECK(stages.back() == "generating bodies");
     CHECK(last_done == 5);
     CHECK(total == 160);

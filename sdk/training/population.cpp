@@ -1,5 +1,6 @@
 #include "population.hpp"
 
+#include "common/error.hpp"
 #include "common/files.hpp"
 
 #include <algorithm>
@@ -78,7 +79,8 @@ void calibrate_weight(const mh::Assets& a, BodyParams& b, std::vector<float>& xy
 
 }  // namespace
 
-std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationSpec& spec, const StatureStats& stats) {
+std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationSpec& spec, const StatureStats& stats,
+                                          const SamplingProgress& progress) {
     std::mt19937_64 rng(spec.seed);
     std::normal_distribution<double> N01;
     std::uniform_real_distribution<double> U01;
@@ -86,6 +88,8 @@ std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationS
     std::vector<BodyParams> out(spec.count);
     std::vector<float> xyz;
     for (auto& b : out) {
+        const uint32_t done = uint32_t(&b - out.data());
+        if (progress && !progress(done, spec.count)) fail(SSC_ERROR_CANCELLED, "population sampling cancelled");
         b.male = U01(rng) < 0.5;
         b.age_years = spec.min_age + (spec.max_age - spec.min_age) * U01(rng);
         auto& m = b.macro;

@@ -7,6 +7,7 @@
 #include "makehuman/assets.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -40,7 +41,12 @@ struct BodyParams {
     double target_bmi = 0;          // kg/m^2
 };
 
-std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationSpec& spec, const StatureStats& stats = {});
+// Called before each body with how many are done; returning false stops the sampling with
+// Error(SSC_ERROR_CANCELLED). Calibrating each body's stature and weight takes most of a second.
+using SamplingProgress = std::function<bool(uint32_t done, uint32_t total)>;
+
+std::vector<BodyParams> sample_population(const mh::Assets& a, const PopulationSpec& spec, const StatureStats& stats = {},
+                                          const SamplingProgress& progress = {});
 
 // A body the model trained on the first `trained` modifiers cannot represent exactly: the person
 // with the modifiers added after them (mh::add_modifier_groups) set at random over half their range

@@ -41,7 +41,8 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     const mh::Assets a = mh::load_assets(spec.assets_root);
 
     say("sampling " + std::to_string(spec.population.count) + " bodies (stature calibrated per body)");
-    const std::vector<BodyParams> people = sample_population(a, spec.population);
+    const std::vector<BodyParams> people =
+        sample_population(a, spec.population, {}, [&](uint32_t done, uint32_t total) { tick("sampling bodies", done, total); return true; });
     if (!spec.population_csv.empty()) write_population_csv(spec.population_csv, a, people);
 
     const uint32_t N = spec.population.count, V = mh::kBodyVertices, J = uint32_t(a.game_rig.bones.size());
