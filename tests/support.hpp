@@ -1,6 +1,8 @@
 // Shared helpers for the tests: small models built in code, loading through the C API.
 #pragma once
 
+#include "paths.hpp"
+
 #include "capi/cpp_access.hpp"
 #include "sscape_format/model_io.hpp"
 #include "testing/synthetic_model.hpp"
@@ -32,14 +34,8 @@ inline std::string makehuman_root() {
     return env && std::filesystem::is_directory(std::string(env) + "/makehuman") ? env : "";
 }
 
-// The shipped default model's file as CTest passes it (SSCAPE_DEFAULT_MODEL_FILE). Read from the
-// environment, not compiled in, so the test objects do not depend on where the checkout lies (the
-// compiler cache shares them between clones).
-inline std::string default_model_file() {
-    const char* env = std::getenv("SSCAPE_DEFAULT_MODEL_FILE");
-    if (!env || !*env) throw std::runtime_error("SSCAPE_DEFAULT_MODEL_FILE is not set (CTest sets it to model_format/models/sscape-default.sscape)");
-    return env;
-}
+// The shipped default model's file (tests/paths.hpp).
+inline std::string default_model_file() { return sscape_paths::default_model_file(); }
 
 // A small model: 6 joints, 300 vertices, 4 components; identity rest orientations unless asked.
 inline ssc::testing::SyntheticModel mini_model(bool aligned = false, uint32_t seed = 7) {

@@ -18,6 +18,8 @@
 // with its CAESAR landmarks (but the hands'), placed with SD metres of error per axis.
 // --posture-model: the skeleton normalization unposes with the built-in model's fits to the scans
 // (the default, as sscape bootstrap's) or with each round's own fits.
+#include "paths.hpp"
+
 #include "common/files.hpp"
 #include "common/rigid.hpp"
 #include "common/thread_pool.hpp"
@@ -238,7 +240,7 @@ int main(int argc, char** argv) {
     }
     const auto t0 = std::chrono::steady_clock::now();
     auto now = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-    const format::ModelData default_data = format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH);
+    const format::ModelData default_data = format::read_model_file(sscape_paths::default_model_file());
     const Model model(default_data, nullptr);
     const uint32_t V = model.vertex_count();
 

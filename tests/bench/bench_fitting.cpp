@@ -16,6 +16,8 @@
 // failed when its mean vertex error exceeds 8 mm.
 // --threads: worker threads lent to the fitter, caller included (default: one per core, as a
 // context's default; 1 = none).
+#include "paths.hpp"
+
 #include "anatomy/hand_closure.hpp"
 #include "anatomy/named_poses.hpp"
 #include "fitting/fitter.hpp"
@@ -34,9 +36,6 @@
 #include <string>
 #include <thread>
 
-#ifndef SSCAPE_DEFAULT_MODEL_PATH
-#error "SSCAPE_DEFAULT_MODEL_PATH must name the shipped default model"
-#endif
 
 using namespace ssc;
 
@@ -151,7 +150,7 @@ int main(int argc, char** argv) {
         o.hand_search = hand_search;
         return o;
     };
-    const Model model(format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH), nullptr);
+    const Model model(format::read_model_file(sscape_paths::default_model_file()), nullptr);
     const fitting::LinearModel lin(model, components);
     std::printf("model: default, %u components used, %d trials per scenario, threads: %u\n", lin.K, trials, threads);
 

@@ -20,6 +20,8 @@
 // booth of 8 depth cameras (4 columns, 2 heights; 1 mm noise; 60,000 points kept). Vertex i of the true body is vertex i of the template, so the
 // correspondence error (registered vertex to true vertex) catches sliding along the surface that
 // surface distances hide.
+#include "paths.hpp"
+
 #include "registration/register_scan.hpp"
 #include "render/plot.hpp"
 #include "render/registration_picture.hpp"
@@ -41,9 +43,6 @@
 #include <string>
 #include <thread>
 
-#ifndef SSCAPE_DEFAULT_MODEL_PATH
-#error "SSCAPE_DEFAULT_MODEL_PATH must name the shipped default model"
-#endif
 
 using namespace ssc;
 using Eigen::Vector3d;
@@ -123,7 +122,7 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
-    const Model model(format::read_model_file(SSCAPE_DEFAULT_MODEL_PATH), nullptr);
+    const Model model(format::read_model_file(sscape_paths::default_model_file()), nullptr);
     const fitting::LinearModel lin(model, model.component_count(), nullptr, options.segments, options.segments_left_out);
     options.fit.segment_prior = segment_prior;
     const std::vector<uint32_t> triangles(model.data().mesh.triangles.begin(), model.data().mesh.triangles.end());
