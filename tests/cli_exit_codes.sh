@@ -17,7 +17,11 @@ expect 0 "^sscape [0-9]*\.[0-9]*\.[0-9]* (library .*default model sscape-default
 expect 0 "Subcommands:" --help
 for command in info synth measure fit register simulate train learn bootstrap evaluate make-test-model; do
     expect 0 "Usage: sscape $command" "$command" --help
+    expect 0 "^  sscape $command " "$command" --help  # an example to start from
 done
+# A typo gets the nearest name.
+expect 2 "unknown command 'synt' (did you mean 'synth'?)" synt
+expect 2 "'--seeed' (did you mean '--seed'?)" synth --random 2 --seeed 3 -o "$out/x.obj"
 expect 0 "--units m|cm|mm" fit --help
 expect 2 "A subcommand is required"
 expect 2 "unknown command 'frobnicate'; the commands: bootstrap, evaluate, fit, info" frobnicate

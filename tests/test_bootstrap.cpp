@@ -12,13 +12,16 @@
 #include "anatomy/joint_limits.hpp"
 #include "common/error.hpp"
 #include "common/files.hpp"
+#include "common/rigid.hpp"
 #include "fitting/kinematics.hpp"
 #include "fitting/solver.hpp"
 #include "io/readers.hpp"
+#include "render/registration_picture.hpp"
 #include "simulation/simulate.hpp"
 #include "sscape_format/model_io.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -155,6 +158,39 @@ TEST_CASE("inspection accepts a good registration and rejects a limb gone astray
         CHECK(i.joint_excess == Approx(0.6).margin(0.02));
         CHECK(mentions(i, "calf_l bent 34 degrees beyond its range of motion"));
     }
+}
+
+TEST_CASE("a scan read with the wrong up axis: the report names the one the fit found, the picture stands it up", "[bootstrap]") {
+    const Model& m = test::default_cpp_model();
+    Scanned s = scanned(m, 9);
+    s.record.scan_up = "y";
+    // The fitted body lies along +z of the frame it was read in (a scan written z-up, read y-up):
+    // the root turned 90 degrees about x in the body's frame.
+    const float* r0 = m.data().skeleton.rest_orientations.data();
+    const Eigen::Quaterniond R0 = Eigen::Quaterniond(r0[3], r0[0], r0[1], r0[2]).normalized();
+    REQUIRE(s.record.registered.has_fit);
+    s.record.registered.fit.pose[0] = R0.conjugate() * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitX())) * R0 *
+                                      s.record.registered.fit.pose[0];
+    CHECK(nearest_axis_name(fitting::fitted_body_orientation(m.data(), s.record.registered.fit).col(1)) == "z");
+    const std::string mesh = "up_test.ply";
+    learning::write_registration_record(mesh, m, s.record);
+    const auto report = nlohmann::json::parse(read_regular_file(learning::record_report_path(mesh), 1u << 26));
+    CHECK(report.at("scan_up") == "y");
+    CHECK(report.at("scan_up_found") == "z");
+    // Read z-up, the same body is found y-up in the scan's own axes (the frame turned back).
+    s.record.scan_up = "z";
+    s.record.registered.fit.pose[0] = R0.conjugate() * Eigen::Quaterniond(Eigen::AngleAxisd(-M_PI / 2, Vector3d::UnitX())) * R0 *
+                                      s.record.registered.fit.pose[0];
+    learning::write_registration_record(mesh, m, s.record);
+    CHECK(nlohmann::json::parse(read_regular_file(learning::record_report_path(mesh), 1u << 26)).at("scan_up_found") == "z");
+    // The picture's frame: upright along +z, facing the way the body faces.
+    s.record.registered.fit.pose[0] = R0.conjugate() * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitX())) * R0 *
+                                      s.record.registered.fit.pose[0];
+    const render::PictureFrame frame = render::fit_picture_frame(m, s.record.registered.fit);
+    CHECK(frame.R.col(1).isApprox(Vector3d::UnitZ(), 1e-9));
+    CHECK(std::abs(frame.R.determinant() - 1) < 1e-9);
+    const Vector3d forward = fitting::fitted_body_orientation(m.data(), s.record.registered.fit).col(2);
+    CHECK(frame.R.col(2).dot(forward) > 0.99);
 }
 
 TEST_CASE("a registration record reads back as written, in the scan's units and frame", "[bootstrap]") {

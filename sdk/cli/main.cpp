@@ -69,7 +69,22 @@ int main(int argc, char** argv) {
     app.failure_message([](const CLI::App* top, const CLI::Error& e) {
         const auto parsed = top->get_subcommands();  // the command being parsed, if it was named
         const std::string name = parsed.empty() ? "" : " " + parsed.front()->get_name();
-        return "sscape" + name + ": " + e.what() + "\nRun 'sscape" + (name.empty() ? " COMMAND" : name) + " --help' for the options.\n";
+        // An option nobody has: the command's option nearest to each, as a typo usually is.
+        std::string hint;
+        if (!parsed.empty() && e.get_name() == "ExtrasError") {
+            std::vector<std::string> options;
+            for (const CLI::Option* o : parsed.front()->get_options()) {
+                for (const auto& l : o->get_lnames()) options.push_back("--" + l);
+                for (const auto& s : o->get_snames()) options.push_back("-" + s);
+            }
+            for (const auto& extra : parsed.front()->remaining())
+                if (extra.size() > 1 && extra[0] == '-') {
+                    const std::string word = extra.substr(0, extra.find('='));
+                    const std::string near = ssc::cli::did_you_mean(word, options);
+                    if (!near.empty()) hint += "\n'" + word + "'" + near;
+                }
+        }
+        return "sscape" + name + ": " + e.what() + hint + "\nRun 'sscape" + (name.empty() ? " COMMAND" : name) + " --help' for the options.\n";
     });
     std::map<std::string, ssc::cli::Run> commands;
     for (const auto add : {ssc::cli::add_info, ssc::cli::add_synth, ssc::cli::add_measure, ssc::cli::add_fit, ssc::cli::add_register, ssc::cli::add_simulate,
@@ -77,13 +92,31 @@ int main(int argc, char** argv) {
         ssc::cli::Run run = add(app);
         commands[app.get_subcommands({}).back()->get_name()] = std::move(run);
     }
-    app.footer("Run 'sscape COMMAND --help' for a command's options.");  // after the commands: they would inherit it
+    app.footer("Example: sscape synth --random 5 -o out/body.glb\nRun 'sscape COMMAND --help' for a command's options.");  // after the commands: they would inherit it
+    // Each command's help ends with examples a user can start from.
+    const std::map<std::string, std::string> examples = {
+        {"info", "sscape info\n  sscape info out/model.sscape --json"},
+        {"synth", "sscape synth --random 5 --seed 1 -o out/body.glb\n  sscape synth --sliders stature=1.85,mass=80 --pose sitting -o out/body.obj"},
+        {"measure", "sscape measure --shape 1,-0.5 --definitions\n  sscape measure --random 100 --csv out/measurements.csv"},
+        {"fit", "sscape fit --points scan.ply --landmarks scan.lnd -o out/fit.glb --params out/fit.json"},
+        {"register", "sscape register scan.ply --landmarks scan.lnd -o out/registered.ply --report out/registered.json --png out/registered.png"},
+        {"simulate", "sscape simulate -o out/sim --seed 3 --depth front,back\n  sscape simulate --count 20 -o out/collection"},
+        {"train", "sscape train --assets ../shared/makehuman -o out/model.sscape --report out/report_"},
+        {"learn", "sscape learn registered/*.ply --components 20 -o out/learned.sscape"},
+        {"bootstrap", "sscape bootstrap scans/ --rounds 3 -o out/bootstrap"},
+        {"evaluate", "sscape evaluate registered/*.ply --posture none,skeleton -o out/evaluation"},
+        {"make-test-model", "sscape make-test-model -o out/test.sscape --vertices 2000 --components 8"}};
+    for (CLI::App* sub : app.get_subcommands({})) {
+        const auto it = examples.find(sub->get_name());
+        if (it != examples.end()) sub->footer("Example" + std::string(it->second.find('\n') == std::string::npos ? "" : "s") + ":\n  " + it->second);
+    }
     // CLI11 reports an unknown command as a missing one; name it and the valid ones instead.
     if (argc >= 2 && argv[1][0] != '-' && !commands.count(argv[1])) {
         std::string names;
-        for (const auto& [name, run] : commands) names += (names.empty() ? "" : ", ") + name;
-        std::fprintf(stderr, "sscape: unknown command '%s'; the commands: %s\nRun 'sscape --help' for what each does.\n", argv[1],
-                     names.c_str());
+        std::vector<std::string> known;
+        for (const auto& [name, run] : commands) names += (names.empty() ? "" : ", ") + name, known.push_back(name);
+        std::fprintf(stderr, "sscape: unknown command '%s'%s; the commands: %s\nRun 'sscape --help' for what each does.\n", argv[1],
+                     ssc::cli::did_you_mean(argv[1], known).c_str(), names.c_str());
         return 2;
     }
     try {

@@ -5,6 +5,7 @@
 #include "common/rigid.hpp"
 #include "export/mesh_writers.hpp"
 #include "io/readers.hpp"
+#include "fitting/kinematics.hpp"
 #include "learning/fit_json.hpp"
 
 #include <nlohmann/json.hpp>
@@ -74,6 +75,11 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
     j["scan"] = r.scan;
     j["scan_units_to_metres"] = r.scan_units_to_metres;
     j["scan_up"] = r.scan_up;
+    // The scan's own axis nearest the fitted body's up: where it differs from scan_up, the scan was
+    // written with another up (the fit, which tries every orientation, found the body anyway).
+    if (r.registered.has_fit)
+        j["scan_up_found"] = nearest_axis_name(up_axis_rotation(r.scan_up).transpose() *
+                                               fitting::fitted_body_orientation(model.data(), r.registered.fit).col(1));
     j["fit_segments"] = r.fit_segments;
     j["seconds"] = r.seconds;
     j["fit_seconds"] = r.fit_seconds;

@@ -1,5 +1,7 @@
 #include "render/registration_picture.hpp"
 
+#include "common/rigid.hpp"
+#include "fitting/kinematics.hpp"
 #include "render/text.hpp"
 
 #include <Eigen/Geometry>
@@ -30,11 +32,16 @@ const uint8_t kInk[3] = {40, 40, 40};
 PictureFrame fit_picture_frame(const Model& model, const fitting::FitState& fit) {
     PictureFrame f;
     if (fit.pose.empty()) return f;
-    // The root's pose rotation acts in its rest frame (R0): the body turned by R0 P R0^T.
-    const float* r0 = model.data().skeleton.rest_orientations.data();
-    const Eigen::Matrix3d R0 = Eigen::Quaterniond(r0[3], r0[0], r0[1], r0[2]).normalized().toRotationMatrix();
-    const Eigen::Vector3d forward = R0 * fit.pose[0].normalized().toRotationMatrix() * R0.transpose() * Eigen::Vector3d::UnitZ();
-    f.R = Eigen::AngleAxisd(std::atan2(forward.x(), forward.z()), Eigen::Vector3d::UnitY()).toRotationMatrix();
+    // Drawn upright along the scan's axis nearest the fitted body's up (a scan written z-up, read as
+    // y-up, stands), facing the viewer: the body's forward turned about that axis.
+    const Eigen::Matrix3d body = fitting::fitted_body_orientation(model.data(), fit);
+    const Eigen::Vector3d up = up_axis_rotation(nearest_axis_name(body.col(1))).transpose() * Eigen::Vector3d::UnitY();
+    Eigen::Vector3d forward = body.col(2) - body.col(2).dot(up) * up;
+    if (forward.norm() < 1e-6) forward = body.col(0).cross(up);  // facing straight along the axis: by its side
+    forward.normalize();
+    f.R.col(0) = up.cross(forward);
+    f.R.col(1) = up;
+    f.R.col(2) = forward;
     f.t = fit.translation;
     return f;
 }
