@@ -87,10 +87,6 @@ struct Handles {
 // Loads MODEL, or the default model compiled into the library when path is empty.
 ssc_model* load_model(const std::string& path);
 
-// " (did you mean 'X'?)" for the candidate nearest to a mistyped word (by edit distance, at most a
-// third of its letters off, at least one), or "" when none is that near.
-std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates);
-
 // Creates the folder an output file goes into (and its parents) when it is missing, as users expect
 // of `-o new/folder/body.obj`; a std::runtime_error naming the folder when it cannot be made.
 void create_parent_folder(const std::string& path);

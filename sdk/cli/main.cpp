@@ -3,9 +3,13 @@
 // not explain its scan), 2 a usage error, 130 cancelled with Ctrl-C.
 #include "cli.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -58,6 +62,35 @@ Run add_evaluate(CLI::App& app) {
 }  // namespace ssc::cli
 #endif
 
+namespace {
+
+// " (did you mean 'X'?)" for the candidate nearest to a mistyped word (by edit distance, at most a
+// third of its letters off, at least one), or "" when none is that near.
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates) {
+    auto distance = [](const std::string& a, const std::string& b) {  // Levenshtein, two rows
+        std::vector<std::size_t> row(b.size() + 1), next(b.size() + 1);
+        for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+        for (std::size_t i = 1; i <= a.size(); ++i) {
+            next[0] = i;
+            for (std::size_t j = 1; j <= b.size(); ++j)
+                next[j] = std::min({row[j] + 1, next[j - 1] + 1, row[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            std::swap(row, next);
+        }
+        return row[b.size()];
+    };
+    if (word.size() > 200) return "";  // no one mistypes that much; keeps the work bounded
+    const std::size_t limit = std::max<std::size_t>(1, word.size() / 3);
+    std::size_t best = limit + 1;
+    std::string nearest;
+    for (const auto& c : candidates) {
+        const std::size_t d = distance(word, c);
+        if (d < best) best = d, nearest = c;
+    }
+    return nearest.empty() ? "" : " (did you mean '" + nearest + "'?)";
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     CLI::App app{"sscape: statistical 3D human body models (S-SCAPE): make bodies, fit them to landmarks, scans and "
                  "depth images, measure them, and train models. A MODEL is a .sscape file; commands that take one use "
@@ -80,7 +113,7 @@ int main(int argc, char** argv) {
             for (const auto& extra : parsed.front()->remaining())
                 if (extra.size() > 1 && extra[0] == '-') {
                     const std::string word = extra.substr(0, extra.find('='));
-                    const std::string near = ssc::cli::did_you_mean(word, options);
+                    const std::string near = did_you_mean(word, options);
                     if (!near.empty()) hint += "\n'" + word + "'" + near;
                 }
         }
@@ -116,7 +149,7 @@ int main(int argc, char** argv) {
         std::vector<std::string> known;
         for (const auto& [name, run] : commands) names += (names.empty() ? "" : ", ") + name, known.push_back(name);
         std::fprintf(stderr, "sscape: unknown command '%s'%s; the commands: %s\nRun 'sscape --help' for what each does.\n", argv[1],
-                     ssc::cli::did_you_mean(argv[1], known).c_str(), names.c_str());
+                     did_you_mean(argv[1], known).c_str(), names.c_str());
         return 2;
     }
     try {

@@ -5,7 +5,6 @@
 
 #include <Eigen/Geometry>
 
-#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -109,29 +108,6 @@ std::string with_suffix(const std::string& path, const std::string& suffix) {
     const std::size_t dot = path.find_last_of('.');
     if (dot == std::string::npos) return path + suffix;
     return path.substr(0, dot) + suffix + path.substr(dot);
-}
-
-std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates) {
-    auto distance = [](const std::string& a, const std::string& b) {  // Levenshtein, two rows
-        std::vector<std::size_t> row(b.size() + 1), next(b.size() + 1);
-        for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-        for (std::size_t i = 1; i <= a.size(); ++i) {
-            next[0] = i;
-            for (std::size_t j = 1; j <= b.size(); ++j)
-                next[j] = std::min({row[j] + 1, next[j - 1] + 1, row[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-            std::swap(row, next);
-        }
-        return row[b.size()];
-    };
-    if (word.size() > 200) return "";  // no one mistypes that much; keeps the work bounded
-    const std::size_t limit = std::max<std::size_t>(1, word.size() / 3);
-    std::size_t best = limit + 1;
-    std::string nearest;
-    for (const auto& c : candidates) {
-        const std::size_t d = distance(word, c);
-        if (d < best) best = d, nearest = c;
-    }
-    return nearest.empty() ? "" : " (did you mean '" + nearest + "'?)";
 }
 
 void create_parent_folder(const std::string& path) {

@@ -31,10 +31,4 @@ Eigen::Matrix3d up_axis_rotation(const std::string& up) {
     return Eigen::Quaterniond::FromTwoVectors(axis, Eigen::Vector3d::UnitY()).toRotationMatrix();
 }
 
-std::string nearest_axis_name(const Eigen::Vector3d& direction) {
-    int a = 0;
-    direction.cwiseAbs().maxCoeff(&a);
-    return std::string(direction[a] < 0 ? "-" : "") + "xyz"[a];
-}
-
 }  // namespace ssc

@@ -22,7 +22,4 @@ Similarity align_points(const Eigen::Matrix3Xd& src, const Eigen::Matrix3Xd& dst
 // the model's up. Anything else is treated as "y"; callers validate the name.
 Eigen::Matrix3d up_axis_rotation(const std::string& up);
 
-// The signed axis nearest a direction, named as up_axis_rotation takes it ("y", "-z", ...).
-std::string nearest_axis_name(const Eigen::Vector3d& direction);
-
 }  // namespace ssc

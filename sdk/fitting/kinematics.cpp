@@ -156,13 +156,6 @@ void Kinematics::nonzeros(const SurfacePoint& p, std::vector<uint32_t>& out) con
     for (uint32_t c = 0; c < 4; ++c) out.push_back(translation_offset() + c);
 }
 
-Eigen::Matrix3d fitted_body_orientation(const format::ModelData& model, const FitState& fit) {
-    if (fit.pose.empty()) return Eigen::Matrix3d::Identity();
-    const float* r0 = model.skeleton.rest_orientations.data();
-    const Eigen::Matrix3d R0 = Eigen::Quaterniond(r0[3], r0[0], r0[1], r0[2]).normalized().toRotationMatrix();
-    return R0 * fit.pose[0].normalized().toRotationMatrix() * R0.transpose();
-}
-
 FitState Kinematics::zero_state() const {
     FitState s;
     s.shape.assign(K_, 0.0);

@@ -37,10 +37,6 @@ struct FitState {
     double hand_closure[2] = {0, 0};
 };
 
-// The fitted body's orientation in the fit's frame: the root's pose rotation acting in its rest
-// frame (R0 P R0^T); its columns are where the model's +X, +Y (up) and +Z (forward) went.
-Eigen::Matrix3d fitted_body_orientation(const format::ModelData& model, const FitState& fit);
-
 // A point on the template: up to 3 vertices with barycentric weights (a vertex is one weight of 1).
 struct SurfacePoint {
     uint32_t vertex[3] = {0, 0, 0};

@@ -1,11 +1,12 @@
 #include "learning/registration_record.hpp"
 
 #include "common/error.hpp"
+#include "common/axes.hpp"
 #include "common/files.hpp"
 #include "common/rigid.hpp"
 #include "export/mesh_writers.hpp"
 #include "io/readers.hpp"
-#include "fitting/kinematics.hpp"
+#include "fitting/body_orientation.hpp"
 #include "learning/fit_json.hpp"
 
 #include <nlohmann/json.hpp>

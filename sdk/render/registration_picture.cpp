@@ -1,7 +1,8 @@
 #include "render/registration_picture.hpp"
 
+#include "common/axes.hpp"
 #include "common/rigid.hpp"
-#include "fitting/kinematics.hpp"
+#include "fitting/body_orientation.hpp"
 #include "render/text.hpp"
 
 #include <Eigen/Geometry>
