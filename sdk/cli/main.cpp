@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -104,13 +105,16 @@ int main(int argc, char** argv) {
         const std::string name = parsed.empty() ? "" : " " + parsed.front()->get_name();
         // An option nobody has: the command's option nearest to each, as a typo usually is.
         std::string hint;
-        if (!parsed.empty() && e.get_name() == "ExtrasError") {
+        if (!parsed.empty() && dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr) {
             std::vector<std::string> options;
             for (const CLI::Option* o : parsed.front()->get_options()) {
                 for (const auto& l : o->get_lnames()) options.push_back("--" + l);
                 for (const auto& s : o->get_snames()) options.push_back("-" + s);
             }
-            for (const auto& extra : parsed.front()->remaining())
+            // CLI11 names them after the message's colon ("...not expected: --seeed 3").
+            const std::string what = e.what();
+            std::istringstream words(what.substr(what.find(": ") == std::string::npos ? what.size() : what.find(": ") + 2));
+            for (std::string extra; words >> extra;)
                 if (extra.size() > 1 && extra[0] == '-') {
                     const std::string word = extra.substr(0, extra.find('='));
                     const std::string near = did_you_mean(word, options);
@@ -125,7 +129,7 @@ int main(int argc, char** argv) {
         ssc::cli::Run run = add(app);
         commands[app.get_subcommands({}).back()->get_name()] = std::move(run);
     }
-    app.footer("Example: sscape synth --random 5 -o out/body.glb\nRun 'sscape COMMAND --help' for a command's options.");  // after the commands: they would inherit it
+    app.footer("Example: sscape synth --random 5 -o out/body.glb\nRun 'sscape COMMAND --help' for a command's options.\n");  // after the commands: they would inherit it
     // Each command's help ends with examples a user can start from.
     const std::map<std::string, std::string> examples = {
         {"info", "sscape info\n  sscape info out/model.sscape --json"},
@@ -141,7 +145,7 @@ int main(int argc, char** argv) {
         {"make-test-model", "sscape make-test-model -o out/test.sscape --vertices 2000 --components 8"}};
     for (CLI::App* sub : app.get_subcommands({})) {
         const auto it = examples.find(sub->get_name());
-        if (it != examples.end()) sub->footer("Example" + std::string(it->second.find('\n') == std::string::npos ? "" : "s") + ":\n  " + it->second);
+        if (it != examples.end()) sub->footer("Example" + std::string(it->second.find('\n') == std::string::npos ? "" : "s") + ":\n  " + it->second + "\n");
     }
     // CLI11 reports an unknown command as a missing one; name it and the valid ones instead.
     if (argc >= 2 && argv[1][0] != '-' && !commands.count(argv[1])) {
