@@ -3,12 +3,15 @@
 #include "capi/handles.hpp"
 #include "measure/girth.hpp"
 #include "measure/measurements.hpp"
+#include "learning/simulated_collection.hpp"
+#include "measure/mesh_body.hpp"
 #include "support.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 using namespace ssc;
 using Eigen::Vector3d;
@@ -213,4 +216,66 @@ TEST_CASE("the measurement API rejects bad input without writing", "[measure][ca
     for (float v : out) CHECK(v == -7.f);
     ssc_body_destroy(body);
     ssc_model_release(mini);
+}
+
+TEST_CASE("a mesh in the model's topology measures as the body it is, wherever it stands, and says when it is posed", "[measure]") {
+    test::DefaultBody b;
+    const Model& model = test::default_cpp_model();
+    const uint32_t M = ssc_measurement_count(), V = ssc_model_vertex_count(b.model);
+    const float shape[3] = {2.0f, -1.5f, 1.0f};
+    REQUIRE(ssc_body_set_shape(b.body, shape, 3) == SSC_OK);
+    std::vector<float> expected(M), rest(3ull * V);
+    REQUIRE(ssc_body_measure(b.body, expected.data(), M) == SSC_OK);
+    REQUIRE(ssc_body_get_rest_vertices(b.body, rest.data(), V, 0) == SSC_OK);
+    // Turned and moved as a file from another tool may have it.
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.5, Vector3d::UnitY()) * Eigen::AngleAxisd(0.2, Vector3d::UnitX())).toRotationMatrix();
+    std::vector<Vector3d> moved(V);
+    for (uint32_t v = 0; v < V; ++v) moved[v] = R * Vector3d(rest[3 * v], rest[3 * v + 1], rest[3 * v + 2]) + Vector3d(3, -1, 2);
+    const measure::MeshBody mesh = measure::mesh_body(model, moved);
+    CHECK(mesh.off_shape_space < 1e-3);
+    const std::vector<double> got = measure::Measurer(model).measure(mesh.xyz.data(), mesh.joints.data());
+    for (uint32_t m = 0; m < M; ++m) CHECK(got[m] == Approx(expected[m]).epsilon(1e-4));
+
+    // Posed (both arms lowered, an elbow bent): measured as it stands, and far from the shape space.
+    std::vector<float> aa(3ull * ssc_model_joint_count(b.model), 0.f);
+    for (const char* name : {"upperarm_l", "upperarm_r", "lowerarm_r"}) {
+        uint32_t j = 0;
+        REQUIRE(ssc_model_find_joint(b.model, name, &j) == SSC_OK);
+        aa[3 * j + 2] = 0.6f;
+    }
+    REQUIRE(ssc_body_set_pose_axis_angle(b.body, aa.data(), uint32_t(aa.size() / 3), nullptr) == SSC_OK);
+    std::vector<float> posed(3ull * V);
+    REQUIRE(ssc_body_get_vertices(b.body, posed.data(), V, 0) == SSC_OK);
+    std::vector<Vector3d> posed_mesh(V);
+    for (uint32_t v = 0; v < V; ++v) posed_mesh[v] = Vector3d(posed[3 * v], posed[3 * v + 1], posed[3 * v + 2]);
+    const double off = measure::mesh_body(model, posed_mesh).off_shape_space;
+    INFO("posed: " << off * 1e3 << " mm off the shape space");
+    CHECK(off > measure::kFarFromShapeSpace);
+
+    // Not a mesh of the model: refused.
+    CHECK_THROWS_AS(measure::mesh_body(model, std::vector<Vector3d>(V - 1, Vector3d::Zero())), Error);
+    moved[7].x() = std::nan("");
+    CHECK_THROWS_AS(measure::mesh_body(model, moved), Error);
+}
+
+TEST_CASE("people the model does not hold, at rest, lie near its shape space; posed in a booth, farther", "[measure][makehuman]") {
+    const std::string root = test::makehuman_root();
+    if (root.empty()) {
+        WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");
+        return;
+    }
+    const Model& model = test::default_cpp_model();
+    learning::CollectionSpec cs;
+    cs.scans = 4;
+    cs.points = 500;
+    const std::string folder = "mesh_body_makehuman_test";
+    const learning::SimulatedCollection c = learning::simulate_collection(root, model, cs, folder);
+    REQUIRE(c.truth.size() == cs.scans);
+    for (std::size_t s = 0; s < c.truth.size(); ++s) {
+        const double rest = measure::mesh_body(model, c.rest[s]).off_shape_space, posed = measure::mesh_body(model, c.truth[s]).off_shape_space;
+        INFO("person " << s << ": " << rest * 1e3 << " mm at rest, " << posed * 1e3 << " mm posed");
+        CHECK(rest < measure::kFarFromShapeSpace);
+        CHECK(posed > rest);
+    }
+    std::filesystem::remove_all(folder);
 }

@@ -1,3 +1,4 @@
+#include "body_inputs.hpp"
 #include "cli.hpp"
 #include "progress.hpp"
 
@@ -60,24 +61,6 @@ void set_segments(ssc_model* model, ssc_body* body, const std::vector<std::strin
         check(ssc_body_set_segment_shape(body, index, c.data(), uint32_t(c.size())), "--segment " + name);
     }
 }
-
-// "name=value,name=value" (SI units).
-std::vector<std::pair<std::string, float>> parse_named(const std::string& text, const std::string& option) {
-    std::vector<std::pair<std::string, float>> out;
-    std::size_t at = 0;
-    while (at <= text.size()) {
-        const std::size_t end = std::min(text.find(',', at), text.size());
-        const std::string item = text.substr(at, end - at);
-        const std::size_t eq = item.find('=');
-        if (eq == std::string::npos || eq == 0) throw UsageError(option + ": '" + item + "' is not NAME=VALUE");
-        const std::vector<float> v = parse_floats(item.substr(eq + 1), option + " " + item.substr(0, eq));
-        if (v.size() != 1) throw UsageError(option + ": '" + item + "' needs one number");
-        out.emplace_back(item.substr(0, eq), v[0]);
-        at = end + 1;
-    }
-    return out;
-}
-
 
 // What CLI11 cannot check: the number lists and the combinations.
 void finish(Options& o) {
@@ -220,20 +203,7 @@ std::string numbered(const std::string& out, uint32_t i, uint32_t n) {
 // --sliders moves the named sliders from the given shape; --measure then makes the body to measure
 // and prints what it reached.
 void shape_by_meaning(ssc_model* model, ssc_body* body, const Options& o) {
-    for (const auto& [name, value] : o.sliders) {
-        uint32_t s = 0;
-        if (ssc_model_find_slider(model, name.c_str(), &s) != SSC_OK) {
-            std::string known;
-            for (uint32_t i = 0; i < ssc_model_slider_count(model); ++i) {
-                ssc_slider_info info{};
-                info.struct_size = sizeof info;
-                check(ssc_model_get_slider_info(model, i, &info), "slider");
-                known += std::string(i ? ", " : "") + info.name;
-            }
-            throw UsageError("--sliders: the model has no slider '" + name + "' (it has: " + (known.empty() ? "none" : known) + ")");
-        }
-        check(ssc_body_set_slider(body, s, value), "slider " + name);
-    }
+    set_sliders(model, body, o.sliders);
     if (o.measurements.empty()) return;
     std::vector<uint32_t> which;
     std::vector<float> values;
@@ -257,40 +227,6 @@ void shape_by_meaning(ssc_model* model, ssc_body* body, const Options& o) {
     for (std::size_t i = 0; i < which.size(); ++i)
         std::printf("%-18s %10.4f %10.4f\n", o.measurements[i].first.c_str(), values[i], achieved[which[i]]);
     if (!converged) std::printf("note: not every request was reached within 0.5 mm (the combination may be unusual)\n");
-}
-
-// `sscape fit --params` output: the shape, and frame 0's joint rotations (by joint name; joints
-// not named keep the rest pose) and translation.
-struct FitParams {
-    std::vector<float> shape, pose, translation;
-};
-
-FitParams read_params(ssc_model* model, const std::string& path) {
-    const std::string text = read_regular_file(path, 16u << 20, SSC_ERROR_INVALID_ARGUMENT);
-    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) throw UsageError(path + ": not a JSON object (write one with sscape fit --params)");
-    FitParams p;
-    try {
-        p.shape = j.at("shape").get<std::vector<float>>();
-        const auto& frame = j.at("frames").at(0);
-        p.translation = frame.at("translation_m").get<std::vector<float>>();
-        if (p.translation.size() != 3) throw UsageError(path + ": translation_m needs 3 numbers");
-        if (frame.contains("scale") && frame.at("scale").get<double>() != 1.0)
-            throw UsageError(path + ": the fit has a scale other than 1 (--scale), which a body does not have");
-        const uint32_t J = ssc_model_joint_count(model);
-        p.pose.assign(4ull * J, 0.f);
-        for (uint32_t k = 0; k < J; ++k) p.pose[4 * k + 3] = 1.f;
-        for (const auto& [name, q] : frame.at("rotations_xyzw").items()) {
-            uint32_t k = 0;
-            if (ssc_model_find_joint(model, name.c_str(), &k) != SSC_OK) throw UsageError(path + ": the model has no joint '" + name + "'");
-            const auto v = q.get<std::vector<float>>();
-            if (v.size() != 4) throw UsageError(path + ": the rotation of " + name + " needs 4 numbers (x y z w)");
-            for (int c = 0; c < 4; ++c) p.pose[4 * k + uint32_t(c)] = v[std::size_t(c)];
-        }
-    } catch (const nlohmann::json::exception& e) {
-        throw UsageError(path + ": " + e.what() + " (expected sscape fit --params output)");
-    }
-    return p;
 }
 
 int run_synth(Options o) {

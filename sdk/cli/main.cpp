@@ -134,7 +134,8 @@ int main(int argc, char** argv) {
     const std::map<std::string, std::string> examples = {
         {"info", "sscape info\n  sscape info out/model.sscape --json"},
         {"synth", "sscape synth --random 5 --seed 1 -o out/body.glb\n  sscape synth --sliders stature=1.85,mass=80 --pose sitting -o out/body.obj"},
-        {"measure", "sscape measure --shape 1,-0.5 --definitions\n  sscape measure --random 100 --csv out/measurements.csv"},
+        {"measure", "sscape measure --shape 1,-0.5 --definitions\n  sscape measure --random 100 --csv out/measurements.csv\n"
+                    "  sscape measure --mesh out/registered.ply --png out/measured.png"},
         {"fit", "sscape fit --points scan.ply --landmarks scan.lnd -o out/fit.glb --params out/fit.json"},
         {"register", "sscape register scan.ply --landmarks scan.lnd -o out/registered.ply --report out/registered.json --png out/registered.png"},
         {"simulate", "sscape simulate -o out/sim --seed 3 --depth front,back\n  sscape simulate --count 20 -o out/collection"},
