@@ -258,7 +258,7 @@ TEST_CASE("a mesh in the model's topology measures as the body it is, wherever i
     CHECK_THROWS_AS(measure::mesh_body(model, moved), Error);
 }
 
-TEST_CASE("people the model does not hold, at rest, lie near its shape space; posed in a booth, farther", "[measure][makehuman]") {
+TEST_CASE("people the model does not hold lie near its shape space at rest, and farther in a booth's posture", "[measure][makehuman]") {
     const std::string root = test::makehuman_root();
     if (root.empty()) {
         WARN("SKIPPED: ../shared/makehuman not found (set SSCAPE_MAKEHUMAN to its path to run this test)");
