@@ -5,6 +5,7 @@
 #include "anatomy/joint_limits.hpp"
 #include "anatomy/named_poses.hpp"
 #include "capi/handles.hpp"
+#include "simulation/pose_library.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -73,6 +74,47 @@ TEST_CASE("named poses stay within the anatomical joint limits", "[poses]") {
                 CHECK(c[a] <= limits[j].hi[a] + 1e-6);
             }
         }
+    }
+}
+
+TEST_CASE("the benchmark's pose library spans the range of motion within the joint limits", "[poses]") {
+    Posed p;
+    const Model& m = p.model->model;
+    const auto limits = anatomy::joint_limits(m);
+    const auto& library = simulation::pose_library();
+    CHECK(library.size() >= 40);
+    std::vector<std::string> names;
+    for (const auto& pose : library) {
+        CHECK(std::find(names.begin(), names.end(), pose.name) == names.end());
+        names.push_back(pose.name);
+        for (const auto& a : pose.angles) CHECK((m.find_joint(a.joint) >= 0 || m.find_joint(std::string(a.joint) + "_l") >= 0));  // no typo
+        const auto q = simulation::library_pose(m, pose);
+        for (uint32_t j = 0; j < m.joint_count(); ++j) {
+            if (!limits[j].limited) continue;
+            const Eigen::Quaterniond r(q[4 * j + 3], q[4 * j], q[4 * j + 1], q[4 * j + 2]);
+            const Vector3d c = anatomy::anatomical_angles(limits[j], r);
+            INFO(pose.name << " " << m.data().skeleton.joint_names[j] << " " << c.transpose() * 180 / M_PI);
+            for (int a = 0; a < 3; ++a) {
+                CHECK(c[a] >= limits[j].lo[a] - 1e-6);
+                CHECK(c[a] <= limits[j].hi[a] + 1e-6);
+            }
+        }
+    }
+    // Where the names say: lying puts the head level with the hips.
+    for (const char* lying : {"lying_on_back", "lying_on_side", "lying_on_front"}) {
+        const auto it = std::find_if(library.begin(), library.end(), [&](const simulation::LibraryPose& l) { return l.name == lying; });
+        REQUIRE(it != library.end());
+        const uint32_t J = m.joint_count();
+        std::vector<float> world(16ull * J);
+        const auto q = simulation::library_pose(m, *it);
+        REQUIRE(ssc_body_set_pose(p.body, q.data(), J, nullptr) == SSC_OK);
+        REQUIRE(ssc_body_get_joint_transforms(p.body, world.data(), J) == SSC_OK);
+        const uint32_t head = uint32_t(m.find_joint("head")), pelvis = uint32_t(m.find_joint("pelvis"));
+        const Vector3d up = simulation::library_orientation(*it) *
+                            Vector3d(world[16 * head + 12] - world[16 * pelvis + 12], world[16 * head + 13] - world[16 * pelvis + 13],
+                                     world[16 * head + 14] - world[16 * pelvis + 14]);
+        INFO(lying << ": head above the pelvis by " << up.y() << " m");
+        CHECK(std::abs(up.y()) < 0.15);
     }
 }
 

@@ -10,67 +10,63 @@ namespace ssc::anatomy {
 
 namespace {
 
-// Anatomical angles (degrees, relative to the rest pose; conventions of joint_limits.cpp: -x'
-// swings the thigh and the upper arm forward and bends the elbow, +x' bends the knee, -z' raises
-// the arm sideways) of the joints a pose moves, for both sides.
+// Anatomical angles (JointAngles, named_poses.hpp) of the joints each pose moves.
 struct Angle {
     const char* pose;
-    const char* joint;  // without the side suffix
-    double flexion, axial, abduction;
-    char side = 'b';    // 'b' both sides, 'l' or 'r' one side, 'm' a midline joint (no suffix)
+    JointAngles angles;
 };
 
 const Angle kAngles[] = {
     // The rest pose holds the upper arms 43° out from the body and the elbows 42° bent.
-    {"t_pose", "upperarm", 0, 0, -47},  // arms horizontal
-    {"t_pose", "lowerarm", 40, 0, 0},   // elbows straight
-    {"arms_raised", "upperarm", 0, 0, -132},  // arms up beside the head (175° abduction)
-    {"arms_raised", "lowerarm", 40, 0, 0},
-    {"sitting", "thigh", -90, 0, 0},    // thighs horizontal
-    {"sitting", "calf", 83, 0, 0},      // knees at a right angle (the rest pose bends them 7°)
-    {"sitting", "upperarm", -15, 0, 33},  // arms lowered to the sides and a little forward
-    {"sitting", "lowerarm", -5, 0, 0},    // forearms forward and down, towards the thighs
+    {"t_pose", {"upperarm", 0, 0, -47}},  // arms horizontal
+    {"t_pose", {"lowerarm", 40, 0, 0}},   // elbows straight
+    {"arms_raised", {"upperarm", 0, 0, -132}},  // arms up beside the head (175° abduction)
+    {"arms_raised", {"lowerarm", 40, 0, 0}},
+    {"sitting", {"thigh", -90, 0, 0}},    // thighs horizontal
+    {"sitting", {"calf", 83, 0, 0}},      // knees at a right angle (the rest pose bends them 7°)
+    {"sitting", {"upperarm", -15, 0, 33}},  // arms lowered to the sides and a little forward
+    {"sitting", {"lowerarm", -5, 0, 0}},    // forearms forward and down, towards the thighs
     // Crouching: hips and knees deeply bent, heels down, trunk leaning forward, arms forward.
-    {"crouching", "pelvis", 30, 0, 0, 'm'},
-    {"crouching", "thigh", -120, 0, -10},
-    {"crouching", "calf", 125, 0, 0},
-    {"crouching", "foot", -20, 0, 0},
-    {"crouching", "spine_01", 20, 0, 0, 'm'},
-    {"crouching", "spine_02", 15, 0, 0, 'm'},
-    {"crouching", "upperarm", -70, 0, 30},
-    {"crouching", "lowerarm", -50, 0, 0},
+    {"crouching", {"pelvis", 30, 0, 0, 'm'}},
+    {"crouching", {"thigh", -120, 0, -10}},
+    {"crouching", {"calf", 125, 0, 0}},
+    {"crouching", {"foot", -20, 0, 0}},
+    {"crouching", {"spine_01", 20, 0, 0, 'm'}},
+    {"crouching", {"spine_02", 15, 0, 0, 'm'}},
+    {"crouching", {"upperarm", -70, 0, 30}},
+    {"crouching", {"lowerarm", -50, 0, 0}},
     // Kneeling upright: thighs vertical, knees bent a right angle, shins on the floor behind.
-    {"kneeling", "calf", 83, 0, 0},
-    {"kneeling", "foot", 40, 0, 0},
-    {"kneeling", "upperarm", -10, 0, 35},
+    {"kneeling", {"calf", 83, 0, 0}},
+    {"kneeling", {"foot", 40, 0, 0}},
+    {"kneeling", {"upperarm", -10, 0, 35}},
     // Bending forward from the hips, back rounded, arms hanging towards the floor. The pelvis (the
     // root, no limits) pitches forward by its flexion; the thighs flex as much, so the legs stay.
-    {"bending_forward", "pelvis", 55, 0, 0, 'm'},
-    {"bending_forward", "thigh", -55, 0, 0},
-    {"bending_forward", "spine_01", 28, 0, 0, 'm'},
-    {"bending_forward", "spine_02", 28, 0, 0, 'm'},
-    {"bending_forward", "spine_03", 20, 0, 0, 'm'},
-    {"bending_forward", "neck_01", -20, 0, 0, 'm'},
-    {"bending_forward", "upperarm", -95, 0, 20},
-    {"bending_forward", "lowerarm", 30, 0, 0},
+    {"bending_forward", {"pelvis", 55, 0, 0, 'm'}},
+    {"bending_forward", {"thigh", -55, 0, 0}},
+    {"bending_forward", {"spine_01", 28, 0, 0, 'm'}},
+    {"bending_forward", {"spine_02", 28, 0, 0, 'm'}},
+    {"bending_forward", {"spine_03", 20, 0, 0, 'm'}},
+    {"bending_forward", {"neck_01", -20, 0, 0, 'm'}},
+    {"bending_forward", {"upperarm", -95, 0, 20}},
+    {"bending_forward", {"lowerarm", 30, 0, 0}},
     // Bent over with the arms raised past the head (reaching forward and up).
-    {"bent_over_arms_raised", "pelvis", 60, 0, 0, 'm'},
-    {"bent_over_arms_raised", "thigh", -60, 0, 0},
-    {"bent_over_arms_raised", "spine_01", 25, 0, 0, 'm'},
-    {"bent_over_arms_raised", "spine_02", 25, 0, 0, 'm'},
-    {"bent_over_arms_raised", "spine_03", 15, 0, 0, 'm'},
-    {"bent_over_arms_raised", "upperarm", -160, 0, 10},
-    {"bent_over_arms_raised", "lowerarm", 35, 0, 0},
+    {"bent_over_arms_raised", {"pelvis", 60, 0, 0, 'm'}},
+    {"bent_over_arms_raised", {"thigh", -60, 0, 0}},
+    {"bent_over_arms_raised", {"spine_01", 25, 0, 0, 'm'}},
+    {"bent_over_arms_raised", {"spine_02", 25, 0, 0, 'm'}},
+    {"bent_over_arms_raised", {"spine_03", 15, 0, 0, 'm'}},
+    {"bent_over_arms_raised", {"upperarm", -160, 0, 10}},
+    {"bent_over_arms_raised", {"lowerarm", 35, 0, 0}},
     // Lunge: the left leg forward, knee bent; the right leg back, knee bent towards the floor.
-    {"lunge", "thigh", -85, 0, 0, 'l'},
-    {"lunge", "calf", 85, 0, 0, 'l'},
-    {"lunge", "thigh", 25, 0, 0, 'r'},
-    {"lunge", "calf", 75, 0, 0, 'r'},
-    {"lunge", "foot", 40, 0, 0, 'r'},
-    {"lunge", "upperarm", 0, 0, 30},
+    {"lunge", {"thigh", -85, 0, 0, 'l'}},
+    {"lunge", {"calf", 85, 0, 0, 'l'}},
+    {"lunge", {"thigh", 25, 0, 0, 'r'}},
+    {"lunge", {"calf", 75, 0, 0, 'r'}},
+    {"lunge", {"foot", 40, 0, 0, 'r'}},
+    {"lunge", {"upperarm", 0, 0, 30}},
     // Arms behind the back: upper arms back and in, elbows bent, hands meeting behind the waist.
-    {"arms_behind_back", "upperarm", 45, 40, 35},
-    {"arms_behind_back", "lowerarm", -60, 0, 0},
+    {"arms_behind_back", {"upperarm", 45, 40, 35}},
+    {"arms_behind_back", {"lowerarm", -60, 0, 0}},
 };
 
 const std::vector<NamedPose> kPoses = {
@@ -98,13 +94,19 @@ std::vector<float> named_pose(const Model& model, const std::string& name, const
         for (const auto& p : kPoses) names += std::string(names.empty() ? "" : ", ") + p.name;
         fail(SSC_ERROR_NOT_FOUND, "no named pose '" + name + "' (" + names + ")");
     }
+    std::vector<JointAngles> angles;
+    for (const Angle& a : kAngles)
+        if (name == a.pose) angles.push_back(a.angles);
+    return pose_from_angles(model, angles, given);
+}
+
+std::vector<float> pose_from_angles(const Model& model, const std::vector<JointAngles>& angles, const std::vector<JointLimit>* given) {
     const uint32_t J = model.joint_count();
     std::vector<float> q(4 * std::size_t(J), 0.f);
     for (uint32_t j = 0; j < J; ++j) q[4 * j + 3] = 1.f;
     const std::vector<JointLimit> made = given ? std::vector<JointLimit>() : joint_limits(model);
     const std::vector<JointLimit>& limits = given ? *given : made;
-    for (const Angle& a : kAngles) {
-        if (name != a.pose) continue;
+    for (const JointAngles& a : angles) {
         for (const char* side : {"_l", "_r", ""}) {
             const bool wanted = a.side == 'm' ? *side == 0 : *side != 0 && (a.side == 'b' || a.side == side[1]);
             if (!wanted) continue;
@@ -114,8 +116,8 @@ std::vector<float> named_pose(const Model& model, const std::string& name, const
             if (limits[std::size_t(j)].limited) {
                 p = rotation_from_angles(limits[std::size_t(j)], kDeg * Vector3d(a.flexion, a.axial, a.abduction));
             } else {
-                // A joint without limits (the pelvis): flexion pitches what hangs from it forward
-                // about the body's left-right axis, in the joint's rest frame W (rest orientations
+                // A joint without limits (the pelvis): turned about the body's axes at rest (x its
+                // left-right axis, y up, z forward), in the joint's rest frame W (rest orientations
                 // chained from the root).
                 const auto& sk = model.data().skeleton;
                 Eigen::Quaterniond W = Eigen::Quaterniond::Identity();
@@ -123,7 +125,10 @@ std::vector<float> named_pose(const Model& model, const std::string& name, const
                     const float* r = &sk.rest_orientations[4 * std::size_t(k)];
                     W = Eigen::Quaterniond(r[3], r[0], r[1], r[2]).normalized() * W;
                 }
-                p = W.conjugate() * Eigen::Quaterniond(Eigen::AngleAxisd(kDeg * a.flexion, Vector3d::UnitX())) * W;
+                const Eigen::Quaterniond turn = Eigen::AngleAxisd(kDeg * a.axial, Vector3d::UnitY()) *
+                                                Eigen::AngleAxisd(kDeg * a.flexion, Vector3d::UnitX()) *
+                                                Eigen::AngleAxisd(kDeg * a.abduction, Vector3d::UnitZ());
+                p = W.conjugate() * turn * W;
             }
             float* out = &q[4 * std::size_t(j)];
             out[0] = float(p.x()), out[1] = float(p.y()), out[2] = float(p.z()), out[3] = float(p.w());

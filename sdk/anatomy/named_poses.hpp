@@ -16,6 +16,23 @@ struct NamedPose {
     const char* description;
 };
 
+// One joint's anatomical angles in a pose: degrees relative to the rest pose, in the frames of
+// joint_limits.hpp (-x' swings the thigh and the upper arm forward and bends the elbow, +x' bends
+// the knee and the trunk forward and points the foot down, -z' raises the arm or the thigh
+// sideways). A joint without limits (the pelvis, the root of what a pose moves) turns what hangs
+// from it: flexion pitches it forward, axial turns it about the up axis, abduction rolls it to its
+// right, about the body's axes at rest.
+struct JointAngles {
+    const char* joint;  // without the side suffix
+    double flexion, axial, abduction;
+    char side = 'b';    // 'b' both sides, 'l' or 'r' one side, 'm' a midline joint (no suffix)
+};
+
+// The local joint rotations (4 floats, x y z w, per joint) of the given angles; joints not named,
+// or that the rig lacks, stay at rest; a later entry for the same joint replaces an earlier one.
+// Angles are taken as given, not clamped to the limits. limits: as named_pose's.
+std::vector<float> pose_from_angles(const Model& model, const std::vector<JointAngles>& angles, const std::vector<JointLimit>* limits = nullptr);
+
 // Every named pose, in the order of the C API's indices.
 const std::vector<NamedPose>& named_poses();
 

@@ -4,8 +4,8 @@
 
 #include "common/files.hpp"
 #include "export/body_export.hpp"
+#include "render/body_sheet.hpp"
 #include "render/landmark_picture.hpp"
-#include "render/raster.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -119,43 +119,6 @@ std::vector<float> parse_pose(ssc_model* model, const std::string& text) {
         check(ssc_rotation_from_axis_angle(v.data(), &q[4 * j]), "--pose " + name);
     }
     return q;
-}
-
-// Front and side views of every body, side by side, at one common scale.
-void render_bodies(const std::string& path, const std::vector<std::vector<float>>& bodies, const std::vector<uint32_t>& tris) {
-    const int cell_h = 420, per_row = 5;
-    const int n = static_cast<int>(bodies.size());
-    const int cols = std::min(n, per_row), rows = (n + per_row - 1) / per_row;
-    float tallest = 0.f, widest = 0.f;  // widest over both views: x extent and z extent
-    for (const auto& v : bodies) {
-        float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
-        for (std::size_t i = 0; i < v.size(); ++i) lo[i % 3] = std::min(lo[i % 3], v[i]), hi[i % 3] = std::max(hi[i % 3], v[i]);
-        tallest = std::max(tallest, hi[1] - lo[1]);
-        widest = std::max({widest, hi[0] - lo[0], hi[2] - lo[2]});
-    }
-    const float scale = 0.92f * cell_h / std::max(tallest, 1e-3f);
-    const int cell_w = std::max(120, int(scale * widest) + 16);
-    render::Image img(cols * 2 * cell_w, rows * cell_h);
-    std::vector<float> depth;
-    const uint8_t skin[3] = {225, 190, 160};
-    for (int b = 0; b < n; ++b) {
-        const auto& v = bodies[b];
-        float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
-        for (std::size_t i = 0; i < v.size(); ++i) lo[i % 3] = std::min(lo[i % 3], v[i]), hi[i % 3] = std::max(hi[i % 3], v[i]);
-        for (int view = 0; view < 2; ++view) {
-            render::Viewport vp;
-            vp.x0 = (b % per_row) * 2 * cell_w + view * cell_w;
-            vp.y0 = (b / per_row) * cell_h;
-            vp.width = cell_w;
-            vp.height = cell_h;
-            vp.centre_x = view == 0 ? 0.5f * (lo[0] + hi[0]) : -0.5f * (lo[2] + hi[2]);
-            vp.centre_y = 0.5f * (lo[1] + hi[1]);
-            vp.scale = scale;
-            render::draw_mesh(img, depth, vp, view == 0 ? render::View::Front : render::View::Side, v.data(), tris.data(),
-                              static_cast<uint32_t>(tris.size() / 3), skin);
-        }
-    }
-    render::write_png(path, img);
 }
 
 // Many bodies are written into a hidden folder beside their destination and moved into place once
@@ -312,7 +275,7 @@ int run_synth(Options o) {
     }
     std::printf("wrote %u bod%s of %u vertices, %u triangles\n", n, n == 1 ? "y" : "ies", V, T);
     if (!o.png.empty()) {
-        render_bodies(o.png, rendered, tris);
+        render::write_body_sheet(o.png, rendered, tris);
         std::printf("rendered %zu bod%s (front and side views) to %s\n", rendered.size(), rendered.size() == 1 ? "y" : "ies",
                     o.png.c_str());
     }

@@ -76,9 +76,10 @@ PointCloud depth_to_cloud(const DepthView& img) {
             if (z0 == 0) continue;
             const double jump = 0.03 + 0.02 * z0;
             // Moments about the pixel's own point: small numbers, so the covariance loses no precision.
+            // Plain sums (x y z, then xx xy xz yy yz zz): Eigen's small temporaries here were most of
+            // a booth scan's time under the sanitizers.
             const Vector3d p = camera_point(u, v, z0);
-            Vector3d sum = Vector3d::Zero();
-            Matrix3d outer = Matrix3d::Zero();
+            double s[3] = {0, 0, 0}, o[6] = {0, 0, 0, 0, 0, 0};
             int n = 0;
             for (int dv = -R; dv <= R; ++dv)
                 for (int du = -R; du <= R; ++du) {
@@ -86,13 +87,15 @@ PointCloud depth_to_cloud(const DepthView& img) {
                     if (uu < 0 || vv < 0 || uu >= W || vv >= H) continue;
                     const double z = depth_at(uu, vv);
                     if (z == 0 || std::abs(z - z0) > jump) continue;
-                    const Vector3d d = camera_point(uu, vv, z) - p;
-                    sum += d;
-                    outer += d * d.transpose();
+                    const double dx = ray_u[std::size_t(uu)] * z - p.x(), dy = ray_v[std::size_t(vv)] * z - p.y(), dz = z - p.z();
+                    s[0] += dx, s[1] += dy, s[2] += dz;
+                    o[0] += dx * dx, o[1] += dx * dy, o[2] += dx * dz, o[3] += dy * dy, o[4] += dy * dz, o[5] += dz * dz;
                     ++n;
                 }
             if (n < 6) continue;
-            const Vector3d mean = sum / n;
+            const Vector3d mean = Vector3d(s[0], s[1], s[2]) / n;
+            Matrix3d outer;
+            outer << o[0], o[1], o[2], o[1], o[3], o[4], o[2], o[4], o[5];
             const Matrix3d cov = outer / n - mean * mean.transpose();
             // The closed-form 3 x 3 solver: several times faster than the iterative one, and a
             // patch of 6 to 25 points needs no more.

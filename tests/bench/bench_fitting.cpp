@@ -7,6 +7,7 @@
 //
 //   sscape_fit_bench [--trials N] [--scenario landmarks|scan|hands|depth|depth2|robust|poses|frames] [--components K]
 //                    [--max-points N] [--no-joint-limits] [--threads N] [--frames N]
+//                    [--scenario library [--pose NAME] [--makehuman DIR] [--landmarks]]
 // --frames: the frames scenario's frame count (default 100): one person (one shape) scanned in N
 // random poses and headings, fitted with one shared shape; also each frame alone, for comparison.
 // It runs only when asked for (--scenario frames).
@@ -14,6 +15,16 @@
 // with the arms raised, lunge, arms behind the back, sitting, arms raised), each varied by a random
 // pose of a fifth of the random poses' range, in any heading; N trials per pose; a fit is counted
 // failed when its mean vertex error exceeds 8 mm.
+// library (only when asked: --scenario library): every pose of simulation::pose_library() (--pose
+// NAME: that one), each trial a person the model was not trained on (--makehuman DIR, the shared
+// MakeHuman assets; without it a random body of the model), the pose varied by a random pose of a
+// tenth of the random poses' range, in any heading, scanned all round by a booth of 8 depth cameras
+// (1 mm noise; what they cannot see is missing) to 20,000-60,000 points, and fitted from the points
+// alone (--landmarks: with the landmarks too, 5 mm placement noise, no hand landmarks). Per pose and
+// over all: success (mean vertex error under 10 mm), fits reported failed, silent failures (reported
+// converged, over 15 mm), false alarms (reported failed, under 10 mm), the successes' mean error and
+// the median time. SSCAPE_BENCH_PNG=PREFIX writes PREFIX_library.png (the poses on the first body)
+// and a picture of every silent failure and false alarm; with --trials 0 only the picture.
 // --threads: worker threads lent to the fitter, caller included (default: one per core, as a
 // context's default; 1 = none).
 #include "paths.hpp"
@@ -21,8 +32,10 @@
 #include "anatomy/hand_closure.hpp"
 #include "anatomy/named_poses.hpp"
 #include "fitting/fitter.hpp"
+#include "render/body_sheet.hpp"
 #include "render/fit_picture.hpp"
 #include "simulation/depth_camera.hpp"
+#include "simulation/pose_library.hpp"
 #include "simulation/simulate.hpp"
 #include "sscape_format/model_io.hpp"
 
@@ -36,6 +49,10 @@
 #include <string>
 #include <thread>
 
+#ifdef SSCAPE_WITH_TRAINING
+#include "training/makehuman/assets.hpp"
+#include "training/population.hpp"
+#endif
 
 using namespace ssc;
 
@@ -113,6 +130,17 @@ void print_joint_errors(const Model& model, const std::vector<Eigen::Vector3d>& 
             std::printf("    %s %.1f mm\n", model.data().skeleton.joint_names[j].c_str(), 1e3 * sum[j] / count[j]);
 }
 
+// A pose varied by another: each joint's rotation followed by the variation's (x y z w per joint).
+std::vector<float> varied(const std::vector<float>& pose, const std::vector<float>& variation) {
+    std::vector<float> out(pose.size());
+    for (std::size_t j = 0; j + 3 < pose.size(); j += 4) {
+        const Eigen::Quaternionf q = Eigen::Quaternionf(pose[j + 3], pose[j], pose[j + 1], pose[j + 2]) *
+                                     Eigen::Quaternionf(variation[j + 3], variation[j], variation[j + 1], variation[j + 2]);
+        out[j] = q.x(), out[j + 1] = q.y(), out[j + 2] = q.z(), out[j + 3] = q.w();
+    }
+    return out;
+}
+
 Eigen::Matrix3d random_heading(std::mt19937& rng) {
     std::uniform_real_distribution<double> u(-M_PI, M_PI);
     return Eigen::AngleAxisd(u(rng), Eigen::Vector3d::UnitY()).toRotationMatrix();
@@ -131,6 +159,8 @@ int main(int argc, char** argv) {
     bool limits = true, hand_search = true;
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     int frame_count = 100;
+    std::string library_only, makehuman;
+    bool with_landmarks = false;
     for (int i = 1; i < argc; ++i) {
         auto value = [&]() { return i + 1 < argc ? argv[++i] : "0"; };
         if (!std::strcmp(argv[i], "--no-joint-limits")) limits = false;
@@ -141,6 +171,9 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--max-points")) max_points = uint32_t(std::atoi(value()));
         else if (!std::strcmp(argv[i], "--threads")) threads = unsigned(std::max(1, std::atoi(value())));
         else if (!std::strcmp(argv[i], "--frames")) frame_count = std::max(1, std::atoi(value()));
+        else if (!std::strcmp(argv[i], "--pose")) library_only = value();
+        else if (!std::strcmp(argv[i], "--makehuman")) makehuman = value();
+        else if (!std::strcmp(argv[i], "--landmarks")) with_landmarks = true;
     }
     ThreadPool pool(threads);
     auto options = [&]() {  // the fitter's defaults with the command line's changes
@@ -367,13 +400,7 @@ int main(int argc, char** argv) {
             int pose_failed = 0;
             const auto named = anatomy::named_pose(model, name);
             for (int t = 0; t < trials; ++t) {
-                const auto vary = simulation::random_pose(model, rng, 0.2);
-                std::vector<float> pose(named.size());
-                for (std::size_t j = 0; j + 3 < named.size(); j += 4) {
-                    const Eigen::Quaternionf q = Eigen::Quaternionf(named[j + 3], named[j], named[j + 1], named[j + 2]) *
-                                                 Eigen::Quaternionf(vary[j + 3], vary[j], vary[j + 1], vary[j + 2]);
-                    pose[j] = q.x(), pose[j + 1] = q.y(), pose[j + 2] = q.z(), pose[j + 3] = q.w();
-                }
+                const std::vector<float> pose = varied(named, simulation::random_pose(model, rng, 0.2));
                 auto truth = simulation::make_body(model, simulation::random_shape(model, rng), pose, Eigen::Vector3d::Zero());
                 simulation::transform_body(truth, random_heading(rng), Eigen::Vector3d(0.1, 0.2, 1.5));
                 fitting::Frame frame;
@@ -445,6 +472,115 @@ int main(int argc, char** argv) {
             alone.converged += one.report.converged;
         }
         print("each frame alone", alone);
+    }
+    if (only == "library") {
+        // The people: MakeHuman bodies beyond the model, else the model's own random bodies.
+        std::vector<std::vector<Eigen::Vector3d>> people;
+        std::mt19937 rng(900);
+        const int count = std::max(trials, 1);
+        if (!makehuman.empty()) {
+#ifdef SSCAPE_WITH_TRAINING
+            training::mh::Assets assets = training::mh::load_assets(makehuman);
+            training::PopulationSpec ps;
+            ps.count = uint32_t(count);
+            ps.seed = 78;
+            const std::vector<training::BodyParams> population = training::sample_population(assets, ps);
+            const std::size_t trained = assets.modifiers.size();
+            training::mh::add_modifier_groups(assets, "modeling_modifiers.json", {"neck", "head", "armslegs"});
+            for (const auto& person : population) {
+                const std::vector<float> xyz = training::beyond_model_body(assets, person, trained, rng);
+                std::vector<Eigen::Vector3d> rest(model.vertex_count());
+                for (uint32_t v = 0; v < model.vertex_count(); ++v) rest[v] = Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+                people.push_back(std::move(rest));
+            }
+            std::printf("people: %d MakeHuman bodies beyond the model (modifiers it was not trained on)\n", count);
+#else
+            std::fprintf(stderr, "--makehuman needs a build with training (SSCAPE_BUILD_TRAINING)\n");
+            return 2;
+#endif
+        } else {
+            std::vector<float> rest_pose(4ull * model.joint_count(), 0.f);
+            for (uint32_t j = 0; j < model.joint_count(); ++j) rest_pose[4 * j + 3] = 1.f;
+            for (int t = 0; t < count; ++t) {
+                const auto b = simulation::make_body(model, simulation::random_shape(model, rng), rest_pose, Eigen::Vector3d::Zero());
+                people.push_back(b.vertices);
+            }
+            std::printf("people: %d random bodies of the model (--makehuman DIR: people it does not hold)\n", count);
+        }
+        std::printf("scans: 8 depth cameras all round, 1 mm noise, 20000-60000 points; %s\n",
+                    with_landmarks ? "with landmarks (5 mm noise, no hand landmarks)" : "points only");
+        std::printf("%-26s %6s %8s %9s %7s %6s %11s %9s\n", "pose", "trials", "success", "reported", "silent", "false", "success mm",
+                    "median s");
+        std::printf("%-26s %6s %8s %9s %7s %6s %11s %9s\n", "", "", "< 10 mm", "failed", "> 15 mm", "alarms", "mean", "");
+        struct Tally {
+            int trials = 0, success = 0, reported = 0, silent = 0, false_alarms = 0;
+            double success_error = 0;
+            std::vector<double> times;
+            void add(const Tally& o) {
+                trials += o.trials, success += o.success, reported += o.reported, silent += o.silent, false_alarms += o.false_alarms;
+                success_error += o.success_error;
+                times.insert(times.end(), o.times.begin(), o.times.end());
+            }
+            void print(const std::string& name) {
+                std::sort(times.begin(), times.end());
+                std::printf("%-26s %6d %7.0f%% %9d %7d %6d %11.2f %9.2f\n", name.c_str(), trials, 100.0 * success / std::max(1, trials), reported,
+                            silent, false_alarms, success ? 1e3 * success_error / success : 0.0, times.empty() ? 0.0 : times[times.size() / 2]);
+                std::fflush(stdout);
+            }
+        };
+        Tally all;
+        std::vector<std::vector<float>> sheet;
+        std::vector<std::string> captions;
+        std::uniform_int_distribution<uint32_t> point_count(20000, 60000);
+        for (const simulation::LibraryPose& lp : simulation::pose_library()) {
+            if (!library_only.empty() && lp.name != library_only) continue;
+            const std::vector<float> base = simulation::library_pose(model, lp);
+            Tally tally;
+            for (int t = 0; t < std::max(trials, 1); ++t) {  // --trials 0: the picture of the poses only
+                const std::vector<float> pose = varied(base, simulation::random_pose(model, rng, 0.1));
+                auto truth = simulation::pose_rest_vertices(model, people[std::size_t(t) % people.size()], pose, Eigen::Vector3d::Zero());
+                if (t == 0 && !png.empty()) {  // the pose as defined, on the first person, facing the viewer
+                    std::vector<float> xyz;
+                    auto shown = simulation::pose_rest_vertices(model, people[0], base, Eigen::Vector3d::Zero());
+                    simulation::transform_body(shown, simulation::library_orientation(lp), Eigen::Vector3d::Zero());
+                    for (const auto& v : shown.vertices) xyz.insert(xyz.end(), {float(v.x()), float(v.y()), float(v.z())});
+                    sheet.push_back(std::move(xyz));
+                    captions.push_back(lp.name);
+                }
+                simulation::transform_body(truth, random_heading(rng) * simulation::library_orientation(lp), Eigen::Vector3d::Zero());
+                if (trials == 0) break;
+                simulation::BoothSpec booth;
+                booth.points = point_count(rng);
+                fitting::Frame frame;
+                frame.clouds.push_back(simulation::booth_scan(model, truth, booth, rng));
+                if (with_landmarks) frame.landmarks = simulation::simulate_landmarks(model, truth, 0.005, true, rng);
+                const auto sol = fitting::fit(lin, {frame}, options(), nullptr, {}, &pool);
+                const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
+                const double error = simulation::mean_vertex_error(fv, truth.vertices);
+                const bool converged = sol.report.converged;
+                ++tally.trials;
+                tally.times.push_back(sol.report.seconds);
+                if (error < 0.010) ++tally.success, tally.success_error += error;
+                tally.reported += !converged;
+                const bool silent = converged && error > 0.015, false_alarm = !converged && error < 0.010;
+                tally.silent += silent;
+                tally.false_alarms += false_alarm;
+                if (verbose)
+                    std::printf("  %s trial %d: %u points, error %.2f mm, %u restarts, unexplained %.3f, converged %d, implausible %d\n", lp.name.c_str(), t,
+                                booth.points, error * 1e3, sol.report.restarts, sol.report.unexplained, int(converged), int(sol.report.implausible));
+                if (!png.empty() && (silent || false_alarm))
+                    render::write_fit_picture(png + "_" + lp.name + "_" + std::to_string(t) + (silent ? "_silent" : "_false_alarm") + ".png", model,
+                                              sol.frames[0], frame.clouds[0].points, fv, truth.vertices);
+            }
+            if (trials == 0) continue;
+            tally.print(lp.name);
+            all.add(tally);
+        }
+        if (trials > 0) all.print("all poses");
+        if (!png.empty() && !sheet.empty()) {
+            render::write_body_sheet(png + "_library.png", sheet, std::vector<uint32_t>(model.data().mesh.triangles.begin(), model.data().mesh.triangles.end()), captions, 8);
+            std::printf("wrote %s_library.png\n", png.c_str());
+        }
     }
     return 0;
 }
