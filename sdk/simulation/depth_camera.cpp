@@ -80,6 +80,9 @@ fitting::PointCloud booth_scan(const Model& m, const TrueBody& b, const BoothSpe
             view.width = spec.camera.width, view.height = spec.camera.height;
             view.camera = look_at(eye, target, spec.camera);
             const std::vector<float> depth = render_depth(m, b, view.camera, spec.camera, rng);
+            // A camera that sees (almost) nothing of the body, one above a crouching or lying
+            // person, adds nothing.
+            if (std::count_if(depth.begin(), depth.end(), [](float z) { return z > 0; }) < 64) continue;
             view.depth = depth.data();
             const fitting::PointCloud one = fitting::depth_to_cloud(view);
             all.points.insert(all.points.end(), one.points.begin(), one.points.end());
