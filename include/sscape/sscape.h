@@ -1017,11 +1017,54 @@ typedef struct ssc_fit_report {
                                    sparse clutter do not count): the worst frame's; 0 without points. Above SSC_FIT_UNEXPLAINED_LIMIT
                                    the fit has not found the person (a limb or the body in the wrong
                                    place) and converged is 0. */
-    uint32_t implausible;     /**< Non-zero when a frame's fit, after every restart, still ends in an
-                                   implausible pose (joints far past their limits) or leaves over 3 %
-                                   of its scan unexplained: a limb or the body is likely in the wrong
-                                   place, and converged is 0. */
+    uint32_t implausible;     /**< Non-zero when a frame's fit, after every restart, is still judged
+                                   wrong (see ssc_fit_problem): a limb or the body is likely in the
+                                   wrong place. One frame: converged is then 0. Several frames: the
+                                   failed frames are left out of the shared shape and reported by
+                                   ssc_fitter_get_frame_report; converged speaks for the others. */
+    uint32_t problem;         /**< ssc_fit_problem of the first failed frame (SSC_FIT_PROBLEM_NONE: none). */
+    uint32_t failed_frames;   /**< Frames whose fit failed (each: ssc_fitter_get_frame_report). */
 } ssc_fit_report;
+
+/** What is wrong with a frame's fit (the judgement of docs/fitting.md, "Judging a fit"). */
+typedef enum ssc_fit_problem {
+    SSC_FIT_PROBLEM_NONE = 0,
+    SSC_FIT_PROBLEM_JOINT_PAST_RANGE = 1, /**< a joint lies over 20 degrees past its anatomical range */
+    SSC_FIT_PROBLEM_SCAN_UNEXPLAINED = 2, /**< over 0.5 % of the scan lies farther than 5 cm from the fit */
+    SSC_FIT_PROBLEM_LIMB_OFF_SCAN = 3,    /**< a limb, the head or the trunk lies where the scan saw empty space */
+    SSC_FIT_PROBLEM_FORCE32 = 0x7FFFFFFF
+} ssc_fit_problem;
+
+/** The parts of the body a frame report names. */
+typedef enum ssc_body_region {
+    SSC_BODY_REGION_NONE = -1,
+    SSC_BODY_REGION_HEAD = 0,
+    SSC_BODY_REGION_TRUNK = 1,
+    SSC_BODY_REGION_LEFT_ARM = 2,
+    SSC_BODY_REGION_RIGHT_ARM = 3,
+    SSC_BODY_REGION_LEFT_LEG = 4,
+    SSC_BODY_REGION_RIGHT_LEG = 5,
+    SSC_BODY_REGION_FORCE32 = 0x7FFFFFFF
+} ssc_body_region;
+
+/** How one frame's fit was judged. Fill struct_size (sizeof) before the call. */
+typedef struct ssc_fit_frame_report {
+    uint32_t struct_size;         /**< sizeof(ssc_fit_frame_report), set by the caller. */
+    uint32_t failed;              /**< Non-zero: the frame's fit did not find the person (problem says why). */
+    uint32_t left_out;            /**< Non-zero: failed, so kept out of the shared shape (several frames);
+                                       its pose is its own best fit, not to be trusted. */
+    uint32_t problem;             /**< ssc_fit_problem. */
+    int32_t joint;                /**< The joint furthest past its range, or -1 when none is. */
+    int32_t region;               /**< ssc_body_region off the scan (LIMB_OFF_SCAN), else the part most
+                                       outside the scan's extent (a partial scan), or -1. */
+    float unexplained_fraction;   /**< As ssc_fit_report's, for this frame. */
+    float joint_excess_degrees;   /**< How far that joint lies past its range. */
+    const char* problem_text;     /**< One line: what is wrong, where, how much; "" when nothing. */
+    const char* unscanned;        /**< One line on parts the scan does not show (a partial scan), or "". */
+} ssc_fit_frame_report;
+
+/** Called when a frame has been fitted (see ssc_fitter_set_frame_callback); non-zero cancels. */
+typedef int (*ssc_frame_fn)(void* user, uint32_t frame, const ssc_fit_frame_report* report);
 
 /** The unexplained_fraction above which a fit is reported as not converged: it failed. */
 #define SSC_FIT_UNEXPLAINED_LIMIT 0.1f
@@ -1041,6 +1084,23 @@ typedef struct ssc_fit_report {
  * not depend on their number.
  */
 SSC_EXPERIMENTAL ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* user, ssc_fit_report* report);
+
+/**
+ * How one frame's fit was judged, after a solve.
+ * @param out  filled up to out->struct_size; its strings are owned by the fitter and valid until its
+ *             next solve, clear or destroy.
+ * @return SSC_ERROR_INVALID_ARGUMENT before a successful solve or for a frame beyond the last.
+ * Ownership: the strings belong to the fitter. Threads: the fitter's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_fitter_get_frame_report(const ssc_fitter* fitter, uint32_t frame, ssc_fit_frame_report* out);
+
+/**
+ * A callback for ssc_fitter_solve's progress frame by frame: with several frames, called after each
+ * frame's own fit (in order) and again when a later try from a neighbouring frame fixes a failed
+ * one; with one frame, once at the end. NULL removes it. The report's strings live for the call.
+ * Ownership: user stays the caller's. Threads: called on the thread that runs ssc_fitter_solve.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_fitter_set_frame_callback(ssc_fitter* fitter, ssc_frame_fn callback, void* user);
 
 /** The fitted shape (standard deviations); capacity >= ssc_model_shape_count (unused components 0).
  *  @return SSC_ERROR_INVALID_ARGUMENT before a successful solve. Threads: the fitter's thread. */

@@ -21,6 +21,22 @@ void add_landmarks(ssc_fitter* f, uint32_t frame, const std::vector<uint32_t>& i
     f->fitter.add_landmarks(frame, add);
 }
 
+// The C view of a frame's report; its strings point into `fr`.
+ssc_fit_frame_report frame_report(const fitting::FrameReport& fr) {
+    ssc_fit_frame_report out{};
+    out.struct_size = sizeof out;
+    out.failed = fr.failed;
+    out.left_out = fr.left_out;
+    out.problem = uint32_t(fr.problem);
+    out.joint = fr.joint_excess > 0 ? fr.joint : -1;
+    out.region = fr.region;
+    out.unexplained_fraction = float(fr.unexplained);
+    out.joint_excess_degrees = float(fr.joint_excess * 180.0 / 3.14159265358979323846);
+    out.problem_text = fr.problem_text.c_str();
+    out.unscanned = fr.unscanned.c_str();
+    return out;
+}
+
 }  // namespace
 
 namespace ssc::capi {
@@ -182,7 +198,13 @@ ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* 
         if (report) SSC_REQUIRE_ARG(report->struct_size >= sizeof(uint32_t), "report->struct_size must be set to sizeof(ssc_fit_report)");
         fitting::FitProgress cb;
         if (progress) cb = [&](uint32_t it, double cost) { return progress(user, it, float(cost)) == 0; };
-        const fitting::FitReport& r = fitter->fitter.solve(cb, &fitter->model->context->pool);
+        fitting::FrameDone frame_done;
+        if (fitter->frame_callback)
+            frame_done = [&](uint32_t frame, const fitting::FrameReport& fr) {
+                const ssc_fit_frame_report out = frame_report(fr);
+                return fitter->frame_callback(fitter->frame_user, frame, &out) == 0;
+            };
+        const fitting::FitReport& r = fitter->fitter.solve(cb, &fitter->model->context->pool, frame_done);
         if (report) {
             ssc_fit_report out{};
             out.struct_size = sizeof out;
@@ -197,11 +219,34 @@ ssc_status ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn progress, void* 
             out.restarts = r.restarts;
             out.unexplained_fraction = float(r.unexplained);
             out.implausible = r.implausible;
+            out.problem = uint32_t(r.problem);
+            out.failed_frames = r.failed_frames;
             const uint32_t n = report->struct_size < sizeof out ? report->struct_size : uint32_t(sizeof out);
             std::memcpy(report, &out, n);
             report->struct_size = n;
         }
         if (r.cancelled) fail(SSC_ERROR_CANCELLED, "cancelled by the progress callback");
+    });
+}
+
+ssc_status ssc_fitter_get_frame_report(const ssc_fitter* fitter, uint32_t frame, ssc_fit_frame_report* out) {
+    return guarded(__func__, [&] {
+        need(fitter, "fitter");
+        need(out, "out");
+        SSC_REQUIRE_ARG(out->struct_size >= sizeof(uint32_t), "out->struct_size must be set to sizeof(ssc_fit_frame_report)");
+        fitter->fitter.frame_state(frame);  // checks the solve and the frame
+        const ssc_fit_frame_report r = frame_report(fitter->fitter.solution().report.frames.at(frame));
+        const uint32_t n = out->struct_size < sizeof r ? out->struct_size : uint32_t(sizeof r);
+        std::memcpy(out, &r, n);
+        out->struct_size = n;
+    });
+}
+
+ssc_status ssc_fitter_set_frame_callback(ssc_fitter* fitter, ssc_frame_fn callback, void* user) {
+    return guarded(__func__, [&] {
+        need(fitter, "fitter");
+        fitter->frame_callback = callback;
+        fitter->frame_user = callback ? user : nullptr;
     });
 }
 

@@ -58,6 +58,8 @@ struct ssc_body {
 struct ssc_fitter {
     ssc_model* model;  // holds one reference
     ssc::fitting::Fitter fitter;
+    ssc_frame_fn frame_callback = nullptr;  // ssc_fitter_set_frame_callback
+    void* frame_user = nullptr;
 
     ssc_fitter(ssc_model* m, const ssc::fitting::FitOptions& o) : model(m), fitter(m->model, o, m->runtime.anatomy()) {}
 };

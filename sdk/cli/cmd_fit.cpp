@@ -124,8 +124,23 @@ int run_fit(Options o) {
     }
     ssc_fit_report report;
     report.struct_size = sizeof report;
+    const uint32_t frame_count = ssc_fitter_frame_count(guard.fitter);
     {
         Progress progress("fit");
+        // Several frames: a line per frame as it is fitted.
+        struct FrameLines {
+            Progress* progress;
+            uint32_t count;
+        } lines{&progress, frame_count};
+        const ssc_frame_fn frame_line = [](void* user, uint32_t frame, const ssc_fit_frame_report* r) {
+            const auto* l = static_cast<const FrameLines*>(user);
+            l->progress->clear();
+            if (r->failed) std::printf("frame %u of %u: failed: %s\n", frame + 1, l->count, r->problem_text);
+            else std::printf("frame %u of %u: fitted\n", frame + 1, l->count);
+            std::fflush(stdout);
+            return 0;
+        };
+        if (frame_count > 1) check(ssc_fitter_set_frame_callback(guard.fitter, frame_line, &lines), "fit");
         const ssc_progress_fn show = [](void* user, uint32_t iteration, float cost) {
             char text[96];
             std::snprintf(text, sizeof text, "iteration %u, cost %.4g", iteration, double(cost));
@@ -138,31 +153,30 @@ int run_fit(Options o) {
         }
         check(status, "fit");
     }
-    const char* outcome = report.converged ? "converged" : report.implausible ? "failed (implausible)"
-                          : report.unexplained_fraction > SSC_FIT_UNEXPLAINED_LIMIT ? "failed (scan unexplained)"
-                                                                                     : "iteration limit";
+    // Each frame's judgement (the first frame's, for one).
+    std::vector<ssc_fit_frame_report> frame_reports(frame_count);
+    for (uint32_t f = 0; f < frame_count; ++f) {
+        frame_reports[f].struct_size = sizeof(ssc_fit_frame_report);
+        check(ssc_fitter_get_frame_report(guard.fitter, f, &frame_reports[f]), "fit");
+    }
+    const char* outcome = report.converged ? "converged" : report.implausible ? "failed" : "iteration limit";
     std::printf("fit: %u iterations, %s, %.1f ms; cost %.4g -> %.4g\n", report.iterations, outcome,
                 report.seconds * 1e3, report.initial_cost, report.final_cost);
-    if (report.restarts) std::printf("restarts: %u (the fit from the best start candidate ended in an implausible pose)\n", report.restarts);
+    if (report.restarts) std::printf("restarts: %u (a fit from a start was judged wrong and redone from another)\n", report.restarts);
     if (!o.landmarks.empty()) std::printf("landmark rms distance: %.2f mm\n", report.landmark_rms * 1e3);
-    if (!o.points.empty() || !o.depth.empty()) {
+    if (!o.points.empty() || !o.depth.empty())
         std::printf("points: mean correspondence distance %.2f mm, inliers %.1f %%, %.1f %% on a surface farther than 5 cm from the fit\n",
                     report.point_mean * 1e3, 100 * report.inlier_fraction, 100 * report.unexplained_fraction);
-        if (report.unexplained_fraction > SSC_FIT_UNEXPLAINED_LIMIT) {
-            std::fprintf(stderr,
-                         "sscape fit: failed: %.0f %% of the scan lies farther than 5 cm from the fitted body (at most %.0f %% is "
-                         "accepted): a limb or the whole body is in the wrong place, or the scan holds more than one person or "
-                         "much clutter; nothing written\n",
-                         100 * double(report.unexplained_fraction), 100 * double(SSC_FIT_UNEXPLAINED_LIMIT));
-            return 1;
-        }
-    }
-    if (report.implausible) {
+    if (frame_count == 1 && frame_reports[0].unscanned[0]) std::printf("note: %s\n", frame_reports[0].unscanned);
+    if (frame_count == 1 && report.implausible) {
         std::fprintf(stderr,
-                     "sscape fit: failed: after %u restart(s) the best fit still has joints far past their anatomical limits or "
-                     "leaves %.0f %% of the scan farther than 5 cm (over 3 %%): a limb or the whole body is most likely in the "
-                     "wrong place (a hard pose: try adding landmarks with --landmarks); nothing written\n",
-                     report.restarts, 100 * double(report.unexplained_fraction));
+                     "sscape fit: failed: %s (after %u restart(s)): a limb or the whole body is most likely in the wrong place "
+                     "(a hard pose: try adding landmarks with --landmarks); nothing written\n",
+                     frame_reports[0].problem_text, report.restarts);
+        return 1;
+    }
+    if (frame_count > 1 && report.failed_frames == frame_count) {
+        std::fprintf(stderr, "sscape fit: failed: no frame found its person (frame 1: %s); nothing written\n", frame_reports[0].problem_text);
         return 1;
     }
 
@@ -185,6 +199,11 @@ int run_fit(Options o) {
     std::vector<float> more(3ull * V), frame_rot(4ull * J), frame_t(3);
     for (uint32_t f = 0; f < F; ++f) {
         const std::string path = f == 0 ? o.out : with_suffix(o.out, "_frame" + std::to_string(f));
+        if (frame_reports[f].failed) {  // never written: its pose is not to be trusted
+            std::printf("frame %u of %u failed (%s): left out of the shared shape, %s not written\n", f + 1, F,
+                        frame_reports[f].problem_text, path.c_str());
+            continue;
+        }
         float frame_scale = 1;
         check(ssc_fitter_get_pose(guard.fitter, f, frame_rot.data(), J, frame_t.data(), &frame_scale), "pose");
         if (frame_scale == 1.0f) {
@@ -221,6 +240,11 @@ int run_fit(Options o) {
         render::write_fit_picture(o.png, model_of(model), s, shown, fitted, {});
         std::printf("wrote %s (input, then the fit; front and side)\n", o.png.c_str());
     }
+    if (report.failed_frames > 0) {
+        std::fprintf(stderr, "sscape fit: %u of %u frames failed (listed above) and were not written; the other %u were\n",
+                     report.failed_frames, frame_count, frame_count - report.failed_frames);
+        return 1;
+    }
     return 0;
 }
 
@@ -230,7 +254,8 @@ Run add_fit(CLI::App& app) {
     auto o = std::make_shared<Options>();
     CLI::App* c = app.add_subcommand(
         "fit", "fit the model's shape and pose to landmarks, scans and/or depth images and write the fitted body; exits 1, writing "
-               "nothing, when the fit leaves more than 10 % of a scan unexplained");
+               "nothing, when the fit is judged wrong (a joint past its range, the scan unexplained, a limb where the scan saw "
+               "empty space); with --frames, exits 1 when a frame failed, writing every other frame");
     add_model_argument(*c, o->model);
     c->add_option("--landmarks", o->landmarks, "landmarks in the CAESAR .lnd format (millimetres unless --units), matched by name; "
                                                "repeat for more files")

@@ -1,5 +1,6 @@
 #include "fitting/fit_problem.hpp"
 
+#include "fitting/judgement.hpp"
 #include "fitting/posed_surface.hpp"
 #include "fitting/scan_normals.hpp"
 #include "synthesis/shape_range.hpp"
@@ -344,6 +345,40 @@ double FitProblem::unexplained_share(uint32_t f) {
         far += found == kSurfaceNeighbours + 1 && d2[kSurfaceNeighbours] <= kSurfaceRadius * kSurfaceRadius;
     }
     return double(far) / double(n);
+}
+
+double FitProblem::share_beyond(uint32_t f, double distance) {
+    auto& fd = frames_[f];
+    if (fd.points.empty()) return 0;
+    kin_[f].update(states_[f], false);
+    pose_frame(f, true);
+    dense_grid_.build(posed_);
+    const std::size_t n = std::min(kExplainedSamples, fd.scan_sample.size());
+    std::size_t far = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vector3d& p = fd.points[fd.scan_sample[i]];
+        if (dense_grid_.nearest(p, distance, nullptr) != GridIndex::kNone) continue;
+        build_scan_tree(fd);
+        uint32_t index[kSurfaceNeighbours + 1];
+        double d2[kSurfaceNeighbours + 1];
+        const std::size_t found = fd.scan_index->nearest_k(p, kSurfaceNeighbours + 1, index, d2);
+        far += found == kSurfaceNeighbours + 1 && d2[kSurfaceNeighbours] <= kSurfaceRadius * kSurfaceRadius;
+    }
+    return double(far) / double(n);
+}
+
+const std::vector<Vector3d>& FitProblem::posed_sample(uint32_t f) {
+    kin_[f].update(states_[f], false);
+    pose_frame(f, false);
+    return posed_subset();
+}
+
+const std::vector<uint8_t>& FitProblem::sample_regions() {
+    if (sample_regions_.empty()) {
+        const std::vector<uint8_t> regions = vertex_regions(lin_);
+        for (uint32_t v : vertex_sample_) sample_regions_.push_back(regions[v]);
+    }
+    return sample_regions_;
 }
 
 }  // namespace ssc::fitting

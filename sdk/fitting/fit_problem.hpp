@@ -95,6 +95,13 @@ public:
     // The share of frame f's scan sample farther than 5 cm from the posed model and on a surface:
     // data the fit does not explain. 0 for a frame without points.
     double unexplained_share(uint32_t f);
+    // The share of frame f's scan sample farther than `distance` from every posed model vertex
+    // (all of them) and on a surface.
+    double share_beyond(uint32_t f, double distance);
+    // Frame f's posed vertex sample (vertex_sample() order) and each sample's body region
+    // (judgement.hpp), for judging a fit.
+    const std::vector<Vector3d>& posed_sample(uint32_t f);
+    const std::vector<uint8_t>& sample_regions();
 
     // The template placed by a similarity (world = scale R u + t for its points u), in `pose`
     // (default the rest pose): a root rotation about the root joint plus translation.
@@ -124,6 +131,7 @@ private:
     std::vector<Kinematics> kin_;
     std::vector<double> shape_;
     std::vector<FitState> states_;
+    std::vector<uint8_t> sample_regions_;  // judgement.hpp's region of each, built when needed
     std::vector<uint32_t> vertex_sample_;  // area-uniform model vertices (model-to-scan, explained measure)
     std::vector<Vector3d> posed_, posed_normals_, subset_posed_, subset_normals_;
     // Over the posed model, rebuilt for each use: every vertex (spacing about 1 cm) or the sample

@@ -70,9 +70,9 @@ void Fitter::clear() {
     residuals_.clear();
 }
 
-const FitReport& Fitter::solve(const FitProgress& progress, ThreadPool* pool) {
+const FitReport& Fitter::solve(const FitProgress& progress, ThreadPool* pool, const FrameDone& frame_done) {
     solved_ = false;
-    solution_ = fit(linear_, frames_, options_, nullptr, progress, pool);
+    solution_ = fit(linear_, frames_, options_, nullptr, progress, pool, frame_done);
     residuals_.assign(frames_.size(), {});
     Body body(model(), nullptr);
     std::vector<Vector3d> posed, normals;

@@ -35,7 +35,8 @@ public:
 
     // Fits every frame (fit()). A cancelled fit (progress returned false) keeps the best state so
     // far as the solution, with report.cancelled set.
-    const FitReport& solve(const FitProgress& progress = {}, ThreadPool* pool = nullptr);
+    // frame_done: see fit().
+    const FitReport& solve(const FitProgress& progress = {}, ThreadPool* pool = nullptr, const FrameDone& frame_done = {});
 
     // After a solve (else Error, INVALID_ARGUMENT): the solution, one frame's state, its posed
     // vertices, and per scan point of the frame (in the order added) the distance to the fitted

@@ -4,6 +4,7 @@
 #include "fitting/solver.hpp"
 #include "fitting/fit_problem.hpp"
 #include "fitting/hand_search.hpp"
+#include "fitting/judgement.hpp"
 #include "fitting/limb_search.hpp"
 #include "fitting/rigid_start.hpp"
 
@@ -23,23 +24,12 @@ namespace {
 // A start candidate whose short coarse fit ends with pose priors above this is implausible (one
 // joint 10 degrees past its limit costs about 38; plausible fits stay near 100 or below).
 constexpr double kImplausiblePose = 300;
-// A whole fit ending with pose priors above this is implausible, and a single frame's fit from the
-// automatic start is then redone from the start search's other candidates, at most kMaxRestarts
-// times (see restart_if_implausible()). Of 670 benchmark fits (scan, front depth, front and back
-// depth, trials 0-139; 250 more scans) all but two ended between 3 and 27; those two, forced onto
-// a body of the other way round, near 300. An upside-down fit seen on the way ended at 98.
-constexpr double kImplausibleFit = 50;
+// A single frame's fit from the automatic start that judgement.hpp finds wrong is redone from the
+// start search's other candidates, at most kMaxRestarts times (see restart_if_implausible()).
 constexpr uint32_t kMaxRestarts = 2;
 // A limb that gained this fraction of the measure in the limb search has the limbs searched
 // before it searched again (see fit_stages(); the measurements are in docs/fitting.md).
 constexpr double kResweep = 0.3;
-// A one-frame fit leaving more than kRetryUnexplained of its scan unexplained
-// (FitProblem::unexplained_share) is redone from the next start candidates; one leaving more than
-// kFailedUnexplained is reported as not converged. On the benchmark's scans (1 % outliers, 20 %
-// holes; 30 trials) the share ended at 1.4 % or less, on front depth images at 0; retrying from
-// 3 % rather than 5 % found two more of the hard poses' failures and flagged no good fit.
-constexpr double kRetryUnexplained = 0.03;
-constexpr double kFailedUnexplained = 0.10;
 // Start candidates that get a short coarse fit at most (the best two always; more while those end
 // implausible).
 constexpr std::size_t kMaxShortFits = 8;
@@ -112,11 +102,33 @@ private:
             accepted += fd.pairs.size();
         }
         const std::size_t tried = p_.pair_queries();
-        for (uint32_t f = 0; f < F_; ++f) r.unexplained = std::max(r.unexplained, p_.unexplained_share(f));
+        r.frames.clear();
+        for (uint32_t f = 0; f < F_; ++f) {
+            const Judgement j = judge(p_, f);
+            r.unexplained = std::max(r.unexplained, j.unexplained);
+            FrameReport fr;
+            fr.problem = j.problem;
+            fr.problem_text = j.describe(p_.linear().model);
+            fr.unscanned = j.unscanned_parts();
+            fr.unexplained = j.unexplained;
+            fr.joint = j.joint;
+            fr.joint_excess = j.joint_excess;
+            fr.coverage = j.coverage;
+            fr.loose = j.loose;
+            for (std::size_t g = 0; g < kBodyRegionCount; ++g)
+                if (g != std::size_t(BodyRegion::Trunk)) fr.off_scan = std::max(fr.off_scan, j.off_scan[g]);
+            fr.region = j.region;
+            fr.failed = !j.acceptable();
+            if (fr.failed && r.problem == FitProblemKind::None) r.problem = j.problem, r.problem_text = fr.problem_text;
+            if (r.unscanned.empty()) r.unscanned = fr.unscanned;
+            r.frames.push_back(std::move(fr));
+        }
         p_.update_kinematics();
-        // A fit that leaves this much of a scan unexplained has not found the person: not converged.
-        r.converged = converged && r.unexplained <= kFailedUnexplained;
-        r.implausible = implausible_;
+        bool any_failed = false;
+        for (const FrameReport& fr : r.frames) any_failed |= fr.failed;
+        // A fit judged wrong (judgement.hpp) has not converged to the person, whatever its cost did.
+        r.converged = converged && !any_failed;
+        r.implausible = implausible_ || any_failed;
         r.landmark_rms = nl ? std::sqrt(lm2 / double(nl)) : 0;
         r.point_mean = np ? pd / double(np) : 0;
         r.inlier_fraction = tried ? double(accepted) / double(tried) : 0;
@@ -163,11 +175,10 @@ private:
         return converged;
     }
 
-    // What restart_if_implausible() accepts of a frame: its pose prior and unexplained share.
-    static bool acceptable(double pose_prior, double unexplained) { return pose_prior <= kImplausibleFit && unexplained <= kRetryUnexplained; }
+    // What restart_if_implausible() accepts of a frame: judgement.hpp's verdict.
     bool every_frame_acceptable() {
         for (uint32_t f = 0; f < F_; ++f)
-            if (!acceptable(p_.pose_priors(f), p_.unexplained_share(f))) return false;
+            if (!judge(p_, f).acceptable()) return false;
         return true;
     }
 
@@ -208,15 +219,16 @@ private:
     bool restart_if_implausible(const Schedule& plan, const FitProgress& progress, uint32_t& iteration, bool& cancelled,
                                 uint32_t& restarts, bool converged) {
         p_.update_kinematics();
-        const double prior = p_.pose_priors(0), unexplained = p_.unexplained_share(0);
-        if (acceptable(prior, unexplained)) return converged;
+        const Judgement first = judge(p_, 0);
+        if (first.acceptable()) return converged;
         struct Attempt {
             std::vector<double> shape;
             std::vector<FitState> states;
             bool converged;
-            double prior, unexplained, measure;
+            Judgement judgement;
+            double measure;
         };
-        Attempt best{p_.shape(), p_.states(), converged, prior, unexplained, p_.explained(0)};
+        Attempt best{p_.shape(), p_.states(), converged, first, p_.explained(0)};
         // The start poses not tried yet get their short fits now; all candidates, best first.
         std::vector<std::pair<double, FitState>> alternatives = alternative_starts_;
         double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
@@ -226,22 +238,23 @@ private:
         }
         std::stable_sort(alternatives.begin(), alternatives.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         for (const auto& [cost, alternative] : alternatives) {
-            if (acceptable(best.prior, best.unexplained) || restarts == kMaxRestarts) break;
+            if (best.judgement.acceptable() || restarts == kMaxRestarts) break;
             p_.states()[0] = alternative;
             p_.shape() = alternative.shape;
             const bool c = fit_stages(plan, Schedule::kCoarse, progress, iteration, cancelled, nullptr);
             if (cancelled) break;
             ++restarts;
             p_.update_kinematics();
-            const double p = p_.pose_priors(0), u = p_.unexplained_share(0), measure = p_.explained(0);
-            if (acceptable(p, u) || measure < best.measure) best = {p_.shape(), p_.states(), c, p, u, measure};
+            const Judgement j = judge(p_, 0);
+            const double measure = p_.explained(0);
+            if (j.acceptable() || measure < best.measure) best = {p_.shape(), p_.states(), c, j, measure};
         }
         p_.shape() = best.shape;
         p_.states() = best.states;
         p_.update_kinematics();
         // Still implausible after the restarts: most likely a limb or the body in the wrong place
         // (benchmark poses crouching and bent over), reported as failed.
-        implausible_ = !cancelled && !acceptable(best.prior, best.unexplained);
+        implausible_ = !cancelled && !best.judgement.acceptable();
         return best.converged && !implausible_;
     }
 
@@ -380,8 +393,179 @@ bool is_hand_landmark(const std::string& name) {
     return lower.find("metacarpal") != std::string::npos || lower.find("dactylion") != std::string::npos;
 }
 
+namespace {
+
+// Several frames (a capture of one person, or any set of scans of them) from the automatic start.
+// Each frame is first fitted alone, with everything a single fit has, then the frames that found
+// their person are fitted together from those poses and their median shape with the fine stages
+// only (the shared shape's joint refinement; fitted together from the start, frames got no limb
+// search nor restarts and ended worse than alone on real scans). Frames of a capture are usually
+// in order, and a person moves little between frames: each frame is first started from the last
+// good frame's fit (no start search, a fraction of the time), and from the automatic start when
+// that fit is judged wrong. A set in no order makes those tracked starts fail: after
+// kTrackingMisses of them in a row the automatic start comes first, the last good fit second. A
+// frame that still fails is tried from the next good frame's fit; one that fails after all is
+// left out of the shared shape and reported (FrameReport::failed, left_out); every other frame is
+// returned.
+constexpr uint32_t kTrackingMisses = 3;
+
+class Sequence {
+public:
+    Sequence(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options, const FitProgress& progress,
+             const FrameDone& frame_done, ThreadPool* pool)
+        : lin_(lin), frames_(frames), options_(options), progress_(progress), frame_done_(frame_done), pool_(pool) {}
+
+    FitSolution run(std::chrono::steady_clock::time_point t0) {
+        const std::size_t F = frames_.size();
+        fits_.resize(F);
+        // First pass, in order: tracked from the last good frame, or the automatic start.
+        int64_t last_good = -1;
+        uint32_t misses = 0;
+        for (std::size_t f = 0; f < F && !cancelled_; ++f) {
+            const bool track_first = last_good >= 0 && misses < kTrackingMisses;
+            if (track_first) {
+                attempt(f, &fits_[std::size_t(last_good)].frames[0]);
+                misses = good(f) ? 0 : misses + 1;
+            }
+            if (!good(f) && !cancelled_) attempt(f, nullptr);
+            if (!good(f) && !track_first && last_good >= 0 && !cancelled_) attempt(f, &fits_[std::size_t(last_good)].frames[0]);
+            if (good(f)) last_good = int64_t(f);
+            if (!cancelled_ && frame_done_ && !frame_done_(uint32_t(f), fits_[f].report.frames[0])) cancelled_ = true;
+        }
+        // Second pass, backwards: failed frames from the next good frame's fit.
+        int64_t next_good = -1;
+        for (std::size_t f = F; f-- > 0 && !cancelled_;) {
+            if (!fits_[f].frames.empty() && !good(f) && next_good >= 0) {
+                attempt(f, &fits_[std::size_t(next_good)].frames[0]);
+                if (good(f) && frame_done_ && !frame_done_(uint32_t(f), fits_[f].report.frames[0])) cancelled_ = true;
+            }
+            if (!fits_[f].frames.empty() && good(f)) next_good = int64_t(f);
+        }
+        return cancelled_ ? cancelled(t0) : together(t0);
+    }
+
+private:
+    bool good(std::size_t f) const { return !fits_[f].frames.empty() && !fits_[f].report.frames[0].failed; }
+
+    // Fits frame f alone, from `start` (a fitted state of another frame) or the automatic start,
+    // and keeps the result when it is the frame's first, or good where the kept one was not.
+    void attempt(std::size_t f, const FitState* start) {
+        FitOptions o = options_;
+        std::vector<FitState> given;
+        if (start) o.auto_start = false, given.push_back(*start);
+        const FitProgress each = [&](uint32_t it, double cost) { return !progress_ || progress_(iterations_ + it, cost); };
+        Solver alone(lin_, {frames_[f]}, o, pool_);
+        FitSolution one = alone.run(start ? &given : nullptr, each, std::chrono::steady_clock::now());
+        iterations_ += one.report.iterations;
+        restarts_ += one.report.restarts;
+        cancelled_ = one.report.cancelled;
+        if (fits_[f].frames.empty() || (!one.report.frames[0].failed && !good(f))) fits_[f] = std::move(one);
+    }
+
+    // Cancelled: the frames not reached keep the first frame's fit.
+    FitSolution cancelled(std::chrono::steady_clock::time_point t0) {
+        FitSolution sol;
+        for (const FitSolution& one : fits_)
+            if (!one.frames.empty() && sol.shape.empty()) sol.shape = one.shape;
+        for (const FitSolution& one : fits_) {
+            sol.frames.push_back(one.frames.empty() ? fits_[0].frames[0] : one.frames[0]);
+            FrameReport fr = one.frames.empty() ? FrameReport{} : one.report.frames[0];
+            sol.report.frames.push_back(fr);
+        }
+        for (auto& st : sol.frames) st.shape = sol.shape;
+        sol.report.iterations = iterations_;
+        sol.report.restarts = restarts_;
+        sol.report.cancelled = true;
+        sol.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return sol;
+    }
+
+    // The good frames together from their poses and median shape; failed frames keep their own
+    // best pose with the shared shape.
+    FitSolution together(std::chrono::steady_clock::time_point t0) {
+        const std::size_t F = frames_.size();
+        std::vector<std::size_t> kept;
+        for (std::size_t f = 0; f < F; ++f)
+            if (good(f)) kept.push_back(f);
+        FitSolution sol;
+        if (kept.empty()) {  // nothing to share: every frame's own best fit, all reported failed
+            sol.shape = fits_[0].shape;
+            for (const FitSolution& one : fits_) sol.frames.push_back(one.frames[0]), sol.report.frames.push_back(one.report.frames[0]);
+        } else {
+            std::vector<double> median(fits_[kept[0]].shape.size());
+            for (std::size_t k = 0; k < median.size(); ++k) {
+                std::vector<double> v;
+                for (std::size_t f : kept) v.push_back(fits_[f].shape[k]);
+                std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+                median[k] = v[v.size() / 2];
+            }
+            std::vector<Frame> frames;
+            std::vector<FitState> starts;
+            for (std::size_t f : kept) {
+                frames.push_back(frames_[f]);
+                starts.push_back(fits_[f].frames[0]);
+                starts.back().shape = median;
+            }
+            FitOptions joint = options_;
+            joint.auto_start = false;
+            Solver solver(lin_, frames, joint, pool_);
+            const FitProgress rest = [&](uint32_t it, double cost) { return !progress_ || progress_(iterations_ + it, cost); };
+            const FitSolution shared = solver.run(&starts, rest, t0, true);
+            sol.shape = shared.shape;
+            sol.report = shared.report;
+            sol.report.frames.clear();
+            std::size_t next = 0;
+            for (std::size_t f = 0; f < F; ++f) {
+                if (next < kept.size() && kept[next] == f) {
+                    sol.frames.push_back(shared.frames[next]);
+                    sol.report.frames.push_back(shared.report.frames[next]);
+                    ++next;
+                } else {
+                    sol.frames.push_back(fits_[f].frames[0]);
+                    sol.report.frames.push_back(fits_[f].report.frames[0]);
+                    sol.report.frames.back().left_out = true;
+                }
+            }
+        }
+        for (auto& st : sol.frames) st.shape = sol.shape;
+        sol.report.iterations += iterations_;
+        sol.report.restarts += restarts_;
+        sol.report.problem = FitProblemKind::None;
+        sol.report.problem_text.clear();
+        uint32_t failed = 0;
+        for (std::size_t f = 0; f < F; ++f) {
+            const FrameReport& fr = sol.report.frames[f];
+            if (!fr.failed) continue;
+            sol.report.frames[f].failed = true;
+            if (failed++ == 0) {
+                sol.report.problem = fr.problem;
+                sol.report.problem_text = "frame " + std::to_string(f) + ": " + fr.problem_text;
+            }
+        }
+        sol.report.failed_frames = failed;
+        sol.report.implausible = failed > 0;
+        // Converged: the shared fit converged on the frames kept; failed frames are reported
+        // per frame (left out, not counted as converged).
+        sol.report.converged = !kept.empty() && sol.report.converged;
+        sol.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return sol;
+    }
+
+    const LinearModel& lin_;
+    const std::vector<Frame>& frames_;
+    const FitOptions& options_;
+    const FitProgress& progress_;
+    const FrameDone& frame_done_;
+    ThreadPool* pool_;
+    std::vector<FitSolution> fits_;  // each frame's best single fit so far
+    uint32_t iterations_ = 0, restarts_ = 0;
+    bool cancelled_ = false;
+};
+
+}  // namespace
+
 FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,
-                const std::vector<FitState>* start, const FitProgress& progress, ThreadPool* pool) {
+                const std::vector<FitState>* start, const FitProgress& progress, ThreadPool* pool, const FrameDone& frame_done) {
     validate(lin, frames, options);
     if (start && !options.auto_start)
         SSC_REQUIRE_ARG_S(start->size() == frames.size(), "fit: " << start->size() << " start states for " << frames.size() << " frames");
@@ -389,60 +573,12 @@ FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const 
     const auto t0 = std::chrono::steady_clock::now();
     if (frames.size() == 1 || (start && !options.auto_start)) {
         Solver solver(lin, frames, options, pool);
-        return solver.run(start, progress, t0);
-    }
-    // Several frames from the automatic start: each frame is first fitted alone, with everything a
-    // single fit has (its start search, limb search and restarts), then all together from those
-    // poses and the frames' median shape with the fine stages only (the shared shape's joint
-    // refinement). The cost is about that of the single fits; fitted together from the start,
-    // frames got no limb search nor restarts and ended worse than alone on real scans.
-    uint32_t iterations = 0, restarts = 0;
-    bool cancelled = false, implausible = false;
-    std::vector<FitState> starts;
-    std::vector<std::vector<double>> shapes;
-    for (const Frame& frame : frames) {
-        const FitProgress each = [&](uint32_t it, double cost) { return !progress || progress(iterations + it, cost); };
-        Solver alone(lin, {frame}, options, pool);
-        FitSolution one = alone.run(nullptr, each, std::chrono::steady_clock::now());
-        iterations += one.report.iterations;
-        restarts += one.report.restarts;
-        implausible |= one.report.implausible;
-        starts.push_back(one.frames[0]);
-        shapes.push_back(one.shape);
-        if (one.report.cancelled) {
-            cancelled = true;
-            break;
-        }
-    }
-    if (cancelled) {  // the frames not reached keep the first frame's fit
-        while (starts.size() < frames.size()) starts.push_back(starts[0]);
-        FitSolution sol;
-        sol.shape = shapes[0];
-        sol.frames = starts;
-        sol.report.iterations = iterations;
-        sol.report.restarts = restarts;
-        sol.report.cancelled = true;
-        sol.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        FitSolution sol = solver.run(start, progress, t0);
+        for (const FrameReport& fr : sol.report.frames) sol.report.failed_frames += fr.failed;
+        if (frame_done && frames.size() == 1) frame_done(0, sol.report.frames[0]);
         return sol;
     }
-    std::vector<double> median(shapes[0].size());
-    for (std::size_t k = 0; k < median.size(); ++k) {
-        std::vector<double> v;
-        for (const auto& sh : shapes) v.push_back(sh[k]);
-        std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-        median[k] = v[v.size() / 2];
-    }
-    for (FitState& st : starts) st.shape = median;
-    FitOptions joint = options;
-    joint.auto_start = false;
-    Solver together(lin, frames, joint, pool);
-    const FitProgress rest = [&](uint32_t it, double cost) { return !progress || progress(iterations + it, cost); };
-    FitSolution sol = together.run(&starts, rest, t0, true);
-    sol.report.iterations += iterations;
-    sol.report.restarts += restarts;
-    sol.report.implausible |= implausible;
-    sol.report.converged &= !sol.report.implausible;
-    return sol;
+    return Sequence(lin, frames, options, progress, frame_done, pool).run(t0);
 }
 
 }  // namespace ssc::fitting

@@ -23,6 +23,7 @@
 #pragma once
 
 #include "common/thread_pool.hpp"
+#include "fitting/judgement.hpp"
 #include "fitting/kinematics.hpp"
 #include "fitting/observations.hpp"
 
@@ -48,6 +49,22 @@ struct FitOptions {
     bool hand_search = true;            // search each hand's closure (open .. fist) in scans (hand_search.hpp)
 };
 
+// How one frame's fit was judged (judgement.hpp).
+struct FrameReport {
+    bool failed = false;  // the frame's fit did not find the person (its problem says why)
+    FitProblemKind problem = FitProblemKind::None;
+    std::string problem_text;  // one line: what, where, how much; empty without a problem
+    std::string unscanned;     // parts of the body the scan does not show (a partial scan), or empty
+    double unexplained = 0;    // FitReport::unexplained of this frame
+    int32_t joint = -1;        // the joint furthest past its range (-1: none)
+    double joint_excess = 0;   // radians it lies past the range
+    double off_scan = 0;       // the largest share of a limb or the head on no scan (all-round scans)
+    double loose = 0;          // share of the scan over 2.5 cm from the fitted surface
+    double coverage = 0;       // the trunk's share near the scan (about 1 all round, 0.5 one view)
+    int32_t region = -1;       // BodyRegion off the scan, else the most unscanned one (-1: none)
+    bool left_out = false;     // several frames: failed alone, so kept out of the shared shape
+};
+
 struct FitReport {
     uint32_t iterations = 0;
     bool converged = false, cancelled = false;
@@ -56,21 +73,32 @@ struct FitReport {
     double point_mean = 0;     // metres, mean distance of accepted scan points to the model surface
     double inlier_fraction = 0;
     double seconds = 0;
-    // Fits redone from another start candidate because the one before ended implausible
-    // (single-frame fits from the automatic start; see solver.cpp). iterations counts them all.
+    // Fits redone from another start candidate because the one before was judged wrong
+    // (judgement.hpp; single-frame fits from the automatic start; see solver.cpp). iterations
+    // counts them all.
     uint32_t restarts = 0;
     // Share of the scan points (a fixed sample of each frame's) farther than 5 cm from the fitted
     // surface and on a surface (isolated outliers do not count), the worst frame's: 0 for landmark-only fits. Above 0.1 the fit has not found the
     // person (a limb or the whole body in the wrong place): converged is then false.
     double unexplained = 0;
-    // A single frame's fit (any frame's, with several) that still ends in an implausible pose or
-    // leaves more than 3 % of its scan unexplained after every restart: a limb or the body is
-    // likely in the wrong place, and converged is false.
+    // A single frame's fit (any frame's, with several) that is still judged wrong after every
+    // restart (judgement.hpp: a joint past its range, the scan unexplained, a limb on no scan): a
+    // limb or the body is likely in the wrong place, and converged is false.
     bool implausible = false;
+    // The first failed frame's problem, and its description; None / empty when none failed.
+    FitProblemKind problem = FitProblemKind::None;
+    std::string problem_text;
+    std::string unscanned;  // the first frame's parts the scan does not show, or empty
+    std::vector<FrameReport> frames;  // one per frame
+    uint32_t failed_frames = 0;       // frames whose fit failed (FrameReport::failed)
 };
 
 // Called once per iteration; return false to cancel (the best state so far is kept).
 using FitProgress = std::function<bool(uint32_t iteration, double cost)>;
+// Called when a frame has been fitted (several frames: after its own fit, in order, and again
+// when a later try from a neighbour fixes a failed frame; one frame: at the end); return false to
+// cancel.
+using FrameDone = std::function<bool(uint32_t frame, const FrameReport& report)>;
 
 struct FitSolution {
     std::vector<double> shape;      // components() values; the rest of the model's are zero
@@ -80,10 +108,14 @@ struct FitSolution {
 
 // Fits frames to the model. `start` (optional, one per frame) is used when auto_start is false.
 // `pool` (optional) lends worker threads (start candidates, correspondences, normal equations, limb
-// search); results do not depend on its size.
+// search); results do not depend on its size. Several frames from the automatic start: each is
+// fitted alone (tracked from the last good frame first), failed frames are tried from their
+// neighbours' fits and, still failing, left out of the shared shape and reported per frame
+// (solver.cpp, Sequence); every frame gets a state.
 // Throws ssc::Error on invalid input (no data, NaN, bad indices).
 FitSolution fit(const LinearModel& lin, const std::vector<Frame>& frames, const FitOptions& options,
-                const std::vector<FitState>* start = nullptr, const FitProgress& progress = {}, ThreadPool* pool = nullptr);
+                const std::vector<FitState>* start = nullptr, const FitProgress& progress = {}, ThreadPool* pool = nullptr,
+                const FrameDone& frame_done = {});
 
 
 // The six CAESAR hand landmarks (metacarpal-phalangeal II and V, dactylion, each side): scanned

@@ -21,11 +21,12 @@
 // tenth of the random poses' range, in any heading, scanned all round by a booth of 8 depth cameras
 // (1 mm noise; what they cannot see is missing) to 20,000-60,000 points, and fitted from the points
 // alone (--landmarks: with the landmarks too, 5 mm placement noise, no hand landmarks). Per pose and
-// over all: success (mean vertex error under 10 mm), fits reported failed, silent failures (reported
-// converged, over 15 mm), false alarms (reported failed, under 10 mm), the successes' mean error and
-// the median time; and the model's best approximation of the people at rest (a floor: people beyond
-// the model lie 8-14 mm from its shape space, so "under 10 mm" also asks how far), with the share of
-// fits within 5 mm of their person's floor ("near floor+5"). SSCAPE_BENCH_PNG=PREFIX writes PREFIX_library.png (the poses on the first body)
+// over all: success, fits reported failed, silent failures (reported converged but failed), false
+// alarms (reported failed but a success), the successes' mean error and the median time. People beyond
+// the model lie 8-14 mm from its shape space even at rest (its best approximation of each person, "the
+// floor", printed), so for them "under 10 mm" asks for the impossible: a success is a mean vertex error
+// under 10 mm or under the person's floor + 5 mm, whichever is larger, a failure one over 15 mm or the
+// floor + 10 mm; the share under 10 mm is printed too. SSCAPE_BENCH_PNG=PREFIX writes PREFIX_library.png (the poses on the first body)
 // and a picture of every silent failure and false alarm; with --trials 0 only the picture.
 // --threads: worker threads lent to the fitter, caller included (default: one per core, as a
 // context's default; 1 = none).
@@ -245,9 +246,10 @@ int main(int argc, char** argv) {
                 print_joint_errors(model, fv, truth.vertices);
             }
             if (verbose)
-                std::printf("  trial %d: error %.2f mm, %u iterations, %u restarts, point mean %.2f mm, inliers %.2f, unexplained %.3f, %.0f ms\n", t,
-                            r.errors.back() * 1e3, sol.report.iterations, sol.report.restarts, sol.report.point_mean * 1e3, sol.report.inlier_fraction,
-                            sol.report.unexplained, sol.report.seconds * 1e3);
+                std::printf("  trial %d: error %.2f mm, %u iterations, %u restarts, point mean %.2f mm, inliers %.2f, unexplained %.3f, %.0f ms%s%s\n",
+                            t, r.errors.back() * 1e3, sol.report.iterations, sol.report.restarts, sol.report.point_mean * 1e3,
+                            sol.report.inlier_fraction, sol.report.unexplained, sol.report.seconds * 1e3,
+                            sol.report.converged ? "" : ", not converged: ", sol.report.problem_text.c_str());
         }
         print("scan 20k pts, 2 mm noise, 20% holes, 1% outliers", r);
     }
@@ -517,15 +519,15 @@ int main(int argc, char** argv) {
         std::printf("scans: 8 depth cameras all round, 1 mm noise, 20000-60000 points; %s\n",
                     with_landmarks ? "with landmarks (5 mm noise, no hand landmarks)" : "points only");
         std::printf("%-26s %6s %8s %9s %7s %6s %11s %9s %9s\n", "pose", "trials", "success", "reported", "silent", "false", "success mm",
-                    "median s", "near");
-        std::printf("%-26s %6s %8s %9s %7s %6s %11s %9s %9s\n", "", "", "< 10 mm", "failed", "> 15 mm", "alarms", "mean", "", "floor+5");
+                    "median s", "under");
+        std::printf("%-26s %6s %8s %9s %7s %6s %11s %9s %9s\n", "", "", "", "failed", "failures", "alarms", "mean", "", "10 mm");
         struct Tally {
-            int trials = 0, success = 0, reported = 0, silent = 0, false_alarms = 0, near_floor = 0;
+            int trials = 0, success = 0, reported = 0, silent = 0, false_alarms = 0, under_10mm = 0;
             double success_error = 0;
             std::vector<double> times;
             void add(const Tally& o) {
                 trials += o.trials, success += o.success, reported += o.reported, silent += o.silent, false_alarms += o.false_alarms;
-                near_floor += o.near_floor;
+                under_10mm += o.under_10mm;
                 success_error += o.success_error;
                 times.insert(times.end(), o.times.begin(), o.times.end());
             }
@@ -533,7 +535,7 @@ int main(int argc, char** argv) {
                 std::sort(times.begin(), times.end());
                 std::printf("%-26s %6d %7.0f%% %9d %7d %6d %11.2f %9.2f %8.0f%%\n", name.c_str(), trials, 100.0 * success / std::max(1, trials), reported,
                             silent, false_alarms, success ? 1e3 * success_error / success : 0.0, times.empty() ? 0.0 : times[times.size() / 2],
-                            100.0 * near_floor / std::max(1, trials));
+                            100.0 * under_10mm / std::max(1, trials));
                 std::fflush(stdout);
             }
         };
@@ -569,15 +571,20 @@ int main(int argc, char** argv) {
                 const bool converged = sol.report.converged;
                 ++tally.trials;
                 tally.times.push_back(sol.report.seconds);
-                if (error < 0.010) ++tally.success, tally.success_error += error;
-                tally.near_floor += error < floors[std::size_t(t) % floors.size()] + 0.005;
+                const double floor_t = floors[std::size_t(t) % floors.size()];
+                const bool success = error < std::max(0.010, floor_t + 0.005), failure = error > std::max(0.015, floor_t + 0.010);
+                if (success) ++tally.success, tally.success_error += error;
+                tally.under_10mm += error < 0.010;
                 tally.reported += !converged;
-                const bool silent = converged && error > 0.015, false_alarm = !converged && error < 0.010;
+                const bool silent = converged && failure, false_alarm = !converged && success;
                 tally.silent += silent;
                 tally.false_alarms += false_alarm;
                 if (verbose)
-                    std::printf("  %s trial %d: %u points, error %.2f mm, %u restarts, unexplained %.3f, converged %d, implausible %d\n", lp.name.c_str(), t,
-                                booth.points, error * 1e3, sol.report.restarts, sol.report.unexplained, int(converged), int(sol.report.implausible));
+                    std::printf("  %s trial %d: %u points, error %.2f mm (floor %.2f), %u restarts, unexplained %.3f, joint %.0f deg past, off scan %.2f, "
+                                "loose %.3f, coverage %.2f, converged %d%s%s\n",
+                                lp.name.c_str(), t, booth.points, error * 1e3, floor_t * 1e3, sol.report.restarts, sol.report.unexplained,
+                                sol.report.frames[0].joint_excess * 57.29578, sol.report.frames[0].off_scan, sol.report.frames[0].loose, sol.report.frames[0].coverage,
+                                int(converged), sol.report.problem_text.empty() ? "" : ": ", sol.report.problem_text.c_str());
                 if (!png.empty() && (silent || false_alarm))
                     render::write_fit_picture(png + "_" + lp.name + "_" + std::to_string(t) + (silent ? "_silent" : "_false_alarm") + ".png", model,
                                               sol.frames[0], frame.clouds[0].points, fv, truth.vertices);

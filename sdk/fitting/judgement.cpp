@@ -1,0 +1,165 @@
+#include "fitting/judgement.hpp"
+
+#include "anatomy/joint_limits.hpp"
+#include "fitting/fit_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace ssc::fitting {
+
+namespace {
+
+// A surface sample with a scan point within this distance is on the scan. Booth scans leave the
+// armpits, the crotch, the soles and the top of the head unseen, but rarely more than a few
+// centimetres from a seen point.
+constexpr double kNearScan = 0.04;
+// A surface sample off the scan counts as in empty space when it lies this far in front of its
+// nearest scan point (along that point's normal), looked for within kFreeSpaceReach.
+constexpr double kInFront = 0.02;
+constexpr double kFreeSpaceReach = 0.25;
+// Scan points farther than this from every fitted vertex are loosely explained (Judgement::loose).
+constexpr double kLooseDistance = 0.025;
+// The scan's extent: its bounding box grown by this much (metres).
+constexpr double kExtentMargin = 0.03;
+// Regions with fewer surface samples than this are not judged for lying off the scan.
+constexpr std::size_t kMinRegionSamples = 20;
+
+constexpr double kDegrees = 180.0 / 3.14159265358979323846;
+
+BodyRegion region_of(const anatomy::JointRole& role) {
+    using anatomy::BodyPart;
+    using anatomy::Side;
+    switch (role.part) {
+    case BodyPart::Head: return BodyRegion::Head;
+    case BodyPart::Arm:
+    case BodyPart::Hand:
+        if (role.side == Side::Left) return BodyRegion::LeftArm;
+        if (role.side == Side::Right) return BodyRegion::RightArm;
+        return BodyRegion::Trunk;
+    case BodyPart::Leg:
+    case BodyPart::Foot:
+        if (role.side == Side::Left) return BodyRegion::LeftLeg;
+        if (role.side == Side::Right) return BodyRegion::RightLeg;
+        return BodyRegion::Trunk;
+    case BodyPart::Torso: break;
+    }
+    return BodyRegion::Trunk;
+}
+
+}  // namespace
+
+const char* region_name(BodyRegion region) {
+    static const char* const kNames[kBodyRegionCount] = {"head", "trunk", "left arm", "right arm", "left leg", "right leg"};
+    return kNames[std::size_t(region)];
+}
+
+std::vector<uint8_t> vertex_regions(const LinearModel& lin) {
+    const auto& skin = lin.model.data().skin;
+    std::vector<uint8_t> regions(lin.V, uint8_t(BodyRegion::Trunk));
+    for (uint32_t v = 0; v < lin.V; ++v) {
+        int best = 0;
+        for (int i = 1; i < 4; ++i)
+            if (skin.weights[4 * std::size_t(v) + i] > skin.weights[4 * std::size_t(v) + best]) best = i;
+        const uint32_t j = skin.joints[4 * std::size_t(v) + best];
+        if (j < lin.roles.size()) regions[v] = uint8_t(region_of(lin.roles[j]));
+    }
+    return regions;
+}
+
+Judgement judge(FitProblem& p, uint32_t f) {
+    Judgement J;
+    const LinearModel& lin = p.linear();
+    const FitState& state = p.states()[f];
+    // Joints past their ranges.
+    for (uint32_t j = 1; j < lin.J && j < lin.limits.size(); ++j) {
+        const anatomy::JointLimit& lim = lin.limits[j];
+        if (!lim.limited) continue;
+        const Vector3d c = anatomy::anatomical_angles(lim, state.pose[j]);
+        for (int a = 0; a < 3; ++a) {
+            const double excess = std::max(c[a] - lim.hi[a], lim.lo[a] - c[a]);
+            if (excess > J.joint_excess) J.joint_excess = excess, J.joint = int32_t(j);
+        }
+    }
+    if (p.has_points(f)) {
+        J.unexplained = p.unexplained_share(f);
+        J.loose = p.share_beyond(f, kLooseDistance);
+        const FrameData& fd = p.frame(f);
+        Vector3d lo = fd.points.front(), hi = lo;
+        for (const Vector3d& q : fd.points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+        lo.array() -= kExtentMargin, hi.array() += kExtentMargin;
+        const std::vector<Vector3d>& posed = p.posed_sample(f);
+        const std::vector<uint8_t>& regions = p.sample_regions();
+        std::array<std::size_t, kBodyRegionCount> total{}, off{}, outside{}, near{};
+        for (std::size_t s = 0; s < posed.size(); ++s) {
+            const std::size_t r = regions[s];
+            ++total[r];
+            const Vector3d& x = posed[s];
+            if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any()) {
+                ++outside[r];
+                continue;
+            }
+            if (fd.scan_grid.nearest(x, kNearScan, nullptr) != GridIndex::kNone) {
+                ++near[r];
+                continue;
+            }
+            // Off the scan: wrong only where the scan saw empty space, in front of its nearest
+            // surface (scanners see a surface from the side its normal faces); behind it the part
+            // may be hidden (an arm behind the back in a front view, the underside of a lying body).
+            if (!fd.oriented) continue;
+            const uint32_t q = fd.scan_grid.nearest(x, kFreeSpaceReach, nullptr);
+            if (q != GridIndex::kNone && (x - fd.points[q]).dot(fd.normals[q]) > kInFront) ++off[r];
+        }
+        const std::size_t trunk = std::size_t(BodyRegion::Trunk);
+        J.coverage = total[trunk] ? double(near[trunk]) / double(total[trunk]) : 0;
+        J.all_round = J.coverage >= kAllRoundCoverage;
+        double most_unscanned = 0;
+        for (std::size_t r = 0; r < kBodyRegionCount; ++r) {
+            if (total[r] == 0) continue;
+            J.off_scan[r] = double(off[r]) / double(total[r]);
+            J.unscanned[r] = double(outside[r]) / double(total[r]);
+            if (J.unscanned[r] > most_unscanned) most_unscanned = J.unscanned[r], J.region = int32_t(r);
+        }
+        if (most_unscanned < kUnscannedShare) J.region = -1;
+        double worst = kOffScanShare;
+        for (std::size_t r = 0; r < kBodyRegionCount; ++r)
+            if (total[r] >= kMinRegionSamples && J.off_scan[r] > worst) worst = J.off_scan[r], J.region = int32_t(r);
+        // A part missing from a scan (a hole) leaves the rest of the scan explained; a part placed
+        // where the scan saw nothing has left its own points loosely explained elsewhere.
+        if (worst > kOffScanShare && J.loose > kLooseShare) J.problem = FitProblemKind::LimbOffScan;
+        if (J.unexplained > kRetryUnexplained) J.problem = FitProblemKind::ScanUnexplained;
+    }
+    if (J.joint_excess > kJointRangeTolerance) J.problem = FitProblemKind::JointPastRange;
+    return J;
+}
+
+std::string Judgement::describe(const Model& model) const {
+    std::ostringstream s;
+    s.precision(0);
+    s << std::fixed;
+    switch (problem) {
+    case FitProblemKind::None: return "";
+    case FitProblemKind::JointPastRange:
+        s << "joint " << model.data().skeleton.joint_names[std::size_t(joint)] << " lies " << joint_excess * kDegrees
+          << " degrees past its anatomical range";
+        break;
+    case FitProblemKind::ScanUnexplained:
+        s << unexplained * 100 << " % of the scan lies more than 5 cm from the fitted surface (a limb or the trunk where the scan is not)";
+        break;
+    case FitProblemKind::LimbOffScan:
+        s << "the " << region_name(BodyRegion(region)) << " lies where the scan saw empty space (" << off_scan[std::size_t(region)] * 100
+          << " % of it)";
+        break;
+    }
+    return s.str();
+}
+
+std::string Judgement::unscanned_parts() const {
+    std::string parts;
+    for (std::size_t r = 0; r < kBodyRegionCount; ++r)
+        if (unscanned[r] >= kUnscannedShare) parts += std::string(parts.empty() ? "" : ", ") + region_name(BodyRegion(r));
+    return parts.empty() ? parts : "the scan does not show the " + parts + " (outside its extent): fitted from the shape alone";
+}
+
+}  // namespace ssc::fitting

@@ -1,0 +1,87 @@
+// Whether a fit found the person: the judgement the solver restarts on and the report carries.
+//
+// What a person can do is the anatomical range of motion (anatomy/joint_limits.hpp), not a distance
+// from the rest pose: kneeling, a deep squat, arms overhead are all plausible and fit well. A fit is
+// judged wrong only for what is really wrong (docs/fitting.md, "Judging a fit"):
+//   joint past its range   a joint further past its anatomical range than the range's measurement
+//                          tolerance (a body forced onto data of the other way round);
+//   scan unexplained       more of the scan than a scanner's stray surfaces lies far from the fitted
+//                          surface (a limb or the trunk where the scan is not);
+//   limb on no scan        in a scan taken all round, most of an arm, a leg or the head lies inside the
+//                          scan's extent where the scan has no surface (a limb placed behind the back
+//                          while the scan shows it in front). Parts outside the scan's extent are
+//                          unscanned (a partial scan), not wrong: they are reported, not failed.
+#pragma once
+
+#include "fitting/kinematics.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ssc::fitting {
+
+class FitProblem;
+
+// The parts of the body judged separately (the skin's dominant joint's part and side).
+enum class BodyRegion : uint8_t { Head = 0, Trunk, LeftArm, RightArm, LeftLeg, RightLeg };
+constexpr std::size_t kBodyRegionCount = 6;
+const char* region_name(BodyRegion region);  // "head", "trunk", "left arm", ...
+
+// What is wrong with a fit, the first that applies in this order (None: nothing).
+enum class FitProblemKind : uint8_t { None = 0, JointPastRange = 1, ScanUnexplained = 2, LimbOffScan = 3 };
+
+// Tolerances of the judgement (see judgement.cpp for the measurements behind them).
+// A joint may lie this far past its range (radians) before the fit is judged wrong: the ranges are
+// clinical averages measured to about 10 degrees, people differ by as much, and the fit's limit
+// walls are soft.
+constexpr double kJointRangeTolerance = 0.35;
+// Scan shares (see FitReport::unexplained): above the first a fit is redone from other starts,
+// above the second it has certainly not found the person.
+constexpr double kRetryUnexplained = 0.005;
+constexpr double kFailedUnexplained = 0.10;
+// A region with more than this share of its surface samples in space the scan saw empty (in front
+// of the scan's surface, see judgement.cpp) lies where the scan is not.
+constexpr double kOffScanShare = 0.10;
+// ... and when more than this share of the scan lies over 2.5 cm from the fitted surface: a part
+// missing from a scan (a hole) leaves the rest explained, a misplaced one does not. Of 20 simulated
+// scans with 20 % holes, two good fits had an arm 14 and 24 % on empty space (in a hole) with 0 and
+// 0.1 % of the scan loosely explained; the two misplaced arms it catches on the pose library, 0.6
+// and 0.9 % (docs/fitting.md, "Judging a fit").
+constexpr double kLooseShare = 0.003;
+// A region with at least this share of its samples outside the scan's extent is unscanned.
+constexpr double kUnscannedShare = 0.5;
+// The trunk's share of surface samples near the scan from which a scan counts as taken all round
+// (one depth camera sees about half).
+constexpr double kAllRoundCoverage = 0.75;
+
+struct Judgement {
+    FitProblemKind problem = FitProblemKind::None;
+    // The worst joint's excess past its range (radians) and the joint (-1: none past).
+    double joint_excess = 0;
+    int32_t joint = -1;
+    double unexplained = 0;  // FitProblem::unexplained_share
+    double loose = 0;        // the share farther than kLooseDistance from the fitted surface
+    // Per region: the share of its surface samples inside the scan's extent with no scan point
+    // near, and the share outside the extent (unscanned).
+    std::array<double, kBodyRegionCount> off_scan{}, unscanned{};
+    double coverage = 0;  // the trunk's share of samples near the scan
+    bool all_round = false;
+    int32_t region = -1;  // the region off the scan (LimbOffScan), else the most unscanned one or -1
+
+    bool acceptable() const { return problem == FitProblemKind::None; }
+    // One line: what is wrong, where, by how much ("the left elbow lies 31 degrees past its range").
+    std::string describe(const Model& model) const;
+    // One line on parts the scan does not show (a partial scan), or empty.
+    std::string unscanned_parts() const;
+};
+
+// Judges frame f's current state (its kinematics are updated here). Frames without points are
+// judged on their joints alone.
+Judgement judge(FitProblem& problem, uint32_t f);
+
+// Each model vertex's region (by its largest skinning weight's joint).
+std::vector<uint8_t> vertex_regions(const LinearModel& lin);
+
+}  // namespace ssc::fitting
