@@ -8,7 +8,11 @@
 //   sscape_fit_bench [--trials N] [--scenario landmarks|scan|hands|depth|depth2|robust|poses|frames] [--components K]
 //                    [--max-points N] [--no-joint-limits] [--threads N] [--frames N]
 //                    [--scenario library [--pose NAME] [--makehuman DIR] [--landmarks]]
-// --frames: the frames scenario's frame count (default 100): one person (one shape) scanned in N
+// sequence (only when asked): a capture of one person (--makehuman DIR: a MakeHuman body beyond the
+// model) moving through 12 poses of the library in --frames frames, turning and stepping about,
+// each frame scanned all round; fitted as one sequence with a shared shape. Prints the time, the
+// frames reported failed, silent failures and false alarms (as the library scenario counts them).
+// --frames: the frames and sequence scenarios' frame count (default 100): one person (one shape) scanned in N
 // random poses and headings, fitted with one shared shape; also each frame alone, for comparison.
 // It runs only when asked for (--scenario frames).
 // poses: scans of bodies in the hard named poses (crouching, kneeling, bending forward, bent over
@@ -147,6 +151,42 @@ std::vector<float> varied(const std::vector<float>& pose, const std::vector<floa
 Eigen::Matrix3d random_heading(std::mt19937& rng) {
     std::uniform_real_distribution<double> u(-M_PI, M_PI);
     return Eigen::AngleAxisd(u(rng), Eigen::Vector3d::UnitY()).toRotationMatrix();
+}
+
+// The people of the library and sequence scenarios: MakeHuman bodies beyond the model (modifiers
+// it was not trained on) when makehuman names the assets, else the model's own random bodies; each
+// at rest. Empty when the assets were asked for and this build has no training.
+std::vector<std::vector<Eigen::Vector3d>> load_people(const Model& model, const std::string& makehuman, int count, std::mt19937& rng) {
+    std::vector<std::vector<Eigen::Vector3d>> people;
+    if (!makehuman.empty()) {
+#ifdef SSCAPE_WITH_TRAINING
+        training::mh::Assets assets = training::mh::load_assets(makehuman);
+        training::PopulationSpec ps;
+        ps.count = uint32_t(count);
+        ps.seed = 78;
+        const std::vector<training::BodyParams> population = training::sample_population(assets, ps);
+        const std::size_t trained = assets.modifiers.size();
+        training::mh::add_modifier_groups(assets, "modeling_modifiers.json", {"neck", "head", "armslegs"});
+        for (const auto& person : population) {
+            const std::vector<float> xyz = training::beyond_model_body(assets, person, trained, rng);
+            std::vector<Eigen::Vector3d> rest(model.vertex_count());
+            for (uint32_t v = 0; v < model.vertex_count(); ++v) rest[v] = Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+            people.push_back(std::move(rest));
+        }
+        std::printf("people: %d MakeHuman bodies beyond the model (modifiers it was not trained on)\n", count);
+#else
+        std::fprintf(stderr, "--makehuman needs a build with training (SSCAPE_BUILD_TRAINING)\n");
+#endif
+        return people;
+    }
+    std::vector<float> rest_pose(4ull * model.joint_count(), 0.f);
+    for (uint32_t j = 0; j < model.joint_count(); ++j) rest_pose[4 * j + 3] = 1.f;
+    for (int t = 0; t < count; ++t) {
+        const auto b = simulation::make_body(model, simulation::random_shape(model, rng), rest_pose, Eigen::Vector3d::Zero());
+        people.push_back(b.vertices);
+    }
+    std::printf("people: %d random bodies of the model (--makehuman DIR: people it does not hold)\n", count);
+    return people;
 }
 
 }  // namespace
@@ -477,40 +517,73 @@ int main(int argc, char** argv) {
         }
         print("each frame alone", alone);
     }
-    if (only == "library") {
-        // The people: MakeHuman bodies beyond the model, else the model's own random bodies.
-        std::vector<std::vector<Eigen::Vector3d>> people;
-        std::mt19937 rng(900);
-        const int count = std::max(trials, 1);
-        if (!makehuman.empty()) {
-#ifdef SSCAPE_WITH_TRAINING
-            training::mh::Assets assets = training::mh::load_assets(makehuman);
-            training::PopulationSpec ps;
-            ps.count = uint32_t(count);
-            ps.seed = 78;
-            const std::vector<training::BodyParams> population = training::sample_population(assets, ps);
-            const std::size_t trained = assets.modifiers.size();
-            training::mh::add_modifier_groups(assets, "modeling_modifiers.json", {"neck", "head", "armslegs"});
-            for (const auto& person : population) {
-                const std::vector<float> xyz = training::beyond_model_body(assets, person, trained, rng);
-                std::vector<Eigen::Vector3d> rest(model.vertex_count());
-                for (uint32_t v = 0; v < model.vertex_count(); ++v) rest[v] = Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-                people.push_back(std::move(rest));
+    if (only == "sequence") {
+        // A capture: one person moving through poses of the library (each key pose held for a
+        // moment, then turned into the next, joint by joint), turning slowly and stepping about,
+        // scanned all round in every frame; fitted as frames with one shared shape.
+        static const char* const kKeys[] = {"a_pose",       "arms_raised", "bending_forward", "touching_toes", "deep_squat",
+                                            "kneeling",     "lunge",       "trunk_twist",     "arms_crossed",  "boxing_guard",
+                                            "walking_step", "t_pose"};
+        std::mt19937 rng(600);
+        const std::vector<std::vector<Eigen::Vector3d>> people = load_people(model, makehuman, 1, rng);
+        if (people.empty()) return 2;
+        const double floor_t = simulation::best_approximation_error(model, people[0], true);
+        std::vector<std::vector<float>> keys;
+        for (const char* name : kKeys)
+            for (const simulation::LibraryPose& lp : simulation::pose_library())
+                if (lp.name == name) keys.push_back(simulation::library_pose(model, lp));
+        std::vector<fitting::Frame> frames(static_cast<std::size_t>(frame_count));
+        std::vector<simulation::TrueBody> truths;
+        std::uniform_int_distribution<uint32_t> point_count(20000, 30000);
+        for (int f = 0; f < frame_count; ++f) {
+            const double at = double(f) / std::max(1, frame_count - 1) * double(keys.size() - 1);
+            const std::size_t k = std::min(keys.size() - 2, std::size_t(at));
+            const float blend = float(std::clamp((at - double(k) - 0.25) / 0.5, 0.0, 1.0));  // held a quarter at each end
+            std::vector<float> pose(keys[k].size());
+            for (std::size_t j = 0; j + 3 < pose.size(); j += 4) {
+                const Eigen::Quaternionf a(keys[k][j + 3], keys[k][j], keys[k][j + 1], keys[k][j + 2]);
+                const Eigen::Quaternionf b(keys[k + 1][j + 3], keys[k + 1][j], keys[k + 1][j + 1], keys[k + 1][j + 2]);
+                const Eigen::Quaternionf q = a.slerp(blend, b);
+                pose[j] = q.x(), pose[j + 1] = q.y(), pose[j + 2] = q.z(), pose[j + 3] = q.w();
             }
-            std::printf("people: %d MakeHuman bodies beyond the model (modifiers it was not trained on)\n", count);
-#else
-            std::fprintf(stderr, "--makehuman needs a build with training (SSCAPE_BUILD_TRAINING)\n");
-            return 2;
-#endif
-        } else {
-            std::vector<float> rest_pose(4ull * model.joint_count(), 0.f);
-            for (uint32_t j = 0; j < model.joint_count(); ++j) rest_pose[4 * j + 3] = 1.f;
-            for (int t = 0; t < count; ++t) {
-                const auto b = simulation::make_body(model, simulation::random_shape(model, rng), rest_pose, Eigen::Vector3d::Zero());
-                people.push_back(b.vertices);
-            }
-            std::printf("people: %d random bodies of the model (--makehuman DIR: people it does not hold)\n", count);
+            auto truth = simulation::pose_rest_vertices(model, people[0], pose, Eigen::Vector3d::Zero());
+            const double heading = 0.04 * f;  // about 2.3 degrees a frame
+            simulation::transform_body(truth, Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitY()).toRotationMatrix(),
+                                       Eigen::Vector3d(0.3 * std::sin(0.05 * f), 0, 0.3 * std::cos(0.03 * f)));
+            simulation::BoothSpec booth;
+            booth.points = point_count(rng);
+            frames[std::size_t(f)].clouds.push_back(simulation::booth_scan(model, truth, booth, rng));
+            truths.push_back(std::move(truth));
         }
+        const double c0 = cpu_seconds();
+        uint32_t reported_frames = 0;
+        const fitting::FrameDone done = [&](uint32_t, const fitting::FrameReport&) { return ++reported_frames, true; };
+        const auto sol = fitting::fit(lin, frames, options(), nullptr, {}, &pool, done);
+        const double cpu = cpu_seconds() - c0;
+        int good = 0, silent = 0, false_alarms = 0, failed = 0, success = 0;
+        double good_error = 0;
+        for (int f = 0; f < frame_count; ++f) {
+            const double e = simulation::mean_vertex_error(simulation::fitted_vertices(model, sol.frames[std::size_t(f)]), truths[std::size_t(f)].vertices);
+            const bool ok = e < std::max(0.010, floor_t + 0.005), wrong = e > std::max(0.015, floor_t + 0.010);
+            const fitting::FrameReport& fr = sol.report.frames[std::size_t(f)];
+            failed += fr.failed, success += ok;
+            if (!fr.failed) ++good, good_error += e;
+            silent += !fr.failed && wrong;
+            false_alarms += fr.failed && ok;
+            if (verbose)
+                std::printf("  frame %d: error %.2f mm%s%s\n", f, e * 1e3, fr.failed ? ", failed: " : "", fr.problem_text.c_str());
+        }
+        std::printf("sequence of %d frames (%zu key poses, booth scans of 20000-30000 points; the person's floor %.2f mm): %.1f s in all "
+                    "(cpu %.1f s), %u frame reports\n",
+                    frame_count, keys.size(), floor_t * 1e3, sol.report.seconds, cpu, reported_frames);
+        std::printf("  frames returned %d, reported failed %d, successes %d, silent failures %d, false alarms %d, mean error of the "
+                    "frames returned good %.2f mm\n",
+                    frame_count, failed, success, silent, false_alarms, good ? 1e3 * good_error / good : 0.0);
+    }
+    if (only == "library") {
+        std::mt19937 rng(900);
+        const std::vector<std::vector<Eigen::Vector3d>> people = load_people(model, makehuman, std::max(trials, 1), rng);
+        if (people.empty()) return 2;
         // How close the model's shape space comes to each person at rest (aligned): no fit gets much below it.
         std::vector<double> floors;
         double floor = 0;
