@@ -52,7 +52,13 @@ class FitReport(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("iterations", c_uint32), ("converged", c_uint32), ("reserved", c_uint32),
                 ("initial_cost", c_float), ("final_cost", c_float), ("landmark_rms", c_float), ("point_mean", c_float),
                 ("inlier_fraction", c_float), ("seconds", c_float), ("restarts", c_uint32), ("unexplained_fraction", c_float),
-                ("implausible", c_uint32)]
+                ("implausible", c_uint32), ("problem", c_uint32), ("failed_frames", c_uint32)]
+
+
+class FitFrameReport(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("failed", c_uint32), ("left_out", c_uint32), ("problem", c_uint32), ("joint", c_int32),
+                ("region", c_int32), ("unexplained_fraction", c_float), ("joint_excess_degrees", c_float),
+                ("problem_text", c_char_p), ("unscanned", c_char_p)]
 
 
 class RegistrationDef(ctypes.Structure):
@@ -101,6 +107,7 @@ STAGE_PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_char_p, c_uint32,
 LINE_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_char_p)
 #: int (*ssc_progress_fn)(void* user, uint32_t iteration, float cost)
 PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_uint32, c_float)
+FRAME_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_uint32, POINTER(FitFrameReport))
 
 _STATUS = c_int32
 _MODEL = c_void_p
@@ -162,6 +169,8 @@ _DECLARATIONS = {
     "ssc_fitter_add_landmarks_by_name": (_STATUS, [c_void_p, c_uint32, POINTER(c_char_p), c_float_p, c_float_p, c_uint32]),
     "ssc_fitter_add_points": (_STATUS, [c_void_p, c_uint32, c_float_p, c_float_p, c_float_p, c_uint32, c_size_t]),
     "ssc_fitter_solve": (_STATUS, [c_void_p, PROGRESS_FN, c_void_p, POINTER(FitReport)]),
+    "ssc_fitter_get_frame_report": (_STATUS, [c_void_p, c_uint32, POINTER(FitFrameReport)]),
+    "ssc_fitter_set_frame_callback": (_STATUS, [c_void_p, FRAME_FN, c_void_p]),
     "ssc_fitter_get_shape": (_STATUS, [c_void_p, c_float_p, c_uint32]),
     "ssc_fitter_get_pose": (_STATUS, [c_void_p, c_uint32, c_float_p, c_uint32, c_float_p, c_float_p]),
     "ssc_fitter_get_vertices": (_STATUS, [c_void_p, c_uint32, c_float_p, c_uint32, c_size_t]),

@@ -7,7 +7,8 @@ from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ._native import PROGRESS_FN, DepthImageDef, FitFileDef, FitFileInfo, FitReport, FitterDef, c_float_p, lib, need_offline
+from ._native import (FRAME_FN, PROGRESS_FN, DepthImageDef, FitFileDef, FitFileInfo, FitFrameReport, FitReport, FitterDef, c_float_p,
+                      lib, need_offline)
 from ._handle import Handle, progress_callback
 from .errors import check
 from .model import Model
@@ -16,7 +17,18 @@ _OPTIONS = {"shape_count", "fit_scale", "max_iterations", "landmark_sigma", "poi
             "max_points", "seed", "joint_limits"}
 
 
-_FLAGS = ("converged", "implausible")  # the fit report's yes/no fields
+_FLAGS = ("converged", "implausible", "failed", "left_out")  # the reports' yes/no fields
+# ssc_fit_problem and ssc_body_region by name.
+_PROBLEMS = ("none", "joint_past_range", "scan_unexplained", "limb_off_scan")
+_REGIONS = ("head", "trunk", "left_arm", "right_arm", "left_leg", "right_leg")
+
+
+def _frame_dict(r: FitFrameReport, joint_names) -> Dict[str, object]:
+    """A frame report as a dict: problem and region by name, the joint by name (None when none)."""
+    return {"failed": bool(r.failed), "left_out": bool(r.left_out), "problem": _PROBLEMS[r.problem] if r.problem < len(_PROBLEMS) else str(r.problem),
+            "problem_text": (r.problem_text or b"").decode(), "unscanned": (r.unscanned or b"").decode(),
+            "joint": joint_names[r.joint] if 0 <= r.joint < len(joint_names) else None, "joint_excess_degrees": r.joint_excess_degrees,
+            "region": _REGIONS[r.region] if 0 <= r.region < len(_REGIONS) else None, "unexplained_fraction": r.unexplained_fraction}
 
 
 def _points(values, what: str) -> np.ndarray:
@@ -162,19 +174,41 @@ class Fitter(Handle):
             raise ValueError("write_params needs a solved fit")
         check(lib.ssc_fitter_write_params(self.handle, ctypes.byref(self._report), os.fsencode(path)))
 
-    def solve(self, progress: Optional[Callable[[int, float], bool]] = None) -> Dict[str, float]:
-        """Runs the fit; returns the report as a dict. progress(iteration, cost) returning True cancels
-        (SscapeError SSC_ERROR_CANCELLED; the results hold the state reached)."""
+    def solve(self, progress: Optional[Callable[[int, float], bool]] = None,
+              frame_done: Optional[Callable[[int, Dict[str, object]], bool]] = None) -> Dict[str, object]:
+        """Runs the fit; returns the report as a dict (problem by name). progress(iteration, cost)
+        returning True cancels (SscapeError SSC_ERROR_CANCELLED; the results hold the state reached).
+        frame_done(frame, frame_report) is called as each frame is fitted (see frame_report);
+        returning True cancels. With several frames, a frame that failed is left out of the shared
+        shape and reported (frame_report(f)["failed"]); every other frame is returned."""
         report = FitReport(struct_size=ctypes.sizeof(FitReport))
         callback, errors = progress_callback(PROGRESS_FN, progress, lambda iteration, cost: (int(iteration), float(cost)))
-        status = lib.ssc_fitter_solve(self.handle, callback, None, ctypes.byref(report))
-        if errors:
-            raise errors[0]
+        names = self.model.joint_names
+        frame_callback, frame_errors = progress_callback(FRAME_FN, frame_done, lambda frame, r: (int(frame), _frame_dict(r.contents, names)))
+        check(lib.ssc_fitter_set_frame_callback(self.handle, frame_callback, None))
+        try:
+            status = lib.ssc_fitter_solve(self.handle, callback, None, ctypes.byref(report))
+        finally:
+            check(lib.ssc_fitter_set_frame_callback(self.handle, FRAME_FN(), None))
+        if errors or frame_errors:
+            raise (errors + frame_errors)[0]
         check(status)
         self._report = report
         # The C flags (uint32 0 / 1) as Python's bool, so `report["converged"] is True` reads as it should.
-        return {name: bool(getattr(report, name)) if name in _FLAGS else getattr(report, name)
-                for name, _ in FitReport._fields_ if name not in ("struct_size", "reserved")}
+        out = {name: bool(getattr(report, name)) if name in _FLAGS else getattr(report, name)
+               for name, _ in FitReport._fields_ if name not in ("struct_size", "reserved")}
+        out["problem"] = _PROBLEMS[report.problem] if report.problem < len(_PROBLEMS) else str(report.problem)
+        return out
+
+    def frame_report(self, frame: int = 0) -> Dict[str, object]:
+        """How a frame's fit was judged, after solve(): failed (the fit did not find the person),
+        left_out (failed, so kept out of the shared shape), problem ("none", "joint_past_range",
+        "scan_unexplained", "limb_off_scan") and problem_text, the joint furthest past its range,
+        the region off the scan (or the most unscanned one), unscanned (parts a partial scan does
+        not show)."""
+        r = FitFrameReport(struct_size=ctypes.sizeof(FitFrameReport))
+        check(lib.ssc_fitter_get_frame_report(self.handle, frame, ctypes.byref(r)))
+        return _frame_dict(r, self.model.joint_names)
 
     @property
     def shape(self) -> np.ndarray:

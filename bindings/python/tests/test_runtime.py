@@ -238,6 +238,41 @@ def test_batch_synthesis_equals_bodies(model):
         model.synthesize(shapes=np.full((1, 3), np.inf))
 
 
+def test_fitter_reports_each_frame_and_leaves_a_failed_one_out(model):
+    # Two frames of one person and, between them, a cloud that is no person (a ball): that frame
+    # fails and is reported, the others are fitted with the shared shape.
+    shape = model.sample_shapes(1, seed=9)[0]
+    surfaces = []
+    for angle in (0.0, 0.5):
+        with sscape.Body(model) as body:
+            body.shape = shape
+            q = np.tile(np.array([0, 0, 0, 1], np.float32), (53, 1))
+            q[model.joint_names.index("upperarm_l")] = [0, 0, np.sin(-angle / 2), np.cos(-angle / 2)]
+            body.set_pose(q)
+            surfaces.append(body.vertices)
+    rng = np.random.default_rng(3)
+    ball = rng.normal(size=(3000, 3))
+    ball = (0.3 * ball / np.linalg.norm(ball, axis=1, keepdims=True) + [0, 1.0, 0]).astype(np.float32)
+    seen = []
+    with sscape.Fitter(model, max_points=1500) as fitter:
+        fitter.add_points(surfaces[0][::3])
+        fitter.add_points(ball, frame=fitter.frame_count)
+        fitter.add_points(surfaces[1][::3], frame=fitter.frame_count)
+        report = fitter.solve(frame_done=lambda f, r: seen.append((f, r["failed"])) and False)
+        assert report["failed_frames"] == 1 and report["implausible"] is True
+        assert report["problem"] != "none"
+        failed = fitter.frame_report(1)
+        assert failed["failed"] is True and failed["left_out"] is True and failed["problem_text"], failed
+        for f in (0, 2):
+            good = fitter.frame_report(f)
+            assert good["failed"] is False and good["problem"] == "none" and good["problem_text"] == "", good
+            error = np.linalg.norm(fitter.vertices(f) - surfaces[f // 2], axis=1).mean()
+            assert error < 0.006, f"frame {f}: mean vertex error {error * 1000:.2f} mm"
+        assert sorted(set(f for f, _ in seen)) == [0, 1, 2] and (1, True) in seen
+        with pytest.raises(sscape.SscapeError):
+            fitter.frame_report(3)
+
+
 def test_fitter_recovers_a_body_from_its_surface(model):
     with sscape.Body(model) as body:
         body.shape = model.sample_shapes(1, seed=5)[0]

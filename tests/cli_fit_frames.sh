@@ -1,0 +1,31 @@
+#!/bin/sh
+# A capture whose middle frame is no person (a ball of points): `sscape fit --frames` says which
+# frame failed and why as it goes, writes every other frame, not that one, and exits 1.
+# usage: cli_fit_frames.sh SSCAPE SCAN.ply OUT_DIR
+set -u
+sscape=$1 scan=$2 dir=$3/fit_frames
+fail() { echo "FAIL: $1"; exit 1; }
+rm -rf "$dir" && mkdir -p "$dir"
+/usr/bin/python3 - "$dir/ball.ply" <<'PY' || fail "writing the ball"
+import math, random, sys
+random.seed(1)
+points = []
+for _ in range(4000):
+    z, a = random.uniform(-1, 1), random.uniform(0, 2 * math.pi)
+    r = math.sqrt(1 - z * z)
+    points.append((0.3 * r * math.cos(a), 1.0 + 0.3 * r * math.sin(a), 0.3 * z))
+with open(sys.argv[1], "w") as f:
+    f.write("ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\nend_header\n" % len(points))
+    for p in points:
+        f.write("%.5f %.5f %.5f\n" % p)
+PY
+"$sscape" fit --points "$scan" --points "$dir/ball.ply" --points "$scan" --frames -o "$dir/fit.obj" > "$dir/out.txt" 2> "$dir/err.txt"
+code=$?
+[ "$code" = 1 ] || { cat "$dir/out.txt" "$dir/err.txt"; fail "exit $code, not 1"; }
+grep -q "frame 1 of 3: fitted" "$dir/out.txt" || { cat "$dir/out.txt"; fail "frame 1's line"; }
+grep -q "frame 2 of 3: failed: " "$dir/out.txt" || { cat "$dir/out.txt"; fail "frame 2's line"; }
+grep -q "frame 3 of 3: fitted" "$dir/out.txt" || { cat "$dir/out.txt"; fail "frame 3's line"; }
+grep -q "1 of 3 frames failed" "$dir/err.txt" || { cat "$dir/err.txt"; fail "the summary"; }
+[ -s "$dir/fit.obj" ] && [ -s "$dir/fit_frame2.obj" ] || fail "the good frames written"
+[ ! -e "$dir/fit_frame1.obj" ] || fail "the failed frame written"
+echo "fit frames: the failed frame reported and left out, the others written"
