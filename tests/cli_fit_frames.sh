@@ -1,6 +1,7 @@
 #!/bin/sh
 # A capture whose middle frame is no person (a ball of points): `sscape fit --frames` says which
-# frame failed and why as it goes, writes every other frame, not that one, and exits 1.
+# frame failed and why as it goes, writes every other frame, not that one, and exits 1. And
+# `sscape register` refuses to deform the template from a failed model fit (it used to exit 0).
 # usage: cli_fit_frames.sh SSCAPE SCAN.ply OUT_DIR
 set -u
 sscape=$1 scan=$2 dir=$3/fit_frames
@@ -28,4 +29,9 @@ grep -q "frame 3 of 3: fitted" "$dir/out.txt" || { cat "$dir/out.txt"; fail "fra
 grep -q "1 of 3 frames failed" "$dir/err.txt" || { cat "$dir/err.txt"; fail "the summary"; }
 [ -s "$dir/fit.obj" ] && [ -s "$dir/fit_frame2.obj" ] || fail "the good frames written"
 [ ! -e "$dir/fit_frame1.obj" ] || fail "the failed frame written"
-echo "fit frames: the failed frame reported and left out, the others written"
+"$sscape" register "$dir/ball.ply" -o "$dir/ball_registered.ply" > "$dir/reg.txt" 2>&1
+code=$?
+[ "$code" != 0 ] || { cat "$dir/reg.txt"; fail "register of a failed fit exits 0"; }
+grep -q "the model fit to the scan failed (" "$dir/reg.txt" || { cat "$dir/reg.txt"; fail "the register message"; }
+[ ! -e "$dir/ball_registered.ply" ] || fail "register wrote a mesh from a failed fit"
+echo "fit frames: the failed frame reported and left out, the others written; register refuses a failed fit"

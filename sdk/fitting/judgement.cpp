@@ -34,12 +34,12 @@ BodyRegion region_of(const anatomy::JointRole& role) {
     switch (role.part) {
     case BodyPart::Head: return BodyRegion::Head;
     case BodyPart::Arm:
-    case BodyPart::Hand:
         if (role.side == Side::Left) return BodyRegion::LeftArm;
         if (role.side == Side::Right) return BodyRegion::RightArm;
         return BodyRegion::Trunk;
+    case BodyPart::Hand:
+    case BodyPart::Foot: return BodyRegion::None;
     case BodyPart::Leg:
-    case BodyPart::Foot:
         if (role.side == Side::Left) return BodyRegion::LeftLeg;
         if (role.side == Side::Right) return BodyRegion::RightLeg;
         return BodyRegion::Trunk;
@@ -94,6 +94,7 @@ Judgement judge(FitProblem& p, uint32_t f) {
         std::array<std::size_t, kBodyRegionCount> total{}, off{}, outside{}, near{};
         for (std::size_t s = 0; s < posed.size(); ++s) {
             const std::size_t r = regions[s];
+            if (r >= kBodyRegionCount) continue;
             ++total[r];
             const Vector3d& x = posed[s];
             if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any()) {

@@ -24,8 +24,11 @@ namespace ssc::fitting {
 
 class FitProblem;
 
-// The parts of the body judged separately (the skin's dominant joint's part and side).
-enum class BodyRegion : uint8_t { Head = 0, Trunk, LeftArm, RightArm, LeftLeg, RightLeg };
+// The parts of the body judged separately (the skin's dominant joint's part and side). The hands
+// and feet are not judged (None): a hand closed otherwise than the scan's puts fingers in front of
+// the scanned palm (on simulated scans, 14 % of an arm and hand judged in empty space), and a
+// misplaced limb shows in its arm or leg.
+enum class BodyRegion : uint8_t { Head = 0, Trunk, LeftArm, RightArm, LeftLeg, RightLeg, None = 255 };
 constexpr std::size_t kBodyRegionCount = 6;
 const char* region_name(BodyRegion region);  // "head", "trunk", "left arm", ...
 
