@@ -103,6 +103,27 @@ namespace Sscape.Native
         SSC_DEPTH_FORMAT_FORCE32 = 2147483647,
     }
 
+    public enum ssc_fit_problem : int
+    {
+        SSC_FIT_PROBLEM_NONE = 0,
+        SSC_FIT_PROBLEM_JOINT_PAST_RANGE = 1,
+        SSC_FIT_PROBLEM_SCAN_UNEXPLAINED = 2,
+        SSC_FIT_PROBLEM_LIMB_OFF_SCAN = 3,
+        SSC_FIT_PROBLEM_FORCE32 = 2147483647,
+    }
+
+    public enum ssc_body_region : int
+    {
+        SSC_BODY_REGION_NONE = -1,
+        SSC_BODY_REGION_HEAD = 0,
+        SSC_BODY_REGION_TRUNK = 1,
+        SSC_BODY_REGION_LEFT_ARM = 2,
+        SSC_BODY_REGION_RIGHT_ARM = 3,
+        SSC_BODY_REGION_LEFT_LEG = 4,
+        SSC_BODY_REGION_RIGHT_LEG = 5,
+        SSC_BODY_REGION_FORCE32 = 2147483647,
+    }
+
     public enum ssc_registration_start : int
     {
         SSC_REGISTRATION_START_MODEL = 0,
@@ -137,6 +158,9 @@ namespace Sscape.Native
 
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     public unsafe delegate int ssc_progress_fn(void* @user, uint @iteration, float @cost);
+
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public unsafe delegate int ssc_frame_fn(void* @user, uint @frame, ssc_fit_frame_report* @report);
 
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     public unsafe delegate int ssc_stage_progress_fn(void* @user, byte* @stage, uint @done, uint @total);
@@ -269,6 +293,23 @@ namespace Sscape.Native
         public uint @restarts;
         public float @unexplained_fraction;
         public uint @implausible;
+        public uint @problem;
+        public uint @failed_frames;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct ssc_fit_frame_report
+    {
+        public uint @struct_size;
+        public uint @failed;
+        public uint @left_out;
+        public uint @problem;
+        public int @joint;
+        public int @region;
+        public float @unexplained_fraction;
+        public float @joint_excess_degrees;
+        public byte* @problem_text;
+        public byte* @unscanned;
     }
 
     [StructLayout(LayoutKind.Sequential)]
@@ -586,6 +627,12 @@ namespace Sscape.Native
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern ssc_status ssc_fitter_solve(IntPtr @fitter, IntPtr @progress, void* @user, ssc_fit_report* @report);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_fitter_get_frame_report(IntPtr @fitter, uint @frame, ssc_fit_frame_report* @out);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_fitter_set_frame_callback(IntPtr @fitter, IntPtr @callback, void* @user);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern ssc_status ssc_fitter_get_shape(IntPtr @fitter, float* @out, uint @capacity);

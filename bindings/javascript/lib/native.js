@@ -18,6 +18,8 @@ const enums = {
   ssc_unit: { SSC_UNIT_METRE: 0, SSC_UNIT_SQUARE_METRE: 1, SSC_UNIT_CUBIC_METRE: 2, SSC_UNIT_KILOGRAM: 3, SSC_UNIT_FORCE32: 2147483647 },
   ssc_rotation_format: { SSC_ROTATION_QUATERNION: 0, SSC_ROTATION_AXIS_ANGLE: 1, SSC_ROTATION_FORMAT_FORCE32: 2147483647 },
   ssc_depth_format: { SSC_DEPTH_U16_MM: 0, SSC_DEPTH_F32_M: 1, SSC_DEPTH_FORMAT_FORCE32: 2147483647 },
+  ssc_fit_problem: { SSC_FIT_PROBLEM_NONE: 0, SSC_FIT_PROBLEM_JOINT_PAST_RANGE: 1, SSC_FIT_PROBLEM_SCAN_UNEXPLAINED: 2, SSC_FIT_PROBLEM_LIMB_OFF_SCAN: 3, SSC_FIT_PROBLEM_FORCE32: 2147483647 },
+  ssc_body_region: { SSC_BODY_REGION_NONE: -1, SSC_BODY_REGION_HEAD: 0, SSC_BODY_REGION_TRUNK: 1, SSC_BODY_REGION_LEFT_ARM: 2, SSC_BODY_REGION_RIGHT_ARM: 3, SSC_BODY_REGION_LEFT_LEG: 4, SSC_BODY_REGION_RIGHT_LEG: 5, SSC_BODY_REGION_FORCE32: 2147483647 },
   ssc_registration_start: { SSC_REGISTRATION_START_MODEL: 0, SSC_REGISTRATION_START_RIGID: 1, SSC_REGISTRATION_START_RBF: 2, SSC_REGISTRATION_START_FORCE32: 2147483647 },
   ssc_registration_schedule: { SSC_REGISTRATION_RELAXED: 0, SSC_REGISTRATION_CONSTANT: 1, SSC_REGISTRATION_SCHEDULE_FORCE32: 2147483647 },
   ssc_rbf_kernel: { SSC_RBF_THIN_PLATE: 0, SSC_RBF_MULTIQUADRIC: 1, SSC_RBF_GAUSSIAN: 2, SSC_RBF_KERNEL_FORCE32: 2147483647 },
@@ -37,6 +39,7 @@ function declareTypes(koffi) {
   types.ssc_free_fn = koffi.proto('void ssc_free_fn(void* user, void* ptr)');
   types.ssc_log_fn = koffi.proto('void ssc_log_fn(void* user, int32_t level, const char* message)');
   types.ssc_progress_fn = koffi.proto('int ssc_progress_fn(void* user, uint32_t iteration, float cost)');
+  types.ssc_frame_fn = koffi.proto('int ssc_frame_fn(void* user, uint32_t frame, const ssc_fit_frame_report* report)');
   types.ssc_stage_progress_fn = koffi.proto('int ssc_stage_progress_fn(void* user, const char* stage, uint32_t done, uint32_t total)');
   types.ssc_context_def = koffi.struct('ssc_context_def', {
     struct_size: 'uint32_t',
@@ -137,6 +140,20 @@ function declareTypes(koffi) {
     restarts: 'uint32_t',
     unexplained_fraction: 'float',
     implausible: 'uint32_t',
+    problem: 'uint32_t',
+    failed_frames: 'uint32_t',
+  });
+  types.ssc_fit_frame_report = koffi.struct('ssc_fit_frame_report', {
+    struct_size: 'uint32_t',
+    failed: 'uint32_t',
+    left_out: 'uint32_t',
+    problem: 'uint32_t',
+    joint: 'int32_t',
+    region: 'int32_t',
+    unexplained_fraction: 'float',
+    joint_excess_degrees: 'float',
+    problem_text: 'const char*',
+    unscanned: 'const char*',
   });
   types.ssc_registration_def = koffi.struct('ssc_registration_def', {
     struct_size: 'uint32_t',
@@ -260,6 +277,8 @@ const prototypes = [
   'void ssc_depth_image_def_init(_Inout_ ssc_depth_image_def* def, size_t size)',
   'int32_t ssc_fitter_add_depth_image(ssc_fitter* fitter, uint32_t frame, const ssc_depth_image_def* image, uint32_t* points_added)',
   'int32_t ssc_fitter_solve(ssc_fitter* fitter, ssc_progress_fn* progress, void* user, _Inout_ ssc_fit_report* report)',
+  'int32_t ssc_fitter_get_frame_report(const ssc_fitter* fitter, uint32_t frame, _Inout_ ssc_fit_frame_report* out)',
+  'int32_t ssc_fitter_set_frame_callback(ssc_fitter* fitter, ssc_frame_fn* callback, void* user)',
   'int32_t ssc_fitter_get_shape(const ssc_fitter* fitter, float* out, uint32_t capacity)',
   'int32_t ssc_fitter_get_pose(const ssc_fitter* fitter, uint32_t frame, float* rotations, uint32_t joint_capacity, float* translation, float* scale)',
   'int32_t ssc_fitter_get_vertices(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity, size_t stride)',

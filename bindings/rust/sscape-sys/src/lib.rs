@@ -91,6 +91,23 @@ pub const SSC_DEPTH_U16_MM: ssc_depth_format = 0;
 pub const SSC_DEPTH_F32_M: ssc_depth_format = 1;
 pub const SSC_DEPTH_FORMAT_FORCE32: ssc_depth_format = 2147483647;
 
+pub type ssc_fit_problem = i32;
+pub const SSC_FIT_PROBLEM_NONE: ssc_fit_problem = 0;
+pub const SSC_FIT_PROBLEM_JOINT_PAST_RANGE: ssc_fit_problem = 1;
+pub const SSC_FIT_PROBLEM_SCAN_UNEXPLAINED: ssc_fit_problem = 2;
+pub const SSC_FIT_PROBLEM_LIMB_OFF_SCAN: ssc_fit_problem = 3;
+pub const SSC_FIT_PROBLEM_FORCE32: ssc_fit_problem = 2147483647;
+
+pub type ssc_body_region = i32;
+pub const SSC_BODY_REGION_NONE: ssc_body_region = -1;
+pub const SSC_BODY_REGION_HEAD: ssc_body_region = 0;
+pub const SSC_BODY_REGION_TRUNK: ssc_body_region = 1;
+pub const SSC_BODY_REGION_LEFT_ARM: ssc_body_region = 2;
+pub const SSC_BODY_REGION_RIGHT_ARM: ssc_body_region = 3;
+pub const SSC_BODY_REGION_LEFT_LEG: ssc_body_region = 4;
+pub const SSC_BODY_REGION_RIGHT_LEG: ssc_body_region = 5;
+pub const SSC_BODY_REGION_FORCE32: ssc_body_region = 2147483647;
+
 pub type ssc_registration_start = i32;
 pub const SSC_REGISTRATION_START_MODEL: ssc_registration_start = 0;
 pub const SSC_REGISTRATION_START_RIGID: ssc_registration_start = 1;
@@ -145,6 +162,8 @@ pub type ssc_free_fn = Option<unsafe extern "C" fn(user: *mut c_void, ptr: *mut 
 pub type ssc_log_fn = Option<unsafe extern "C" fn(user: *mut c_void, level: ssc_log_level, message: *const c_char)>;
 
 pub type ssc_progress_fn = Option<unsafe extern "C" fn(user: *mut c_void, iteration: u32, cost: f32) -> c_int>;
+
+pub type ssc_frame_fn = Option<unsafe extern "C" fn(user: *mut c_void, frame: u32, report: *const ssc_fit_frame_report) -> c_int>;
 
 pub type ssc_stage_progress_fn = Option<unsafe extern "C" fn(user: *mut c_void, stage: *const c_char, done: u32, total: u32) -> c_int>;
 
@@ -276,6 +295,23 @@ pub struct ssc_fit_report {
     pub restarts: u32,
     pub unexplained_fraction: f32,
     pub implausible: u32,
+    pub problem: u32,
+    pub failed_frames: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct ssc_fit_frame_report {
+    pub struct_size: u32,
+    pub failed: u32,
+    pub left_out: u32,
+    pub problem: u32,
+    pub joint: i32,
+    pub region: i32,
+    pub unexplained_fraction: f32,
+    pub joint_excess_degrees: f32,
+    pub problem_text: *const c_char,
+    pub unscanned: *const c_char,
 }
 
 #[repr(C)]
@@ -406,6 +442,8 @@ extern "C" {
     pub fn ssc_depth_image_def_init(def: *mut ssc_depth_image_def, size: usize);
     pub fn ssc_fitter_add_depth_image(fitter: *mut ssc_fitter, frame: u32, image: *const ssc_depth_image_def, points_added: *mut u32) -> ssc_status;
     pub fn ssc_fitter_solve(fitter: *mut ssc_fitter, progress: ssc_progress_fn, user: *mut c_void, report: *mut ssc_fit_report) -> ssc_status;
+    pub fn ssc_fitter_get_frame_report(fitter: *const ssc_fitter, frame: u32, out: *mut ssc_fit_frame_report) -> ssc_status;
+    pub fn ssc_fitter_set_frame_callback(fitter: *mut ssc_fitter, callback: ssc_frame_fn, user: *mut c_void) -> ssc_status;
     pub fn ssc_fitter_get_shape(fitter: *const ssc_fitter, out: *mut f32, capacity: u32) -> ssc_status;
     pub fn ssc_fitter_get_pose(fitter: *const ssc_fitter, frame: u32, rotations: *mut f32, joint_capacity: u32, translation: *mut f32, scale: *mut f32) -> ssc_status;
     pub fn ssc_fitter_get_vertices(fitter: *const ssc_fitter, frame: u32, out: *mut f32, capacity: u32, stride: usize) -> ssc_status;
