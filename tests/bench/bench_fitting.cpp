@@ -31,7 +31,7 @@
 // floor", printed), so for them "under 10 mm" asks for the impossible: a success is a mean vertex error
 // under 10 mm or under the person's floor + 5 mm, whichever is larger, a failure one over 15 mm or the
 // floor + 10 mm; the share under 10 mm is printed too. SSCAPE_BENCH_PNG=PREFIX writes PREFIX_library.png (the poses on the first body)
-// and a picture of every silent failure and false alarm; with --trials 0 only the picture.
+// and a picture of every silent failure and false alarm (with --pose, of every fit); with --trials 0 only the picture.
 // --threads: worker threads lent to the fitter, caller included (default: one per core, as a
 // context's default; 1 = none).
 #include "paths.hpp"
@@ -658,8 +658,8 @@ int main(int argc, char** argv) {
                                 lp.name.c_str(), t, booth.points, error * 1e3, floor_t * 1e3, sol.report.restarts, sol.report.unexplained,
                                 sol.report.frames[0].joint_excess * 57.29578, sol.report.frames[0].off_scan, sol.report.frames[0].loose, sol.report.frames[0].coverage,
                                 int(converged), sol.report.problem_text.empty() ? "" : ": ", sol.report.problem_text.c_str());
-                if (!png.empty() && (silent || false_alarm))
-                    render::write_fit_picture(png + "_" + lp.name + "_" + std::to_string(t) + (silent ? "_silent" : "_false_alarm") + ".png", model,
+                if (!png.empty() && (silent || false_alarm || !library_only.empty()))
+                    render::write_fit_picture(png + "_" + lp.name + "_" + std::to_string(t) + (silent ? "_silent" : false_alarm ? "_false_alarm" : "") + ".png", model,
                                               sol.frames[0], frame.clouds[0].points, fv, truth.vertices);
             }
             if (trials == 0) continue;
