@@ -328,9 +328,7 @@ def generate_javascript(h: Header) -> str:
             "let types = null;", "function declareTypes(koffi) {", "  if (types) return types;", "  types = {};"]
     for name in h.opaque:
         out.append(f"  types.{name} = koffi.opaque('{name}');")
-    for name, f in h.callbacks.items():
-        params = ", ".join(f"{js_c_type(p.type, h)} {p.name}" for p in f.params)
-        out.append(f"  types.{name} = koffi.proto('{js_c_type(f.result, h)} {name}({params})');")
+    # Structs first: a callback may take one (ssc_frame_fn), and structs hold callbacks as void*.
     for name, fields in h.structs.items():
         out.append(f"  types.{name} = koffi.struct('{name}', {{")
         for p in fields:
@@ -341,6 +339,9 @@ def generate_javascript(h: Header) -> str:
             else:
                 out.append(f"    {p.name}: '{js_c_type(p.type, h)}',")
         out.append("  });")
+    for name, f in h.callbacks.items():
+        params = ", ".join(f"{js_c_type(p.type, h)} {p.name}" for p in f.params)
+        out.append(f"  types.{name} = koffi.proto('{js_c_type(f.result, h)} {name}({params})');")
     out += ["  return types;", "}", "", "const prototypes = ["]
     out += [f"  '{js_prototype(f, h)}'," for f in h.functions]
     out += ["];", "", "function declare(koffi, lib) {", "  declareTypes(koffi);", "  const api = {};",

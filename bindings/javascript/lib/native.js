@@ -35,12 +35,6 @@ function declareTypes(koffi) {
   types.ssc_body = koffi.opaque('ssc_body');
   types.ssc_fitter = koffi.opaque('ssc_fitter');
   types.ssc_registration = koffi.opaque('ssc_registration');
-  types.ssc_alloc_fn = koffi.proto('void* ssc_alloc_fn(void* user, size_t size, size_t align)');
-  types.ssc_free_fn = koffi.proto('void ssc_free_fn(void* user, void* ptr)');
-  types.ssc_log_fn = koffi.proto('void ssc_log_fn(void* user, int32_t level, const char* message)');
-  types.ssc_progress_fn = koffi.proto('int ssc_progress_fn(void* user, uint32_t iteration, float cost)');
-  types.ssc_frame_fn = koffi.proto('int ssc_frame_fn(void* user, uint32_t frame, const ssc_fit_frame_report* report)');
-  types.ssc_stage_progress_fn = koffi.proto('int ssc_stage_progress_fn(void* user, const char* stage, uint32_t done, uint32_t total)');
   types.ssc_context_def = koffi.struct('ssc_context_def', {
     struct_size: 'uint32_t',
     worker_count: 'uint32_t',
@@ -184,6 +178,12 @@ function declareTypes(koffi) {
     scan_points: 'uint32_t',
     landmarks: 'uint32_t',
   });
+  types.ssc_alloc_fn = koffi.proto('void* ssc_alloc_fn(void* user, size_t size, size_t align)');
+  types.ssc_free_fn = koffi.proto('void ssc_free_fn(void* user, void* ptr)');
+  types.ssc_log_fn = koffi.proto('void ssc_log_fn(void* user, int32_t level, const char* message)');
+  types.ssc_progress_fn = koffi.proto('int ssc_progress_fn(void* user, uint32_t iteration, float cost)');
+  types.ssc_frame_fn = koffi.proto('int ssc_frame_fn(void* user, uint32_t frame, const ssc_fit_frame_report* report)');
+  types.ssc_stage_progress_fn = koffi.proto('int ssc_stage_progress_fn(void* user, const char* stage, uint32_t done, uint32_t total)');
   return types;
 }
 
