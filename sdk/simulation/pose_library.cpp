@@ -40,7 +40,8 @@ std::vector<LibraryPose> make_library() {
     pose("hands_on_belly", "hands together on the belly, elbows out", {{"upperarm", 10, 60, 5}, {"lowerarm", -75, 0, 0}});
     pose("hands_behind_head", "hands behind the head, elbows out", {{"upperarm", 0, -60, -95}, {"lowerarm", -105, 0, 0}});
     pose("arms_crossed", "arms crossed over the chest, hands at the shoulders", {{"upperarm", -35, 45, 35}, {"lowerarm", -85, 0, 0}});
-    pose("forearms_forward", "upper arms at the sides, forearms forward", {{"upperarm", -30, 60, 38}, {"lowerarm", -105, 0, 0}});
+    // No turn of the upper arm: turned in 60 degrees, the bent forearms went through a heavy chest.
+    pose("forearms_forward", "upper arms at the sides, forearms forward", {{"upperarm", 0, 0, 35}, {"lowerarm", -90, 0, 0}});
     pose("reach_up_right", "the right arm reaching straight up, the trunk leaning left",
          {{"upperarm", 0, 0, -135, 'r'}, {"lowerarm", 40, 0, 0, 'r'}, {"spine_02", 0, 0, 10, 'm'}, {"spine_03", 0, 0, 10, 'm'}});
     pose("reach_sideways_left", "the left arm reaching out sideways, the trunk leaning with it",
