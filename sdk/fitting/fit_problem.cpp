@@ -327,41 +327,24 @@ double FitProblem::explained(uint32_t f) {
 // kUnexplainedDistance from the posed model and on a surface (kSurfaceNeighbours within
 // kSurfaceRadius): a limb in the wrong place, a body turned over. Isolated points (outliers,
 // sparse clutter) do not count.
-double FitProblem::unexplained_share(uint32_t f) {
+double FitProblem::unexplained_share(uint32_t f) { return share_beyond(f, kUnexplainedDistance, false); }
+
+double FitProblem::share_beyond(uint32_t f, double distance, bool every_vertex) {
     auto& fd = frames_[f];
     if (fd.points.empty()) return 0;
     kin_[f].update(states_[f], false);
-    pose_frame(f, false);
-    sample_grid_.build(posed_subset());
+    pose_frame(f, every_vertex);
+    GridIndex& model_grid = every_vertex ? dense_grid_ : sample_grid_;
+    model_grid.build(every_vertex ? posed_ : posed_subset());
     const std::size_t n = std::min(kExplainedSamples, fd.scan_sample.size());
     std::size_t far = 0;
     for (std::size_t i = 0; i < n; ++i) {
         const Vector3d& p = fd.points[fd.scan_sample[i]];
-        if (sample_grid_.nearest(p, kUnexplainedDistance, nullptr) != GridIndex::kNone) continue;
+        if (model_grid.nearest(p, distance, nullptr) != GridIndex::kNone) continue;
         build_scan_tree(fd);
         uint32_t index[kSurfaceNeighbours + 1];
         double d2[kSurfaceNeighbours + 1];
         const std::size_t found = fd.scan_index->nearest_k(p, kSurfaceNeighbours + 1, index, d2);  // itself among them
-        far += found == kSurfaceNeighbours + 1 && d2[kSurfaceNeighbours] <= kSurfaceRadius * kSurfaceRadius;
-    }
-    return double(far) / double(n);
-}
-
-double FitProblem::share_beyond(uint32_t f, double distance) {
-    auto& fd = frames_[f];
-    if (fd.points.empty()) return 0;
-    kin_[f].update(states_[f], false);
-    pose_frame(f, true);
-    dense_grid_.build(posed_);
-    const std::size_t n = std::min(kExplainedSamples, fd.scan_sample.size());
-    std::size_t far = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        const Vector3d& p = fd.points[fd.scan_sample[i]];
-        if (dense_grid_.nearest(p, distance, nullptr) != GridIndex::kNone) continue;
-        build_scan_tree(fd);
-        uint32_t index[kSurfaceNeighbours + 1];
-        double d2[kSurfaceNeighbours + 1];
-        const std::size_t found = fd.scan_index->nearest_k(p, kSurfaceNeighbours + 1, index, d2);
         far += found == kSurfaceNeighbours + 1 && d2[kSurfaceNeighbours] <= kSurfaceRadius * kSurfaceRadius;
     }
     return double(far) / double(n);

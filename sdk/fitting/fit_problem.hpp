@@ -95,9 +95,9 @@ public:
     // The share of frame f's scan sample farther than 5 cm from the posed model and on a surface:
     // data the fit does not explain. 0 for a frame without points.
     double unexplained_share(uint32_t f);
-    // The share of frame f's scan sample farther than `distance` from every posed model vertex
-    // (all of them) and on a surface.
-    double share_beyond(uint32_t f, double distance);
+    // The share of frame f's scan sample farther than `distance` from the posed model (every
+    // vertex, or the vertex sample) and on a surface; unexplained_share is 5 cm from the sample.
+    double share_beyond(uint32_t f, double distance, bool every_vertex = true);
     // Frame f's posed vertex sample (vertex_sample() order) and each sample's body region
     // (judgement.hpp), for judging a fit.
     const std::vector<Vector3d>& posed_sample(uint32_t f);
