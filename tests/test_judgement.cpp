@@ -173,3 +173,28 @@ TEST_CASE("a limb in a hole of the scan, or outside a partial scan, is not judge
     CHECK(partial.unscanned_parts().find("left leg") != std::string::npos);
     CHECK(partial.unscanned_parts().find("right leg") != std::string::npos);
 }
+
+TEST_CASE("a forearm through the body is judged wrong and named, arms crossed over the chest are not", "[fitting][judgement]") {
+    const Model& m = test_model();
+    const fitting::LinearModel lin(m, m.component_count());
+    std::mt19937 rng(9);
+    // The left upper arm at the side turned in, the elbow bent: the forearm goes into the belly.
+    // Judged against the scan of that body itself, only the arm's place is wrong (an all-round scan
+    // of it shows no forearm: the trunk's surface explains it).
+    const simulation::LibraryPose through{"through", "", "", {{"upperarm", 0, 60, 35, 'l'}, {"lowerarm", -110, 0, 0, 'l'}}};
+    const auto wrong = body_in(m, simulation::library_pose(m, through), rng);
+    const fitting::Judgement j = judge_state(lin, booth(m, wrong, rng), state_of(lin, wrong));
+    INFO(j.describe(m) << "; joint excess " << j.joint_excess);
+    CHECK(j.problem == fitting::FitProblemKind::LimbInside);
+    CHECK(j.inside > fitting::kLimbInsideShare);
+    CHECK(j.region == int32_t(fitting::BodyRegion::LeftArm));
+    CHECK(j.describe(m).find("the left arm passes through the trunk") != std::string::npos);
+    // Touching limbs a person holds are no problem: arms crossed, hands on the belly, hands on the knees.
+    for (const char* name : {"arms_crossed", "hands_on_belly", "hands_on_knees", "boxing_guard", "kneeling_sitting_back"}) {
+        const auto truth = body_in(m, pose_of(m, name), rng);
+        const fitting::Judgement ok = judge_state(lin, booth(m, truth, rng), state_of(lin, truth));
+        INFO(name << ": " << ok.describe(m) << "; inside " << ok.inside);
+        CHECK(ok.acceptable());
+        CHECK(ok.inside < fitting::kLimbInsideShare);
+    }
+}

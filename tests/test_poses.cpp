@@ -5,6 +5,9 @@
 #include "anatomy/joint_limits.hpp"
 #include "anatomy/named_poses.hpp"
 #include "capi/handles.hpp"
+#include "fitting/interpenetration.hpp"
+#include "registration/registration_quality.hpp"
+#include "simulation/simulate.hpp"
 #include "simulation/pose_library.hpp"
 
 #include <catch2/catch.hpp>
@@ -12,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <random>
 #include <string>
 
 using namespace ssc;
@@ -116,6 +120,29 @@ TEST_CASE("the benchmark's pose library spans the range of motion within the joi
         INFO(lying << ": head above the pelvis by " << up.y() << " m");
         CHECK(std::abs(up.y()) < 0.15);
     }
+}
+
+// The benchmark's ground truth must be poses people can take: no forearm or lower leg through the
+// trunk, the head or another limb (interpenetration.hpp), on the mean body and on bodies far from
+// it (heavy bodies leave less room for arms held in front).
+TEST_CASE("the benchmark's pose library passes through no body", "[poses]") {
+    Posed p;
+    const Model& m = p.model->model;
+    const fitting::LinearModel lin(m, m.component_count());
+    const fitting::InterpenetrationTest inside(lin);
+    const std::vector<uint32_t> triangles(m.data().mesh.triangles.begin(), m.data().mesh.triangles.end());
+    std::vector<std::vector<float>> shapes{std::vector<float>(m.component_count(), 0.f)};
+    std::mt19937 rng(7);
+    for (int i = 0; i < 6; ++i) shapes.push_back(simulation::random_shape(m, rng));
+    for (const auto& pose : simulation::pose_library())
+        for (std::size_t b = 0; b < shapes.size(); ++b) {
+            const simulation::TrueBody body = simulation::make_body(m, shapes[b], simulation::library_pose(m, pose), Vector3d::Zero());
+            const fitting::LimbsInside in = inside.measure(body.vertices, registration::vertex_normals(body.vertices, triangles));
+            INFO(pose.name << " on body " << b << ": " << in.worst << " of the "
+                           << (in.limb < 0 ? "" : fitting::region_name(fitting::BodyRegion(in.limb))) << " inside the "
+                           << (in.part < 0 ? "" : fitting::region_name(fitting::BodyRegion(in.part))));
+            CHECK(in.worst < simulation::kLibraryInside);
+        }
 }
 
 TEST_CASE("the named pose API rejects bad input without writing", "[poses][capi]") {

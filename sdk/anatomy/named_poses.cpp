@@ -55,7 +55,7 @@ const Angle kAngles[] = {
     {"bent_over_arms_raised", {"spine_01", 25, 0, 0, 'm'}},
     {"bent_over_arms_raised", {"spine_02", 25, 0, 0, 'm'}},
     {"bent_over_arms_raised", {"spine_03", 15, 0, 0, 'm'}},
-    {"bent_over_arms_raised", {"upperarm", -160, 0, 10}},
+    {"bent_over_arms_raised", {"upperarm", -160, -40, 10}},
     {"bent_over_arms_raised", {"lowerarm", 35, 0, 0}},
     // Lunge: the left leg forward, knee bent; the right leg back, knee bent towards the floor.
     {"lunge", {"thigh", -85, 0, 0, 'l'}},
@@ -65,7 +65,7 @@ const Angle kAngles[] = {
     {"lunge", {"foot", 40, 0, 0, 'r'}},
     {"lunge", {"upperarm", 0, 0, 30}},
     // Arms behind the back: upper arms back and in, elbows bent, hands meeting behind the waist.
-    {"arms_behind_back", {"upperarm", 45, 40, 35}},
+    {"arms_behind_back", {"upperarm", 45, 40, 25}},
     {"arms_behind_back", {"lowerarm", -60, 0, 0}},
 };
 

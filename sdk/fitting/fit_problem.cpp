@@ -356,6 +356,13 @@ const std::vector<Vector3d>& FitProblem::posed_sample(uint32_t f) {
     return posed_subset();
 }
 
+LimbsInside FitProblem::limbs_inside(uint32_t f) {
+    if (!inside_test_) inside_test_ = std::make_unique<InterpenetrationTest>(lin_);
+    kin_[f].update(states_[f], false);
+    pose_frame(f, true);
+    return inside_test_->measure(posed_, posed_normals_);
+}
+
 const std::vector<uint8_t>& FitProblem::sample_regions() {
     if (sample_regions_.empty()) {
         const std::vector<uint8_t> regions = vertex_regions(lin_);

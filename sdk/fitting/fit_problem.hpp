@@ -13,6 +13,7 @@
 #include "fitting/data_term.hpp"
 #include "fitting/explained.hpp"
 #include "fitting/grid_index.hpp"
+#include "fitting/interpenetration.hpp"
 #include "fitting/levenberg_marquardt.hpp"
 #include "fitting/nearest.hpp"
 #include "fitting/observations.hpp"
@@ -102,6 +103,8 @@ public:
     // (judgement.hpp), for judging a fit.
     const std::vector<Vector3d>& posed_sample(uint32_t f);
     const std::vector<uint8_t>& sample_regions();
+    // How far frame f's posed surface passes through itself (interpenetration.hpp).
+    LimbsInside limbs_inside(uint32_t f);
 
     // The template placed by a similarity (world = scale R u + t for its points u), in `pose`
     // (default the rest pose): a root rotation about the root joint plus translation.
@@ -132,6 +135,7 @@ private:
     std::vector<double> shape_;
     std::vector<FitState> states_;
     std::vector<uint8_t> sample_regions_;  // judgement.hpp's region of each, built when needed
+    std::unique_ptr<InterpenetrationTest> inside_test_;  // built when needed
     std::vector<uint32_t> vertex_sample_;  // area-uniform model vertices (model-to-scan, explained measure)
     std::vector<Vector3d> posed_, posed_normals_, subset_posed_, subset_normals_;
     // Over the posed model, rebuilt for each use: every vertex (spacing about 1 cm) or the sample

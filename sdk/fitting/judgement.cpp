@@ -2,6 +2,7 @@
 
 #include "anatomy/joint_limits.hpp"
 #include "fitting/fit_problem.hpp"
+#include "fitting/interpenetration.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -129,6 +130,13 @@ Judgement judge(FitProblem& p, uint32_t f) {
         // A part missing from a scan (a hole) leaves the rest of the scan explained; a part placed
         // where the scan saw nothing has left its own points loosely explained elsewhere.
         if (worst > kOffScanShare && J.loose > kLooseShare) J.problem = FitProblemKind::LimbOffScan;
+    }
+    // A limb through the body, with or without a scan. The least of the problems: any other says
+    // more about where the fit went wrong.
+    const LimbsInside inside = p.limbs_inside(f);
+    J.inside = inside.worst, J.inside_limb = inside.limb, J.inside_part = inside.part;
+    if (J.inside > kLimbInsideShare && J.problem == FitProblemKind::None) J.problem = FitProblemKind::LimbInside, J.region = J.inside_limb;
+    if (p.has_points(f)) {
         if (J.unexplained > kRetryUnexplained) J.problem = FitProblemKind::ScanUnexplained;
     }
     if (J.joint_excess > kJointRangeTolerance) J.problem = FitProblemKind::JointPastRange;
@@ -147,6 +155,10 @@ std::string Judgement::describe(const Model& model) const {
         break;
     case FitProblemKind::ScanUnexplained:
         s << unexplained * 100 << " % of the scan lies more than 5 cm from the fitted surface (a limb or the trunk where the scan is not)";
+        break;
+    case FitProblemKind::LimbInside:
+        s << "the " << region_name(BodyRegion(inside_limb)) << " passes through the " << region_name(BodyRegion(inside_part)) << " ("
+          << inside * 100 << " % of its " << (inside_limb >= int32_t(BodyRegion::LeftLeg) ? "lower leg" : "forearm") << " inside)";
         break;
     case FitProblemKind::LimbOffScan:
         s << "the " << region_name(BodyRegion(region)) << " lies where the scan saw empty space (" << off_scan[std::size_t(region)] * 100

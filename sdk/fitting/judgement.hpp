@@ -11,6 +11,9 @@
 //                          scan's extent where the scan has no surface (a limb placed behind the back
 //                          while the scan shows it in front). Parts outside the scan's extent are
 //                          unscanned (a partial scan), not wrong: they are reported, not failed.
+//   limb through the body  a forearm or lower leg deep inside the trunk, the head or another limb
+//                          (interpenetration.hpp): where the scan shows arms held in front of the
+//                          body, the trunk's surface explains the scan that the arm's should.
 #pragma once
 
 #include "fitting/kinematics.hpp"
@@ -33,7 +36,7 @@ constexpr std::size_t kBodyRegionCount = 6;
 const char* region_name(BodyRegion region);  // "head", "trunk", "left arm", ...
 
 // What is wrong with a fit, the first that applies in this order (None: nothing).
-enum class FitProblemKind : uint8_t { None = 0, JointPastRange = 1, ScanUnexplained = 2, LimbOffScan = 3 };
+enum class FitProblemKind : uint8_t { None = 0, JointPastRange = 1, ScanUnexplained = 2, LimbOffScan = 3, LimbInside = 4 };
 
 // Tolerances of the judgement (see judgement.cpp for the measurements behind them).
 // A joint may lie this far past its range (radians) before the fit is judged wrong: the ranges are
@@ -53,6 +56,9 @@ constexpr double kOffScanShare = 0.10;
 // 0.1 % of the scan loosely explained; the two misplaced arms it catches on the pose library, 0.6
 // and 0.9 % (docs/fitting.md, "Judging a fit").
 constexpr double kLooseShare = 0.003;
+// A forearm or lower leg with more than this share inside another part of the body
+// (interpenetration.hpp) passes through it (see judgement.cpp for the measurements).
+constexpr double kLimbInsideShare = 0.2;
 // A region with at least this share of its samples outside the scan's extent is unscanned.
 constexpr double kUnscannedShare = 0.5;
 // The trunk's share of surface samples near the scan from which a scan counts as taken all round
@@ -71,7 +77,10 @@ struct Judgement {
     std::array<double, kBodyRegionCount> off_scan{}, unscanned{};
     double coverage = 0;  // the trunk's share of samples near the scan
     bool all_round = false;
-    int32_t region = -1;  // the region off the scan (LimbOffScan), else the most unscanned one or -1
+    // The forearm or lower leg most inside another part: its region, that part, and the share.
+    int32_t inside_limb = -1, inside_part = -1;
+    double inside = 0;
+    int32_t region = -1;  // the region off the scan (LimbOffScan) or through the body (LimbInside), else the most unscanned one or -1
 
     bool acceptable() const { return problem == FitProblemKind::None; }
     // One line: what is wrong, where, by how much ("the left elbow lies 31 degrees past its range").

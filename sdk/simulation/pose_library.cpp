@@ -17,6 +17,9 @@ using A = anatomy::JointAngles;
 // turns, z' leans; the pelvis (no limits) turns everything above and below it.
 const A kArmsStraight{"lowerarm", 40, 0, 0};
 const A kArmsDown{"upperarm", 0, 0, 35};
+// Arms crossed over the chest: the upper arms forward enough that the forearms clear a heavy chest.
+const A kArmsCrossed{"upperarm", -70, 25, 10};
+const A kForearmsCrossed{"lowerarm", -95, 0, 0};
 
 std::vector<LibraryPose> make_library() {
     std::vector<LibraryPose> l;
@@ -38,8 +41,8 @@ std::vector<LibraryPose> make_library() {
     pose("arms_forward", "arms straight forward, horizontal", {{"upperarm", -90, 0, 15}, kArmsStraight});
     pose("arms_forward_up", "arms reaching forward and up", {{"upperarm", -150, 0, 5}, kArmsStraight});
     pose("hands_on_belly", "hands together on the belly, elbows out", {{"upperarm", 10, 60, 5}, {"lowerarm", -75, 0, 0}});
-    pose("hands_behind_head", "hands behind the head, elbows out", {{"upperarm", 0, -60, -95}, {"lowerarm", -105, 0, 0}});
-    pose("arms_crossed", "arms crossed over the chest, hands at the shoulders", {{"upperarm", -35, 45, 35}, {"lowerarm", -85, 0, 0}});
+    pose("hands_behind_head", "hands behind the head, elbows out", {{"upperarm", -15, -60, -95}, {"lowerarm", -105, 0, 0}});
+    pose("arms_crossed", "arms crossed over the chest, hands at the shoulders", {kArmsCrossed, kForearmsCrossed});
     // No turn of the upper arm: turned in 60 degrees, the bent forearms went through a heavy chest.
     pose("forearms_forward", "upper arms at the sides, forearms forward", {{"upperarm", 0, 0, 35}, {"lowerarm", -90, 0, 0}});
     pose("reach_up_right", "the right arm reaching straight up, the trunk leaning left",
@@ -49,7 +52,7 @@ std::vector<LibraryPose> make_library() {
     pose("one_arm_up", "the left arm up, the right down at the side",
          {{"upperarm", 0, 0, -130, 'l'}, {"lowerarm", 40, 0, 0, 'l'}, {"upperarm", 0, 0, 35, 'r'}});
     pose("arm_across_chest", "the left arm drawn across the chest by the right hand",
-         {{"upperarm", -85, 70, 40, 'l'}, {"lowerarm", 35, 0, 0, 'l'}, {"upperarm", -40, 40, 30, 'r'}, {"lowerarm", -90, 0, 0, 'r'}});
+         {{"upperarm", -95, 70, 20, 'l'}, {"lowerarm", 35, 0, 0, 'l'}, {"upperarm", -55, 40, 20, 'r'}, {"lowerarm", -90, 0, 0, 'r'}});
     pose("boxing_guard", "fists up in front of the face, knees soft",
          {{"upperarm", -55, 30, 30}, {"lowerarm", -100, 0, 0}, {"thigh", -20, 0, 0}, {"calf", 25, 0, 0}});
     // Standing, the trunk and head.
@@ -63,7 +66,7 @@ std::vector<LibraryPose> make_library() {
     pose("head_turned", "head turned to the right, tilted", {{"neck_01", 0, -30, 10, 'm'}, {"head", 0, -25, 0, 'm'}});
     pose("touching_toes", "bending down to the toes, legs straight",
          {{"pelvis", 80, 0, 0, 'm'}, {"thigh", -80, 0, 0}, {"spine_01", 28, 0, 0, 'm'}, {"spine_02", 28, 0, 0, 'm'}, {"spine_03", 25, 0, 0, 'm'},
-          {"upperarm", -100, 0, 25}, kArmsStraight});
+          {"upperarm", -95, -20, -15}, kArmsStraight});
     pose("hands_on_knees", "leaning forward with the hands on the bent knees",
          {{"pelvis", 45, 0, 0, 'm'}, {"thigh", -80, 0, 0}, {"calf", 60, 0, 0}, {"foot", -15, 0, 0}, {"spine_01", 15, 0, 0, 'm'},
           {"upperarm", -60, 0, 35}, {"lowerarm", 35, 0, 0}});
@@ -88,18 +91,18 @@ std::vector<LibraryPose> make_library() {
          {{"pelvis", 25, 0, 0, 'm'}, {"thigh", -120, 0, -20}, {"calf", 130, 0, 0}, {"foot", -22, 0, 0}, {"spine_01", 15, 0, 0, 'm'},
           {"upperarm", -85, 0, 35}, {"lowerarm", 30, 0, 0}});
     pose("squat_arms_raised", "a squat with the arms straight overhead",
-         {{"pelvis", 20, 0, 0, 'm'}, {"thigh", -110, 0, -20}, {"calf", 120, 0, 0}, {"foot", -20, 0, 0}, {"upperarm", -165, 0, 0}, kArmsStraight});
+         {{"pelvis", 20, 0, 0, 'm'}, {"thigh", -110, 0, -20}, {"calf", 120, 0, 0}, {"foot", -20, 0, 0}, {"upperarm", -165, -40, 15}, kArmsStraight});
     pose("kneeling_one_knee", "kneeling on the right knee, the left foot forward",
          {{"thigh", -90, 0, 0, 'l'}, {"calf", 90, 0, 0, 'l'}, {"thigh", 0, 0, 0, 'r'}, {"calf", 90, 0, 0, 'r'}, {"foot", 40, 0, 0, 'r'},
           {"upperarm", -10, 0, 30}});
     pose("kneeling_sitting_back", "kneeling, sitting back on the heels, hands on the thighs",
-         {{"pelvis", 10, 0, 0, 'm'}, {"thigh", -60, 0, 0}, {"calf", 130, 0, 0}, {"foot", 45, 0, 0}, {"upperarm", -40, 0, 30}, {"lowerarm", 20, 0, 0}});
+         {{"pelvis", 10, 0, 0, 'm'}, {"thigh", -60, 0, 0}, {"calf", 120, 0, 0}, {"foot", 45, 0, 0}, {"upperarm", -40, 0, 30}, {"lowerarm", 20, 0, 0}});
     pose("crawling", "on hands and knees",
          {{"pelvis", 90, 0, 0, 'm'}, {"thigh", -90, 0, 0}, {"calf", 90, 0, 0}, {"foot", 40, 0, 0}, {"neck_01", -25, 0, 0, 'm'},
           {"upperarm", -90, 0, 10}, kArmsStraight});
     // Sitting.
     pose("sitting_leaning_back", "sitting, leaning back, arms crossed",
-         {{"pelvis", -20, 0, 0, 'm'}, {"thigh", -70, 0, 0}, {"calf", 83, 0, 0}, {"upperarm", -35, 45, 35}, {"lowerarm", -85, 0, 0}});
+         {{"pelvis", -20, 0, 0, 'm'}, {"thigh", -70, 0, 0}, {"calf", 83, 0, 0}, kArmsCrossed, kForearmsCrossed});
     pose("sitting_legs_crossed", "sitting on a chair, the left knee over the right",
          {{"thigh", -95, 0, 10, 'l'}, {"calf", 80, 0, 0, 'l'}, {"thigh", -90, 0, 0, 'r'}, {"calf", 83, 0, 0, 'r'}, {"upperarm", -15, 0, 33},
           {"lowerarm", -5, 0, 0}});
@@ -112,7 +115,7 @@ std::vector<LibraryPose> make_library() {
         l.push_back({name, description, "", std::move(angles), pitch, roll});
     };
     lying("lying_on_back", "lying on the back, arms at the sides", {kArmsDown}, -90, 0);
-    lying("lying_on_back_knees_up", "lying on the back, knees raised", {{"thigh", -60, 0, 0}, {"calf", 100, 0, 0}, kArmsDown}, -90, 0);
+    lying("lying_on_back_knees_up", "lying on the back, knees raised", {{"thigh", -60, 0, 0}, {"calf", 100, 0, 0}, {"upperarm", 0, 0, 25}}, -90, 0);
     lying("lying_on_side", "lying on the right side, knees and arms a little bent",
           {{"thigh", -40, 0, 0}, {"calf", 50, 0, 0}, {"upperarm", -60, 0, 20}, {"lowerarm", -20, 0, 0}}, 0, 90);
     lying("lying_on_front", "lying on the front, arms beside the head", {{"foot", 40, 0, 0}, {"upperarm", 0, 0, -90}, {"lowerarm", -60, 0, 0}}, 90, 0);

@@ -26,6 +26,11 @@ struct LibraryPose {
     double pitch = 0, roll = 0;
 };
 
+// A library pose on a body leaves less than this share of each forearm and lower leg inside
+// another part of the body (fitting/interpenetration.hpp): people cannot pass through themselves.
+// The benchmark redraws a pose's random variation that does.
+constexpr double kLibraryInside = 0.05;
+
 // Every pose of the library, a fixed order.
 const std::vector<LibraryPose>& pose_library();
 

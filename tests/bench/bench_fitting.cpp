@@ -39,6 +39,8 @@
 #include "anatomy/hand_closure.hpp"
 #include "anatomy/named_poses.hpp"
 #include "fitting/fitter.hpp"
+#include "fitting/interpenetration.hpp"
+#include "registration/registration_quality.hpp"
 #include "render/body_sheet.hpp"
 #include "render/fit_picture.hpp"
 #include "simulation/depth_camera.hpp"
@@ -613,6 +615,8 @@ int main(int argc, char** argv) {
             }
         };
         Tally all;
+        const fitting::InterpenetrationTest inside_test(lin);
+        const std::vector<uint32_t> triangles(model.data().mesh.triangles.begin(), model.data().mesh.triangles.end());
         std::vector<std::vector<float>> sheet;
         std::vector<std::string> captions;
         std::uniform_int_distribution<uint32_t> point_count(20000, 60000);
@@ -621,8 +625,17 @@ int main(int argc, char** argv) {
             const std::vector<float> base = simulation::library_pose(model, lp);
             Tally tally;
             for (int t = 0; t < std::max(trials, 1); ++t) {  // --trials 0: the picture of the poses only
-                const std::vector<float> pose = varied(base, simulation::random_pose(model, rng, 0.1));
-                auto truth = simulation::pose_rest_vertices(model, people[std::size_t(t) % people.size()], pose, Eigen::Vector3d::Zero());
+                // A variation that passes a limb through the body is no pose a person takes: drawn
+                // again (at most kDraws times, then the pose as defined).
+                constexpr int kDraws = 20;
+                const auto& person = people[std::size_t(t) % people.size()];
+                simulation::TrueBody truth;
+                for (int draw = 0; draw <= kDraws; ++draw) {
+                    const std::vector<float> pose = draw < kDraws ? varied(base, simulation::random_pose(model, rng, 0.1)) : base;
+                    truth = simulation::pose_rest_vertices(model, person, pose, Eigen::Vector3d::Zero());
+                    if (inside_test.measure(truth.vertices, registration::vertex_normals(truth.vertices, triangles)).worst < simulation::kLibraryInside)
+                        break;
+                }
                 if (t == 0 && !png.empty()) {  // the pose as defined, on the first person, facing the viewer
                     std::vector<float> xyz;
                     auto shown = simulation::pose_rest_vertices(model, people[0], base, Eigen::Vector3d::Zero());
@@ -652,12 +665,20 @@ int main(int argc, char** argv) {
                 const bool silent = converged && failure, false_alarm = !converged && success;
                 tally.silent += silent;
                 tally.false_alarms += false_alarm;
-                if (verbose)
+                if (verbose) {
+                    // How far the truth and the fit pass through themselves (interpenetration.hpp).
+                    const fitting::LimbsInside truth_inside = inside_test.measure(truth.vertices, registration::vertex_normals(truth.vertices, triangles));
+                    const fitting::LimbsInside fit_inside = inside_test.measure(fv, registration::vertex_normals(fv, triangles));
+                    auto where = [](const fitting::LimbsInside& in) {
+                        return in.limb < 0 ? std::string() : std::string(" (") + fitting::region_name(fitting::BodyRegion(in.limb)) + " in " +
+                                                                 fitting::region_name(fitting::BodyRegion(in.part)) + ")";
+                    };
                     std::printf("  %s trial %d: %u points, error %.2f mm (floor %.2f), %u restarts, unexplained %.3f, joint %.0f deg past, off scan %.2f, "
-                                "loose %.3f, coverage %.2f, converged %d%s%s\n",
+                                "loose %.3f, coverage %.2f, inside truth %.2f%s fit %.2f%s, converged %d%s%s\n",
                                 lp.name.c_str(), t, booth.points, error * 1e3, floor_t * 1e3, sol.report.restarts, sol.report.unexplained,
                                 sol.report.frames[0].joint_excess * 57.29578, sol.report.frames[0].off_scan, sol.report.frames[0].loose, sol.report.frames[0].coverage,
-                                int(converged), sol.report.problem_text.empty() ? "" : ": ", sol.report.problem_text.c_str());
+                                truth_inside.worst, where(truth_inside).c_str(), fit_inside.worst, where(fit_inside).c_str(), int(converged), sol.report.problem_text.empty() ? "" : ": ", sol.report.problem_text.c_str());
+                }
                 if (!png.empty() && (silent || false_alarm || !library_only.empty()))
                     render::write_fit_picture(png + "_" + lp.name + "_" + std::to_string(t) + (silent ? "_silent" : false_alarm ? "_false_alarm" : "") + ".png", model,
                                               sol.frames[0], frame.clouds[0].points, fv, truth.vertices);
