@@ -7,7 +7,7 @@
 //
 //   sscape_fit_bench [--trials N] [--scenario landmarks|scan|hands|depth|depth2|robust|poses|frames] [--components K]
 //                    [--max-points N] [--no-joint-limits] [--threads N] [--frames N]
-//                    [--scenario library [--pose NAME] [--makehuman DIR] [--landmarks]]
+//                    [--scenario library [--pose NAME] [--makehuman DIR] [--landmarks] [--depth]]
 // sequence (only when asked): a capture of one person (--makehuman DIR: a MakeHuman body beyond the
 // model) moving through 12 poses of the library in --frames frames, turning and stepping about,
 // each frame scanned all round; fitted as one sequence with a shared shape. Prints the time, the
@@ -24,7 +24,9 @@
 // MakeHuman assets; without it a random body of the model), the pose varied by a random pose of a
 // tenth of the random poses' range, in any heading, scanned all round by a booth of 8 depth cameras
 // (1 mm noise; what they cannot see is missing) to 20,000-60,000 points, and fitted from the points
-// alone (--landmarks: with the landmarks too, 5 mm placement noise, no hand landmarks). Per pose and
+// alone (--landmarks: with the landmarks too, 5 mm placement noise, no hand landmarks; --depth: one
+// 640 x 480 depth camera 2.8 m in front instead, 2 mm noise, the person facing it within 25
+// degrees, as a user stands before a single camera). Per pose and
 // over all: success, fits reported failed, silent failures (reported converged but failed), false
 // alarms (reported failed but a success), the successes' mean error and the median time. People beyond
 // the model lie 8-14 mm from its shape space even at rest (its best approximation of each person, "the
@@ -205,7 +207,7 @@ int main(int argc, char** argv) {
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     int frame_count = 100;
     std::string library_only, makehuman;
-    bool with_landmarks = false;
+    bool with_landmarks = false, one_depth_camera = false;
     for (int i = 1; i < argc; ++i) {
         auto value = [&]() { return i + 1 < argc ? argv[++i] : "0"; };
         if (!std::strcmp(argv[i], "--no-joint-limits")) limits = false;
@@ -219,6 +221,7 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--pose")) library_only = value();
         else if (!std::strcmp(argv[i], "--makehuman")) makehuman = value();
         else if (!std::strcmp(argv[i], "--landmarks")) with_landmarks = true;
+        else if (!std::strcmp(argv[i], "--depth")) one_depth_camera = true;
     }
     ThreadPool pool(threads);
     auto options = [&]() {  // the fitter's defaults with the command line's changes
@@ -591,7 +594,9 @@ int main(int argc, char** argv) {
         double floor = 0;
         for (const auto& rest : people) floors.push_back(simulation::best_approximation_error(model, rest, true)), floor += floors.back() / double(people.size());
         std::printf("the model's best approximation of these people at rest: %.2f mm mean vertex error (a fit's floor)\n", floor * 1e3);
-        std::printf("scans: 8 depth cameras all round, 1 mm noise, 20000-60000 points; %s\n",
+        std::printf("scans: %s; %s\n",
+                    one_depth_camera ? "one depth camera in front (640 x 480, 2 mm noise), the person facing it within 25 degrees"
+                                     : "8 depth cameras all round, 1 mm noise, 20000-60000 points",
                     with_landmarks ? "with landmarks (5 mm noise, no hand landmarks)" : "points only");
         std::printf("%-26s %6s %8s %9s %7s %6s %11s %9s %9s\n", "pose", "trials", "success", "reported", "silent", "false", "success mm",
                     "median s", "under");
@@ -644,12 +649,28 @@ int main(int argc, char** argv) {
                     sheet.push_back(std::move(xyz));
                     captions.push_back(lp.name);
                 }
-                simulation::transform_body(truth, random_heading(rng) * simulation::library_orientation(lp), Eigen::Vector3d::Zero());
+                std::uniform_real_distribution<double> facing(-25.0, 25.0);
+                const Eigen::Matrix3d heading = one_depth_camera ? Eigen::AngleAxisd(facing(rng) * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix()
+                                                                 : random_heading(rng);
+                simulation::transform_body(truth, heading * simulation::library_orientation(lp), Eigen::Vector3d::Zero());
                 if (trials == 0) break;
-                simulation::BoothSpec booth;
-                booth.points = point_count(rng);
                 fitting::Frame frame;
-                frame.clouds.push_back(simulation::booth_scan(model, truth, booth, rng));
+                if (one_depth_camera) {
+                    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+                    for (const auto& v : truth.vertices) centre += v;
+                    centre /= double(truth.vertices.size());
+                    const simulation::DepthCameraSpec spec;
+                    const auto camera = simulation::look_at(centre + Eigen::Vector3d(0, 0, 2.8), centre, spec);
+                    const auto depth = simulation::render_depth(model, truth, camera, spec, rng);
+                    fitting::DepthView img;
+                    img.width = spec.width, img.height = spec.height, img.depth = depth.data(), img.camera = camera;
+                    frame.clouds.push_back(fitting::depth_to_cloud(img));
+                } else {
+                    simulation::BoothSpec booth;
+                    booth.points = point_count(rng);
+                    frame.clouds.push_back(simulation::booth_scan(model, truth, booth, rng));
+                }
+                const uint32_t cloud_points = uint32_t(frame.clouds[0].points.size());
                 if (with_landmarks) frame.landmarks = simulation::simulate_landmarks(model, truth, 0.005, true, rng);
                 const auto sol = fitting::fit(lin, {frame}, options(), nullptr, {}, &pool);
                 const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
@@ -675,7 +696,7 @@ int main(int argc, char** argv) {
                     };
                     std::printf("  %s trial %d: %u points, error %.2f mm (floor %.2f), %u restarts, unexplained %.3f, joint %.0f deg past, off scan %.2f, "
                                 "loose %.3f, coverage %.2f, inside truth %.2f%s fit %.2f%s, converged %d%s%s\n",
-                                lp.name.c_str(), t, booth.points, error * 1e3, floor_t * 1e3, sol.report.restarts, sol.report.unexplained,
+                                lp.name.c_str(), t, cloud_points, error * 1e3, floor_t * 1e3, sol.report.restarts, sol.report.unexplained,
                                 sol.report.frames[0].joint_excess * 57.29578, sol.report.frames[0].off_scan, sol.report.frames[0].loose, sol.report.frames[0].coverage,
                                 truth_inside.worst, where(truth_inside).c_str(), fit_inside.worst, where(fit_inside).c_str(), int(converged), sol.report.problem_text.empty() ? "" : ": ", sol.report.problem_text.c_str());
                 }
