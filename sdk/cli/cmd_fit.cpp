@@ -168,6 +168,11 @@ int run_fit(Options o) {
         std::printf("points: mean correspondence distance %.2f mm, inliers %.1f %%, %.1f %% on a surface farther than 5 cm from the fit\n",
                     report.point_mean * 1e3, 100 * report.inlier_fraction, 100 * report.unexplained_fraction);
     if (frame_count == 1 && frame_reports[0].unscanned[0]) std::printf("note: %s\n", frame_reports[0].unscanned);
+    if (frame_count == 1 && report.implausible && report.unexplained_fraction >= SSC_FIT_UNEXPLAINED_LIMIT) {
+        // Much of the scan off the body: its text says what may be in the scan besides the person.
+        std::fprintf(stderr, "sscape fit: failed: %s (after %u restart(s)); nothing written\n", frame_reports[0].problem_text, report.restarts);
+        return 1;
+    }
     if (frame_count == 1 && report.implausible) {
         std::fprintf(stderr,
                      "sscape fit: failed: %s (after %u restart(s)): a limb or the whole body is most likely in the wrong place "
