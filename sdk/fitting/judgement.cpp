@@ -136,9 +136,7 @@ Judgement judge(FitProblem& p, uint32_t f) {
     const LimbsInside inside = p.limbs_inside(f);
     J.inside = inside.worst, J.inside_limb = inside.limb, J.inside_part = inside.part;
     if (J.inside > kLimbInsideShare && J.problem == FitProblemKind::None) J.problem = FitProblemKind::LimbInside, J.region = J.inside_limb;
-    if (p.has_points(f)) {
-        if (J.unexplained > kRetryUnexplained) J.problem = FitProblemKind::ScanUnexplained;
-    }
+    if (J.unexplained > kRetryUnexplained) J.problem = FitProblemKind::ScanUnexplained;  // 0 without points
     if (J.joint_excess > kJointRangeTolerance) J.problem = FitProblemKind::JointPastRange;
     return J;
 }
