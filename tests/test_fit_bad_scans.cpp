@@ -70,12 +70,15 @@ TEST_CASE("a scan of two people or of a person holding a large box is reported f
     const auto first = person(m, rng, Vector3d::Zero());
     fitting::PointCloud two = scan_of(m, first, rng);
     append(two, scan_of(m, person(m, rng, Vector3d(1.2, 0, 0)), rng));
-    const fitting::FitSolution both = fit_one(m, two);
-    INFO("two people: " << both.report.problem_text);
-    CHECK_FALSE(both.report.converged);
-    CHECK(both.report.problem == fitting::FitProblemKind::ScanUnexplained);
-    CHECK(both.report.unexplained > 0.3);
-    CHECK(both.report.problem_text.find("% of the scan lies more than 5 cm") != std::string::npos);
+    // Under the sanitizers cli_fit_frames fits a scan of two people through the same code.
+    if (!test::sanitized) {
+        const fitting::FitSolution both = fit_one(m, two);
+        INFO("two people: " << both.report.problem_text);
+        CHECK_FALSE(both.report.converged);
+        CHECK(both.report.problem == fitting::FitProblemKind::ScanUnexplained);
+        CHECK(both.report.unexplained > 0.3);
+        CHECK(both.report.problem_text.find("% of the scan lies more than 5 cm") != std::string::npos);
+    }
 
     // A 50 x 40 x 40 cm box held against the chest: a fifth of the points.
     fitting::PointCloud holding = scan_of(m, first, rng);

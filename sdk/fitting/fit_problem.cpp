@@ -85,6 +85,7 @@ FitProblem::FitProblem(const LinearModel& lin, const std::vector<Frame>& frames,
             fd.landmark_targets.push_back(l.position);
             fd.landmark_weights.push_back(l.weight);
         }
+        fd.own_landmarks = fd.landmark_points.size();
         for (const auto& c : frames[f].clouds) {
             for (std::size_t i = 0; i < c.points.size(); ++i) {
                 fd.points.push_back(c.points[i]);
@@ -212,6 +213,26 @@ const std::vector<Vector3d>& FitProblem::posed_subset() {
     return subset_posed_;
 }
 
+void FitProblem::set_guides(uint32_t f, const std::vector<SurfacePoint>& points, const std::vector<Vector3d>& targets, double sigma) {
+    clear_guides(f);
+    FrameData& fd = frames_[f];
+    const double weight = (o_.landmark_sigma / sigma) * (o_.landmark_sigma / sigma);
+    for (std::size_t i = 0; i < points.size() && i < targets.size(); ++i) {
+        fd.landmark_points.push_back(points[i]);
+        fd.landmark_targets.push_back(targets[i]);
+        fd.landmark_weights.push_back(weight);
+    }
+    ++pairs_version_;
+}
+
+void FitProblem::clear_guides(uint32_t f) {
+    FrameData& fd = frames_[f];
+    fd.landmark_points.resize(fd.own_landmarks);
+    fd.landmark_targets.resize(fd.own_landmarks);
+    fd.landmark_weights.resize(fd.own_landmarks);
+    ++pairs_version_;
+}
+
 void FitProblem::find_pairs(const Stage& st, uint32_t frame_only) {
     pair_queries_.assign(F_, 0);
     for (uint32_t f = 0; f < F_; ++f) {
@@ -232,7 +253,7 @@ void FitProblem::find_frame_pairs(uint32_t f, const Stage& st) {
     auto& fd = frames_[f];
     fd.pairs.clear();
     ++pairs_version_;
-    if (fd.points.empty()) return;
+    if (fd.points.empty() || st.point_fraction <= 0) return;
     // Model points for scan-to-model queries: all vertices or the subset (see Stage).
     GridIndex& model_index = st.dense_model ? dense_grid_ : sample_grid_;
     model_index.build(st.dense_model ? posed_ : posed_subset());

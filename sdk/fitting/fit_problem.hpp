@@ -40,6 +40,7 @@ struct FrameData {
     std::vector<SurfacePoint> landmark_points;
     std::vector<Vector3d> landmark_targets;
     std::vector<double> landmark_weights;
+    std::size_t own_landmarks = 0;           // the frame's landmarks; guides follow them
     std::vector<Vector3d> points, normals;  // all clouds merged; normals zero where unknown
     std::vector<double> confidence;
     bool oriented = true;                    // normals known with their sign
@@ -109,6 +110,11 @@ public:
     // The template placed by a similarity (world = scale R u + t for its points u), in `pose`
     // (default the rest pose): a root rotation about the root joint plus translation.
     FitState placed(uint32_t f, const Similarity& T, const std::vector<Eigen::Quaterniond>* pose = nullptr);
+
+    // Targets that draw model points like landmarks for a while (the extremity start's tips, drawn
+    // at sigma `sigma`, metres), after frame f's own landmarks until clear_guides(f).
+    void set_guides(uint32_t f, const std::vector<SurfacePoint>& points, const std::vector<Vector3d>& targets, double sigma);
+    void clear_guides(uint32_t f);
 
     // What the start search, limb and hand searches read of frame f's cloud. The start grid is
     // built by build_start_grid(f) first.

@@ -14,7 +14,6 @@ constexpr uint32_t kStride = 2;
 }  // namespace
 
 InterpenetrationTest::InterpenetrationTest(const LinearModel& lin) : regions_(vertex_regions(lin)) {
-    const auto& skin = lin.model.data().skin;
     // The middle joint (elbow, knee) of each limb region: a vertex is distal when its dominant
     // joint is that joint or below it.
     std::array<int64_t, kBodyRegionCount> middle;
@@ -36,10 +35,7 @@ InterpenetrationTest::InterpenetrationTest(const LinearModel& lin) : regions_(ve
         if (r >= kBodyRegionCount) continue;
         surface_[r].push_back(v);
         if (middle[r] < 0) continue;
-        int best = 0;
-        for (int i = 1; i < 4; ++i)
-            if (skin.weights[4 * std::size_t(v) + i] > skin.weights[4 * std::size_t(v) + best]) best = i;
-        const uint32_t j = skin.joints[4 * std::size_t(v) + best];
+        const uint32_t j = dominant_joint(lin.model.data(), v);
         if (j >= lin.chains.size()) continue;
         const auto& chain = lin.chains[j];
         if (std::find(chain.begin(), chain.end(), uint32_t(middle[r])) != chain.end()) tested_.push_back(v);

@@ -57,13 +57,9 @@ const char* region_name(BodyRegion region) {
 }
 
 std::vector<uint8_t> vertex_regions(const LinearModel& lin) {
-    const auto& skin = lin.model.data().skin;
     std::vector<uint8_t> regions(lin.V, uint8_t(BodyRegion::Trunk));
     for (uint32_t v = 0; v < lin.V; ++v) {
-        int best = 0;
-        for (int i = 1; i < 4; ++i)
-            if (skin.weights[4 * std::size_t(v) + i] > skin.weights[4 * std::size_t(v) + best]) best = i;
-        const uint32_t j = skin.joints[4 * std::size_t(v) + best];
+        const uint32_t j = dominant_joint(lin.model.data(), v);
         if (j < lin.roles.size()) regions[v] = uint8_t(region_of(lin.roles[j]));
     }
     return regions;

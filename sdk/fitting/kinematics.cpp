@@ -50,6 +50,14 @@ Eigen::Quaterniond exp_rotation(const Vector3d& w) {
 
 }  // namespace
 
+uint32_t dominant_joint(const format::ModelData& d, uint32_t v) {
+    const std::size_t at = 4 * std::size_t(v);
+    int best = 0;
+    for (int i = 1; i < 4; ++i)
+        if (d.skin.weights[at + std::size_t(i)] > d.skin.weights[at + std::size_t(best)]) best = i;
+    return d.skin.joints[at + std::size_t(best)];
+}
+
 SurfacePoint landmark_point(const format::ModelData& d, uint32_t l) {
     const auto& lm = d.landmarks[l];
     SurfacePoint p;

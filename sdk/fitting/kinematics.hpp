@@ -47,6 +47,10 @@ struct SurfacePoint {
 // barycentric weights).
 SurfacePoint landmark_point(const format::ModelData& model, uint32_t l);
 
+// The joint with the largest skinning weight on vertex v (the first of equals): the part the
+// vertex belongs to, for the judgement's regions, the interpenetration test and the tips.
+uint32_t dominant_joint(const format::ModelData& model, uint32_t v);
+
 // The model's linear parts in double precision for the used components: built once, shared by every
 // frame's Kinematics.
 struct LinearModel {

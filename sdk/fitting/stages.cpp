@@ -68,6 +68,20 @@ Stage start_stage(uint32_t components) {
     return s;
 }
 
+Stage tip_stage() {
+    Stage s{};
+    s.iterations = 12;
+    s.body_joints = true;
+    s.all_joints = false;
+    s.components = 0;
+    s.max_distance = 0;
+    s.gm_scale = 8.0;
+    s.min_normal_dot = 0.0;
+    s.point_fraction = 0;
+    s.tolerance = 1e-4;
+    return s;
+}
+
 Schedule schedule(uint32_t max_iterations, uint32_t components, bool given_start, uint32_t whole_body) {
     const uint32_t total = std::max<uint32_t>(max_iterations, 3);
     const uint32_t rigid = std::max<uint32_t>(1, total / 5), coarse = std::max<uint32_t>(1, total / 3);

@@ -18,7 +18,7 @@ struct Stage {
     double max_distance;  // metres, correspondence gate
     double gm_scale;      // Geman-McClure scale in sigmas
     double min_normal_dot;
-    double point_fraction;  // of FitOptions::max_points
+    double point_fraction;  // of FitOptions::max_points; 0: no scan points (landmarks and guides only)
     double tolerance = 1e-5;  // converged when a step lowers the cost by less than this fraction
     // Scan-to-model correspondences against every vertex, or (coarse stages) against the
     // area-sampled subset only: a tree a quarter the size, and coarse steps need no more.
@@ -45,6 +45,10 @@ Stage fine_stage(uint32_t iterations, uint32_t components, bool polish);
 // The short coarse fit each start candidate gets (solver.cpp, short_fits): a little farther and
 // more robust than the coarse stage, on a quarter of the points.
 Stage start_stage(uint32_t components);
+
+// The extremity start's first step (solver.cpp): the trunk and limbs drawn to the scan's head,
+// hands and feet alone (guides, no scan points): inverse kinematics under the pose prior.
+Stage tip_stage();
 
 // Shape components the coarse stages fit.
 constexpr uint32_t kCoarseComponents = 10;

@@ -50,6 +50,27 @@ const std::vector<Vector3d>& StartTemplates::rest_normals() {
     return rest_.normals;
 }
 
+const ModelTips& StartTemplates::tips() {
+    if (!tips_built_) {
+        tips_built_ = true;
+        FitState zero;
+        zero.shape.assign(lin_.K, 0.0);
+        zero.pose.assign(lin_.J, Eigen::Quaterniond::Identity());
+        std::vector<Vector3d> vertices;
+        posed_surface(body_, zero, vertices, nullptr);
+        const auto& triangles = lin_.model.data().mesh.triangles;
+        tips_ = model_tips(vertices, triangles.data(), triangles.size() / 3, tip_parts(lin_));
+        if (tips_.valid)
+            for (std::size_t t = 0; t < kTipCount; ++t) rest_tips_[t] = vertices[tips_.guide[t]];
+    }
+    return tips_;
+}
+
+const std::array<Vector3d, kTipCount>& StartTemplates::rest_tips() {
+    tips();
+    return rest_tips_;
+}
+
 const std::vector<StartTemplate>& StartTemplates::posed() {
     if (!posed_.empty() || !lin_.model.data().joint_limits.size()) return posed_;
     // In place: a PointIndex refers to its points vector, so templates never move once built.

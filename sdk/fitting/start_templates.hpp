@@ -3,11 +3,13 @@
 // k-d tree and its principal frame. Built on first use, then fixed for the fit.
 #pragma once
 
+#include "fitting/extremities.hpp"
 #include "fitting/kinematics.hpp"
 #include "fitting/nearest.hpp"
 #include "fitting/rigid_start.hpp"
 #include "synthesis/body.hpp"
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -40,6 +42,10 @@ public:
     // Unit normals of the vertex sample at rest, in the sample's order.
     const std::vector<Vector3d>& rest_normals();
 
+    // The mean body's head, hands and feet at rest (extremities.hpp) and their guides' places there.
+    const ModelTips& tips();
+    const std::array<Vector3d, kTipCount>& rest_tips();
+
     // The mean body in each of kStartPoses; none for a model without joint limits (its poses
     // could not be made).
     const std::vector<StartTemplate>& posed();
@@ -51,6 +57,9 @@ private:
     StartTemplate rest_;      // pose empty until built
     bool rest_built_ = false;
     std::vector<StartTemplate> posed_;
+    bool tips_built_ = false;
+    ModelTips tips_;
+    std::array<Vector3d, kTipCount> rest_tips_{};
     std::vector<Vector3d> vertices_, normals_;  // scratch: the posed surface
 };
 
