@@ -20,6 +20,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr std::size_t kNeighbours = 8;
 // Neighbours whose normals' dot product is below this face each other: not joined.
 constexpr double kFacing = 0.0;
+// Pieces of the scan graph joined to the rest per round (scan_graph()).
+constexpr std::size_t kMaxBridged = 16;
 // A tip left out of a labelling costs this (as a mean squared relative mismatch): a hand resting
 // on the body is no extremity, but a labelling that drops a tip it could match is worse.
 constexpr double kMissingTip = 0.03;
@@ -114,17 +116,21 @@ SurfaceGraph scan_graph(const std::vector<Vector3d>& points, const std::vector<V
             }
     }
     // Pieces cut off by holes (a hand beyond a gap at the wrist): each joined to the nearest node
-    // of another piece, smallest first, until one piece holds every large one.
+    // of another piece, the kMaxBridged largest a round, until one piece holds every large one (a
+    // person's scan has a few; clutter may have thousands, and each join costs a k-d tree).
     for (int round = 0; round < 8; ++round) {
         uint32_t count = 0;
         const std::vector<uint32_t> piece = pieces(edges, count);
         if (count <= 1) break;
         std::vector<std::size_t> size(count, 0);
         for (uint32_t p : piece) ++size[p];
-        const uint32_t largest = uint32_t(std::max_element(size.begin(), size.end()) - size.begin());
+        std::vector<uint32_t> order(count);
+        std::iota(order.begin(), order.end(), 0u);
+        std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return size[a] > size[b]; });
         bool joined = false;
-        for (uint32_t p = 0; p < count; ++p) {
-            if (p == largest || size[p] < kMinPiece) continue;
+        for (std::size_t o = 1; o < order.size() && o <= kMaxBridged; ++o) {
+            const uint32_t p = order[o];
+            if (size[p] < kMinPiece) break;
             // The piece's closest node pair to the rest: a k-d tree over the other pieces' nodes.
             std::vector<Vector3d> others;
             std::vector<uint32_t> other_ids;
@@ -137,8 +143,8 @@ SurfaceGraph scan_graph(const std::vector<Vector3d>& points, const std::vector<V
             for (uint32_t n = 0; n < nodes.size(); ++n) {
                 if (piece[n] != p) continue;
                 double d = 0;
-                const uint32_t o = rest.nearest(nodes[n], &d);
-                if (d < best) best = d, from = n, to = other_ids[o];
+                const uint32_t other = rest.nearest(nodes[n], &d);
+                if (d < best) best = d, from = n, to = other_ids[other];
             }
             const double length = std::sqrt(best);
             edges[from].emplace_back(to, length), edges[to].emplace_back(from, length);
