@@ -242,19 +242,35 @@ private:
             best_prior = 0;
             short_fits(0, found, &p_.templates().posed()[t].pose, alternatives, best_cost, best_prior);
         }
-        extremity_fits(0, alternatives);
-        std::stable_sort(alternatives.begin(), alternatives.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (const auto& [cost, alternative] : alternatives) {
-            if (best.judgement.acceptable() || restarts == kMaxRestarts) break;
+        const auto by_measure = [](const auto& a, const auto& b) { return a.first < b.first; };
+        std::stable_sort(alternatives.begin(), alternatives.end(), by_measure);
+        // Each restart: the fit from the candidate, kept when judged right or explaining more.
+        const auto restart_from = [&](const FitState& alternative) {
             p_.states()[0] = alternative;
             p_.shape() = alternative.shape;
             const bool c = fit_stages(plan, Schedule::kCoarse, progress, iteration, cancelled, nullptr);
-            if (cancelled) break;
+            if (cancelled) return;
             ++restarts;
             p_.update_kinematics();
             const Judgement j = judge(p_, 0);
             const double measure = p_.explained(0);
             if (j.acceptable() || measure < best.measure) best = {p_.shape(), p_.states(), c, j, measure};
+        };
+        for (const auto& [cost, alternative] : alternatives) {
+            if (best.judgement.acceptable() || restarts == kMaxRestarts || cancelled) break;
+            restart_from(alternative);
+        }
+        // Then the extremity start's candidates, each a restart more: after the templates', so
+        // that a fit they fix is fixed as before (ranked among them by the explained measure,
+        // the extremity start took their restarts and left fits they fixed failed).
+        if (!best.judgement.acceptable() && !cancelled) {
+            std::vector<std::pair<double, FitState>> extremity;
+            extremity_fits(0, extremity);
+            std::stable_sort(extremity.begin(), extremity.end(), by_measure);
+            for (const auto& [cost, alternative] : extremity) {
+                if (best.judgement.acceptable() || cancelled) break;
+                restart_from(alternative);
+            }
         }
         p_.shape() = best.shape;
         p_.states() = best.states;
@@ -286,7 +302,7 @@ private:
         }
     }
 
-    // The extremity start (restarts only): the scan's head, hands and feet (extremities.hpp) in
+    // The extremity start (restarts only, after the templates'): the scan's head, hands and feet (extremities.hpp) in
     // their best labellings; for each, the template placed on the tips, drawn to them by the tip
     // stage, then the short coarse fit on the scan alone. Each result joins `checked`. As a first
     // start too it fixed the same fits, and made standing scans worse (the scan scenario 2.04 ->
