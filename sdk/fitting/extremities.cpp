@@ -68,11 +68,6 @@ std::vector<uint32_t> pieces(const Edges& edges, uint32_t& count) {
 
 }  // namespace
 
-const char* tip_name(std::size_t tip) {
-    static const char* const names[kTipCount] = {"head", "left hand", "right hand", "left foot", "right foot"};
-    return tip < kTipCount ? names[tip] : "?";
-}
-
 SurfaceGraph scan_graph(const std::vector<Vector3d>& points, const std::vector<Vector3d>& normals, double spacing) {
     // One node per occupied cube: the mean of its points.
     struct Cell {
@@ -226,7 +221,6 @@ ScanExtremities scan_extremities(const std::vector<Vector3d>& points, const std:
         if (best == ~0u) break;
         picks.push_back(best);
         ex.points.push_back(g.nodes[best]);
-        ex.prominence.push_back(far);
         auto& path = ex.paths.emplace_back();
         for (uint32_t n = best, steps = 0; steps < g.nodes.size(); n = towards_centre[n], ++steps) {
             const double along = path.empty() ? 0.0 : path.back().first + (g.nodes[n] - path.back().second).norm();

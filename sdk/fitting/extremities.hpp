@@ -27,7 +27,6 @@ using Eigen::Vector3d;
 // The tips, in this order: head (the crown), left and right hand (the middle fingertip), left and
 // right foot (the toes).
 constexpr std::size_t kTipCount = 5;
-const char* tip_name(std::size_t tip);  // "head", "left hand", ...
 
 // Shortest paths over a graph of surface points (edge lengths in metres).
 struct SurfaceGraph {
@@ -59,12 +58,11 @@ std::vector<double> geodesic_from(const SurfaceGraph& graph, const std::vector<u
 // the start does not move, cannot (the thumb ended on the wrong side of standing scans).
 constexpr double kPalmBack = 0.10;
 
-// A scan's extremities: geodesic farthest-point picks, most distant first. prominence: each
-// pick's geodesic distance from the picks before it (the first: from the scan's centre); on a
-// person the tips come first (0.6 to 1.7 m), then elbows, knees and shoulders (under 0.5 m).
+// A scan's extremities: geodesic farthest-point picks, most distant first (each the farthest
+// along the surface from the picks before it; the first from the scan's centre). On a person the
+// tips come first (0.6 to 1.7 m from the picks before them), then elbows, knees and shoulders.
 struct ScanExtremities {
     std::vector<Vector3d> points;
-    std::vector<double> prominence;
     Eigen::MatrixXd geodesic;  // between the picks, metres
     // Each pick's shortest path towards the scan's centre (its first kPathLength metres): nodes and
     // their distances from the pick.
