@@ -6,31 +6,35 @@
 #   small (the sanitizer build): without the second registration of every scan under another up axis,
 #   which runs the same code as the first, without the template-only start (the posture-model test
 #   registers from the template alone under the sanitizers; the Release run checks this one), and
-#   without two of the resumed runs (units spelled out, attributes: reading the same records again).
+#   without two of the resumed runs (units spelled out, attributes: reading the same records again),
+#   and 4 scans instead of 6 (models of 2 components instead of 3).
 set -u
 # Under a long folder name, as users' paths are: no line may be cut (a fixed-width line once lost
 # the "reused" this test looks for).
 sscape=$1 out=$2/bootstrap/a_folder_with_a_name_as_long_as_the_paths_of_real_collections_on_real_disks_are_every_day scale=${3:-full}
 rm -rf "$2/bootstrap" && mkdir -p "$out/scans" "$out/truth"
 fail() { echo "FAIL: $*"; exit 1; }
-for i in 1 2 3 4 5 6; do
+ids="1 2 3 4 5 6" components=3 eval_components=1,2,3
+[ "$scale" = small ] && ids="1 2 3 4" components=2 eval_components=1,2
+count=$(echo $ids | wc -w)
+for i in $ids; do
     "$sscape" simulate -o "$out/truth/b$i" --seed "$((40 + i))" --points 8000 --pose-amount 0.3 > /dev/null || fail "simulate $i"
     mv "$out/truth/b${i}_scan.ply" "$out/scans/b$i.ply" && mv "$out/truth/b$i.lnd" "$out/scans/b$i.lnd"
 done
 printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nend_header\n1\n' > "$out/scans/broken.ply"  # fails alone
-"$sscape" bootstrap "$out/scans" --rounds 1 --components 3 -o "$out/run" > "$out/first.txt" 2>&1 || { cat "$out/first.txt"; fail "bootstrap"; }
+"$sscape" bootstrap "$out/scans" --rounds 1 --components $components -o "$out/run" > "$out/first.txt" 2>&1 || { cat "$out/first.txt"; fail "bootstrap"; }
 cat "$out/first.txt"
-grep -q "round 1: 6 registered, 0 reused, 1 failed" "$out/first.txt" || fail "every scan registered, the broken one failed"
+grep -q "round 1: $count registered, 0 reused, 1 failed" "$out/first.txt" || fail "every scan registered, the broken one failed"
 grep -q "^broken,reject,\"*registration failed: " "$out/run/round_1/decisions.csv" || fail "the broken scan's reason"
 for f in round_0/model.sscape round_1/model.sscape round_1/round.json round_1/decisions.csv round_1/contact_sheet_01.png model.sscape rounds.csv; do
     [ -s "$out/run/$f" ] || fail "no $f"
 done
-for i in 1 2 3 4 5 6; do
+for i in $ids; do
     [ -s "$out/run/round_1/registrations/b$i.ply" ] && [ -s "$out/run/round_1/registrations/b$i.json" ] || fail "registration $i"
 done
-[ "$(wc -l < "$out/run/round_1/decisions.csv")" -eq 8 ] || fail "a decision per scan"
+[ "$(wc -l < "$out/run/round_1/decisions.csv")" -eq $((count + 2)) ] || fail "a decision per scan"
 accepted=$(grep -c ",accept," "$out/run/round_1/decisions.csv")
-[ "$accepted" -ge 3 ] || fail "only $accepted of 6 accepted"
+[ "$accepted" -ge 3 ] || fail "only $accepted of $count accepted"
 # The built-in model poses the accepted scans (the posture model by default): here it is also the
 # round's model, so its registration fits are kept as the posture fits.
 grep -q "round 1: the accepted scans posed by '" "$out/first.txt" || fail "the posture model's line"
@@ -42,8 +46,8 @@ grep -q "bootstrap round 1;" "$out/info.txt" || { cat "$out/info.txt"; fail "the
     { cat "$out/learn.txt"; fail "sscape learn on bootstrap's registrations"; }
 
 # Resumed: nothing registered or learned again.
-"$sscape" bootstrap "$out/scans" --rounds 1 --components 3 -o "$out/run" > "$out/again.txt" 2>&1 || { cat "$out/again.txt"; fail "resume"; }
-grep -q "round 1: 0 registered, 6 reused, 1 failed.*, reused$" "$out/again.txt" || { cat "$out/again.txt"; fail "the resumed run redid work"; }
+"$sscape" bootstrap "$out/scans" --rounds 1 --components $components -o "$out/run" > "$out/again.txt" 2>&1 || { cat "$out/again.txt"; fail "resume"; }
+grep -q "round 1: 0 registered, $count reused, 1 failed.*, reused$" "$out/again.txt" || { cat "$out/again.txt"; fail "the resumed run redid work"; }
 
 # The same reading of the scans spelled out redoes nothing; another (their up axis) registers and learns again.
 if [ "$scale" = full ]; then
@@ -60,9 +64,9 @@ rm -rf "$out/run_cm"
 # A person rejects an accepted scan: the registrations stay, the model is learned again without it.
 first=$(grep ",accept," "$out/run/round_1/decisions.csv" | head -1 | cut -d, -f1)
 printf 'scan,decision,reason,by\n%s,reject,"arm looks wrong, by eye",person\nb1,accept,,auto\n' "$first" > "$out/decisions.csv"
-"$sscape" bootstrap "$out/scans" --rounds 1 --components 3 --decisions "$out/decisions.csv" -o "$out/run" > "$out/person.txt" 2>&1 ||
+"$sscape" bootstrap "$out/scans" --rounds 1 --components $components --decisions "$out/decisions.csv" -o "$out/run" > "$out/person.txt" 2>&1 ||
     { cat "$out/person.txt"; fail "bootstrap with decisions"; }
-grep -q "round 1: 0 registered, 6 reused" "$out/person.txt" || { cat "$out/person.txt"; fail "registrations reused"; }
+grep -q "round 1: 0 registered, $count reused" "$out/person.txt" || { cat "$out/person.txt"; fail "registrations reused"; }
 grep -q "round 1: learning from $((accepted - 1)) registrations" "$out/person.txt" || { cat "$out/person.txt"; fail "the model learned again"; }
 grep -q "^$first,reject,\"arm looks wrong, by eye\",person" "$out/run/round_1/decisions.csv" || fail "the person's decision recorded"
 
@@ -79,13 +83,13 @@ fi
 
 # Evaluation of the round's registrations: learning with the three posture normalizations, and
 # the two rounds' models against them.
-"$sscape" evaluate "$out"/run/round_1/registrations/*.ply --posture none,skeleton,laplacian --components 1,2,3 --samples 200 -o "$out/eval" > "$out/eval.txt" 2>&1 ||
+"$sscape" evaluate "$out"/run/round_1/registrations/*.ply --posture none,skeleton,laplacian --components $eval_components --samples 200 -o "$out/eval" > "$out/eval.txt" 2>&1 ||
     { cat "$out/eval.txt"; fail "evaluate"; }
-[ "$(grep -c '^posture ' "$out/eval.csv")" -eq 9 ] || { cat "$out/eval.csv"; fail "a row per posture and number of components"; }
+[ "$(grep -c '^posture ' "$out/eval.csv")" -eq $((3 * components)) ] || { cat "$out/eval.csv"; fail "a row per posture and number of components"; }
 for plot in compactness generalization specificity; do [ -s "$out/eval_$plot.png" ] || fail "no $plot plot"; done
-"$sscape" evaluate "$out"/run/round_1/registrations/*.ply --models "$out/run/round_0/model.sscape,$out/run/round_1/model.sscape" --components 1,3 \
+"$sscape" evaluate "$out"/run/round_1/registrations/*.ply --models "$out/run/round_0/model.sscape,$out/run/round_1/model.sscape" --components 1,$components \
     --samples 200 -o "$out/rounds" > "$out/rounds.txt" 2>&1 || { cat "$out/rounds.txt"; fail "evaluate --models"; }
-grep -q "^round_1/model,3," "$out/rounds.csv" || { cat "$out/rounds.csv"; fail "the rounds' models by folder"; }
+grep -q "^round_1/model,$components," "$out/rounds.csv" || { cat "$out/rounds.csv"; fail "the rounds' models by folder"; }
 "$sscape" evaluate "$out"/run/round_1/registrations/b1.ply "$out"/run/round_1/registrations/b2.ply -o "$out/few" > "$out/few.txt" 2>&1
 [ $? -eq 2 ] && grep -q "needs at least 3 registrations" "$out/few.txt" || { cat "$out/few.txt"; fail "evaluate with 2 registrations"; }
 

@@ -100,6 +100,13 @@ std::vector<uint32_t> left_arm(const Model& m) {
     return out;
 }
 
+// The built-in model's file as shipped (what `sscape bootstrap` starts from): writing the model
+// again would compress it again, seconds each time.
+std::vector<unsigned char> default_model_bytes() {
+    const std::string s = read_regular_file(test::default_model_file(), 1u << 30);
+    return std::vector<unsigned char>(s.begin(), s.end());
+}
+
 }  // namespace
 
 TEST_CASE("inspection accepts a good registration and rejects a limb gone astray, folds and impossible joints", "[bootstrap]") {
@@ -331,7 +338,7 @@ TEST_CASE("one round of bootstrapping on 20 MakeHuman booth scans: most accepted
     spec.threads = 2;
     spec.learn.components = components;
     spec.sheet_entries = 0;
-    const std::vector<learning::RoundReport> reports = learning::bootstrap(format::write_model(m.data()), spec);
+    const std::vector<learning::RoundReport> reports = learning::bootstrap(default_model_bytes(), spec);
     REQUIRE(reports.size() == 1);
     INFO(reports[0].accepted << " accepted, " << reports[0].rejected << " rejected, " << reports[0].failed << " failed");
     CHECK(reports[0].failed == 0);
@@ -405,7 +412,7 @@ TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan mad
     // some of them poorly: a person accepts them all, so that every scan is posed (the posture
     // fits do not depend on the registration).
     const std::vector<unsigned char> start = format::write_model(learning::template_only(m.data()));
-    spec.posture_model = format::write_model(m.data());
+    spec.posture_model = default_model_bytes();
     for (const auto& scan : c.scans) spec.decisions[scan.name] = {true, "accepted for the test"};
 
     // A posture model of another rig, or no model at all: refused before anything is written.
@@ -422,7 +429,7 @@ TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan mad
         }
         CHECK_FALSE(std::filesystem::exists(spec.out_dir));
     }
-    spec.posture_model = format::write_model(m.data());
+    spec.posture_model = default_model_bytes();
 
     // Fitted once, used, found again on resuming.
     const std::vector<learning::RoundReport> first = learning::bootstrap(start, spec);

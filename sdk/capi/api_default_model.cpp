@@ -1,5 +1,7 @@
 // The default model compiled into the library (model_format/models/sscape-default.sscape,
 // embedded by embed_default_model.S). It is loaded through the same verified path as any file.
+#include "capi/cpp_access.hpp"
+
 #include <sscape/sscape.h>
 
 #include <cstddef>
@@ -9,7 +11,11 @@ extern const unsigned char ssc_internal_default_model[];
 extern const unsigned char ssc_internal_default_model_end[];
 
 ssc_status ssc_model_load_default(ssc_context* ctx, ssc_model** out) {
-    const std::size_t size = static_cast<std::size_t>(ssc_internal_default_model_end - ssc_internal_default_model);
-    return ssc_model_load_memory(ctx, ssc_internal_default_model, size, out);
+    const ssc::FileBytes file = ssc::default_model_file();
+    return ssc_model_load_memory(ctx, file.data, file.size, out);
 }
+}
+
+ssc::FileBytes ssc::default_model_file() {
+    return {ssc_internal_default_model, static_cast<std::size_t>(ssc_internal_default_model_end - ssc_internal_default_model)};
 }

@@ -6,6 +6,8 @@
 
 #include <sscape/sscape.h>
 
+#include <cstddef>
+
 namespace ssc {
 class Model;
 class Body;
@@ -18,5 +20,13 @@ Body& body_of(ssc_body* body);  // mutable: a body computes its stages lazily
 // Built on first use and kept (thread-safe); throws ssc::Error where the model lacks the landmarks
 // the measurements need.
 const measure::Measurer& measurer_of(const ssc_model* model);
+
+// The built-in model's file bytes as compiled in (model_format/models/sscape-default.sscape): what
+// a tool that writes or digests "the built-in model" needs, without encoding it again (seconds).
+struct FileBytes {
+    const unsigned char* data;
+    std::size_t size;
+};
+FileBytes default_model_file();
 
 }  // namespace ssc

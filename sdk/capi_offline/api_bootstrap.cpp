@@ -1,6 +1,7 @@
 // Bootstrapping a folder of scans (sscape_offline.h): the settings read once into a
 // learning::BootstrapSpec, each round's registrations as file jobs (for callers that run them
 // elsewhere), and the rounds themselves (learning/bootstrap.hpp does the work).
+#include "capi/cpp_access.hpp"
 #include "capi/guard.hpp"
 #include "capi/handles.hpp"
 #include "capi/registration_report.hpp"
@@ -25,29 +26,19 @@ struct ssc_bootstrap {
 
 namespace {
 
-// The built-in model, written out as a model file.
-std::vector<unsigned char> builtin_model(ssc_context* ctx) {
-    ssc_model* m = nullptr;
-    const ssc_status status = ssc_model_load_default(ctx, &m);
-    if (status != SSC_OK) fail(status, ssc_last_error());
-    std::vector<unsigned char> bytes;
-    try {
-        bytes = format::write_model(m->model.data());
-    } catch (...) {
-        ssc_model_release(m);
-        throw;
-    }
-    ssc_model_release(m);
-    return bytes;
+// The built-in model's file, as compiled in (verified with the others in starting_model()).
+std::vector<unsigned char> builtin_model() {
+    const FileBytes file = default_model_file();
+    return std::vector<unsigned char>(file.data, file.data + file.size);
 }
 
-std::vector<unsigned char> starting_model(ssc_context* ctx, const ssc_bootstrap_def& d) {
+std::vector<unsigned char> starting_model(const ssc_bootstrap_def& d) {
     std::vector<unsigned char> bytes;
     if (d.init_model_path) {
         const std::string s = read_regular_file(d.init_model_path, 1ull << 30);
         bytes.assign(s.begin(), s.end());
     } else {
-        bytes = builtin_model(ctx);
+        bytes = builtin_model();
     }
     if (d.template_only) bytes = format::write_model(learning::template_only(format::read_model(bytes.data(), bytes.size())));
     else format::read_model(bytes.data(), bytes.size());  // refuses a bad model now
@@ -55,7 +46,7 @@ std::vector<unsigned char> starting_model(ssc_context* ctx, const ssc_bootstrap_
 }
 
 // The posture model's file bytes; empty: the rounds' own fits (see posture_model_path).
-std::vector<unsigned char> posture_model(ssc_context* ctx, const ssc_bootstrap_def& d, const std::vector<unsigned char>& start) {
+std::vector<unsigned char> posture_model(const ssc_bootstrap_def& d, const std::vector<unsigned char>& start) {
     if (d.posture != SSC_POSTURE_SKELETON || (d.posture_model_path && !*d.posture_model_path)) return {};
     const format::ModelData start_data = format::read_model(start.data(), start.size());
     if (d.posture_model_path) {
@@ -70,7 +61,7 @@ std::vector<unsigned char> posture_model(ssc_context* ctx, const ssc_bootstrap_d
         learning::check_posture_model(start_data, posture);
         return bytes;
     }
-    std::vector<unsigned char> bytes = builtin_model(ctx);
+    std::vector<unsigned char> bytes = builtin_model();
     try {
         learning::check_posture_model(start_data, format::read_model(bytes.data(), bytes.size()));
     } catch (const Error&) {
@@ -98,6 +89,7 @@ void ssc_bootstrap_def_init(ssc_bootstrap_def* def, size_t size) {
 }
 
 ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, ssc_bootstrap** out) {
+    static_cast<void>(ctx);  // kept for the ABI: the threads come from def, the built-in model's bytes as compiled in
     return guarded(__func__, [&] {
         need(out, "out");
         need(def, "def");
@@ -138,8 +130,8 @@ ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, 
         spec.sheet_entries = int(d.contact_sheet_entries);
         if (d.decisions_path) spec.decisions = learning::read_decisions(d.decisions_path);
         if (d.attributes_path) spec.attributes = learning::read_attribute_table(d.attributes_path);
-        b->initial_model = starting_model(ctx, d);
-        spec.posture_model = posture_model(ctx, d, b->initial_model);
+        b->initial_model = starting_model(d);
+        spec.posture_model = posture_model(d, b->initial_model);
         *out = b.release();
     });
 }
