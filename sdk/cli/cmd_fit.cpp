@@ -4,6 +4,7 @@
 #include "progress.hpp"
 
 #include "capi/cpp_access.hpp"
+#include "common/files.hpp"
 #include "export/body_export.hpp"
 #include "export/mesh_writers.hpp"
 #include "fitting/depth_image.hpp"
@@ -43,6 +44,11 @@ void finish(Options& o) {
 
 int run_fit(Options o) {
     finish(o);
+    std::vector<std::string> inputs = {o.model};
+    for (const auto* files : {&o.landmarks, &o.points, &o.depth}) inputs.insert(inputs.end(), files->begin(), files->end());
+    for (std::size_t f = 0; f < inputs.size(); ++f)  // with --frames, frame N's files carry _frameN
+        for (const std::string& output : {o.out, o.png, o.params})
+            if (!output.empty()) refuse_output_over_input(f == 0 ? output : with_suffix(output, "_frame" + std::to_string(f)), inputs);
     ssc_model* model = load_model(o.model);
     Handles guard(model);
     ssc_fitter_def def;

@@ -5,6 +5,7 @@
 
 #include "capi/cpp_access.hpp"
 #include "common/error.hpp"
+#include "common/files.hpp"
 #include "io/readers.hpp"
 #include "learning/learn_model.hpp"
 #include "learning/registration_record.hpp"
@@ -35,6 +36,9 @@ std::string stem_of(const std::string& path) { return std::filesystem::path(path
 int run_learn(const Options& o) {
     const auto t0 = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    std::vector<std::string> inputs = {o.model, o.attributes};
+    for (const auto& path : o.registrations) inputs.push_back(path), inputs.push_back(learning::record_report_path(path));
+    refuse_output_over_input(o.out, inputs);
     ssc_model* handle = load_model(o.model);
     Handles guard(handle);
     const Model& model = model_of(handle);

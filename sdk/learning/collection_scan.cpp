@@ -91,6 +91,9 @@ ScanFileResult register_scan_file(registration::Registrar& registrar, const std:
                                   const registration::RegistrationProgress& progress, ThreadPool* pool) {
     const Model& model = registrar.model();
     const ScanReading& reading = job.reading;
+    const std::vector<std::string> inputs = {job.scan.path, job.scan.landmarks};
+    for (const std::string& output : {job.mesh_path, record_report_path(job.mesh_path), fs::path(job.mesh_path).replace_extension(".failed.json").string(), job.picture_path})
+        refuse_output_over_input(output, inputs);
     ScanFileResult out;
     std::string digest;
     try {
