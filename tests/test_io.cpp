@@ -90,6 +90,25 @@ TEST_CASE("PLY and OBJ point files read, with normals from faces", "[io]") {
     CHECK(status_of([&] { io::read_points(temp_file("f.obj", "v 0 0 0\nf 1 2 3\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(status_of([&] { io::read_points(temp_file("n.obj", "v 0 nan 0\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(status_of([&] { io::read_points(temp_file("x.xyz", "0 0 0\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(status_of([&] { io::read_points(temp_file("s.obj", "v 0 1.5x 0\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(status_of([&] { io::read_points(temp_file("w.obj", "v 0 0 0\nvn 0 1\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
+}
+
+TEST_CASE("NaN normals are unknown normals in OBJ as in PLY: one rule for both formats", "[io]") {
+    // The same two points, the first with a NaN normal (as real scanners write them): read from
+    // either format they give the same points and normals, the unknown one zero.
+    const auto ply = io::read_points(temp_file("nan.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                                                          "property float z\nproperty float nx\nproperty float ny\nproperty float nz\nend_header\n"
+                                                          "0 0 0 nan nan nan\n1 0 0 0 0 1\n"));
+    const auto obj = io::read_points(temp_file("nan.obj", "v 0 0 0\nv 1 0 0\nvn nan nan nan\nvn 0 0 1\n"));
+    REQUIRE(ply.normals.size() == 2);
+    REQUIRE(obj.normals.size() == 2);
+    for (std::size_t i = 0; i < 2; ++i) {
+        CHECK(ply.points[i] == obj.points[i]);
+        CHECK(ply.normals[i] == obj.normals[i]);
+    }
+    CHECK(obj.normals[0] == Eigen::Vector3d::Zero());
+    CHECK(obj.normals[1] == Eigen::Vector3d(0, 0, 1));
 }
 
 TEST_CASE("16-bit PGM depth images read in metres", "[io]") {

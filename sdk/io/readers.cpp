@@ -123,8 +123,12 @@ public:
     }
     double read(PlyType t) {
         if (format_ == 0) {
-            double v;
-            if (!(text_ >> v)) bad(path_, "PLY data ends early or holds a non-number");
+            // strtod, not operator>>: "nan" and "inf" read as a binary file's NaN and Inf do (the
+            // readers then treat a non-finite normal as unknown, a non-finite position as an error).
+            std::string token;
+            char* end = nullptr;
+            const double v = (text_ >> token) ? std::strtod(token.c_str(), &end) : 0.0;
+            if (token.empty() || end != token.c_str() + token.size()) bad(path_, "PLY data ends early or holds a non-number");
             return v;
         }
         const std::size_t n = ply_size(t);
@@ -283,8 +287,18 @@ PointFile obj_points(const std::string& data, const std::string& path) {
         std::string tag;
         ls >> tag;
         if (tag == "v" || tag == "vn") {
+            // Numbers as strtod reads them, as the PLY reader does: a normal of "nan" is unknown (one
+            // rule for both formats: real scanners write NaN normals), a position must be finite.
             Eigen::Vector3d p;
-            if (!(ls >> p.x() >> p.y() >> p.z()) || !finite(p)) bad(path, "line " + std::to_string(number) + ": malformed '" + tag + "'");
+            bool read = true;
+            for (int a = 0; a < 3 && read; ++a) {
+                std::string token;
+                char* end = nullptr;
+                read = bool(ls >> token);
+                if (read) p[a] = std::strtod(token.c_str(), &end);
+                read = read && end == token.c_str() + token.size();
+            }
+            if (!read || (tag == "v" && !finite(p))) bad(path, "line " + std::to_string(number) + ": malformed '" + tag + "'");
             (tag == "v" ? out.points : vn).push_back(p);
         } else if (tag == "f") {
             std::vector<uint32_t> poly;
