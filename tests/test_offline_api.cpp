@@ -77,8 +77,47 @@ TEST_CASE("a folder's scans are listed by name with their landmark files", "[cap
     CHECK((std::string(name) == "c_scan" && std::string(lnd) == dir + "/c.lnd"));  // the simulator's PREFIX_scan.ply
     CHECK(ssc_scan_list_get(list, 3, &name, &path, &lnd) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(ssc_scan_list_count(nullptr) == 0);
+    CHECK(ssc_scan_list_skipped_count(list) == 0);
     ssc_scan_list_destroy(list);
     ssc_scan_list_destroy(nullptr);
+}
+
+TEST_CASE("a loop of links or a link to nothing in a scans folder is left out and said, not an internal error", "[capi][offline]") {
+    // One stale link once stopped a whole collection with SSC_ERROR_INTERNAL ("Too many levels of
+    // symbolic links"); it is left out of the list, with the reason, and bootstrapping goes on.
+    const std::string dir = fresh_folder("links"), scans = dir + "/scans";
+    fs::create_directories(scans);
+    for (int i = 1; i <= 3; ++i) write_points(scans + "/p" + std::to_string(i) + ".ply", scan_points(uint32_t(i)), 1.0);
+    fs::create_symlink("loop_b.ply", scans + "/loop_a.ply");
+    fs::create_symlink("loop_a.ply", scans + "/loop_b.ply");
+    fs::create_symlink("nowhere.ply", scans + "/stale.ply");
+    ssc_scan_list* list = nullptr;
+    REQUIRE(ssc_scan_list_create(scans.c_str(), &list) == SSC_OK);
+    CHECK(ssc_scan_list_count(list) == 3);
+    REQUIRE(ssc_scan_list_skipped_count(list) == 3);
+    const char *path = nullptr, *reason = nullptr;
+    REQUIRE(ssc_scan_list_get_skipped(list, 0, &path, &reason) == SSC_OK);
+    CHECK(std::string(path) == scans + "/loop_a.ply");
+    CHECK(std::string(reason).find("symbolic links") != std::string::npos);
+    REQUIRE(ssc_scan_list_get_skipped(list, 2, &path, nullptr) == SSC_OK);
+    CHECK(std::string(path) == scans + "/stale.ply");
+    REQUIRE(ssc_scan_list_get_skipped(list, 2, nullptr, &reason) == SSC_OK);
+    CHECK(std::string(reason) == "a link to nothing");
+    CHECK(ssc_scan_list_get_skipped(list, 3, &path, &reason) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_scan_list_get_skipped(nullptr, 0, &path, &reason) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_scan_list_skipped_count(nullptr) == 0);
+    ssc_scan_list_destroy(list);
+    // Bootstrapping lists the folder the same way: its three scans.
+    ssc_bootstrap_def def;
+    ssc_bootstrap_def_init(&def, sizeof def);
+    const std::string out = dir + "/out";
+    def.scans_dir = scans.c_str();
+    def.out_dir = out.c_str();
+    def.components = 2;
+    ssc_bootstrap* b = nullptr;
+    REQUIRE(ssc_bootstrap_create(nullptr, &def, &b) == SSC_OK);
+    CHECK(ssc_bootstrap_scan_count(b) == 3);
+    ssc_bootstrap_destroy(b);
 }
 
 TEST_CASE("a scan file is registered into its record, reused while current, and refused when it is no body", "[capi][offline]") {

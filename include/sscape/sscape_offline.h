@@ -40,6 +40,12 @@ SSC_EXPERIMENTAL uint32_t ssc_scan_list_count(const ssc_scan_list* list);
  *  strings owned by the list. Any output may be NULL. */
 SSC_EXPERIMENTAL ssc_status ssc_scan_list_get(const ssc_scan_list* list, uint32_t index, const char** name, const char** path,
                                               const char** landmarks);
+/** Entries named as scans that cannot be read as one and were left out of the list: a link to
+ *  nothing, a loop of links, one the user may not look at. One such entry does not stop a collection;
+ *  show them to the user. In name order. */
+SSC_EXPERIMENTAL uint32_t ssc_scan_list_skipped_count(const ssc_scan_list* list);
+/** One skipped entry: its path and why it was left out; strings owned by the list. Any output may be NULL. */
+SSC_EXPERIMENTAL ssc_status ssc_scan_list_get_skipped(const ssc_scan_list* list, uint32_t index, const char** path, const char** reason);
 
 /** One scan file to register, and where its registration goes. */
 typedef struct ssc_scan_file_job {

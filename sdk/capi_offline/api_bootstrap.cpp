@@ -107,7 +107,7 @@ ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, 
 
         auto b = std::make_unique<ssc_bootstrap>();
         learning::BootstrapSpec& spec = b->spec;
-        spec.scans = learning::find_scans(d.scans_dir);
+        spec.scans = learning::find_scans(d.scans_dir, &spec.skipped);
         SSC_REQUIRE_ARG_S(spec.scans.size() >= 3, d.scans_dir << " holds " << spec.scans.size() << " scans (.ply or .obj); bootstrapping needs at least 3");
         spec.out_dir = d.out_dir;
         spec.threads = d.threads;

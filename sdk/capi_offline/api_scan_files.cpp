@@ -13,6 +13,7 @@ using namespace ssc::capi;
 
 struct ssc_scan_list {
     std::vector<learning::ScanInput> scans;
+    std::vector<std::string> skipped_paths, skipped_reasons;  // entries left out (find_scans), in name order
 };
 
 extern "C" {
@@ -22,8 +23,25 @@ ssc_status ssc_scan_list_create(const char* folder, ssc_scan_list** out) {
         need(folder, "folder");
         need(out, "out");
         auto list = std::make_unique<ssc_scan_list>();
-        list->scans = learning::find_scans(folder);
+        std::vector<std::string> skipped;
+        list->scans = learning::find_scans(folder, &skipped);
+        for (const std::string& entry : skipped) {  // "PATH: why"; the path may hold ": " too, the reason does not
+            const std::size_t colon = entry.rfind(": ");
+            list->skipped_paths.push_back(entry.substr(0, colon));
+            list->skipped_reasons.push_back(colon == std::string::npos ? std::string() : entry.substr(colon + 2));
+        }
         *out = list.release();
+    });
+}
+
+uint32_t ssc_scan_list_skipped_count(const ssc_scan_list* list) { return list ? uint32_t(list->skipped_paths.size()) : 0; }
+
+ssc_status ssc_scan_list_get_skipped(const ssc_scan_list* list, uint32_t index, const char** path, const char** reason) {
+    return guarded(__func__, [&] {
+        need(list, "list");
+        SSC_REQUIRE_ARG_S(index < list->skipped_paths.size(), "index " << index << " is beyond the " << list->skipped_paths.size() << " entries skipped");
+        if (path) *path = list->skipped_paths[index].c_str();
+        if (reason) *reason = list->skipped_reasons[index].c_str();
     });
 }
 

@@ -118,6 +118,7 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
     auto say = [&](const std::string& line) {
         if (progress && !progress(line)) throw Error(SSC_ERROR_CANCELLED, "bootstrap: stopped; run it again to resume");
     };
+    for (const std::string& entry : spec.skipped) say("left out of the scans: " + entry);
     ThreadPool pool(spec.threads ? spec.threads : std::max(1u, std::thread::hardware_concurrency()));
 
     // The posture model (Posture::Skeleton only): its fits unpose every round's registrations.

@@ -38,6 +38,7 @@ struct PersonDecision {
 
 struct BootstrapSpec {
     std::vector<ScanInput> scans;
+    std::vector<std::string> skipped;  // entries of the scans' folder that cannot be scans (find_scans), said at the start
     std::string out_dir;
     uint32_t rounds = 3;
     ScanReading reading;              // the scans' and landmark files' units, the axis that is up

@@ -28,30 +28,46 @@ ScanReading scan_reading(const std::string& units, const std::string& up) {
     return r;
 }
 
-std::vector<ScanInput> find_scans(const std::string& folder) {
+std::vector<ScanInput> find_scans(const std::string& folder, std::vector<std::string>* skipped) {
     std::vector<ScanInput> out;
+    std::vector<std::string> left_out;
     std::error_code ec;
     fs::directory_iterator it(folder, ec);
     if (ec) throw Error(SSC_ERROR_IO, folder + ": cannot list the folder: " + ec.message());
     for (const auto& entry : it) {
-        if (!entry.is_regular_file()) continue;
         // Hidden files are no scans: temporaries, a copier's "._" resource forks.
         if (entry.path().filename().string().rfind('.', 0) == 0) continue;
         std::string ext = entry.path().extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
         if (ext != ".ply" && ext != ".obj") continue;
+        // The status through links, without throwing: a loop of links (ELOOP) once aborted the
+        // whole listing as an internal error.
+        std::error_code status_error;
+        const fs::file_status status = fs::status(entry.path(), status_error);
+        if (status_error && status_error != std::errc::no_such_file_or_directory) {
+            left_out.push_back(entry.path().string() + ": " + status_error.message());
+            continue;
+        }
+        if (status.type() == fs::file_type::not_found) {
+            left_out.push_back(entry.path().string() + ": a link to nothing");
+            continue;
+        }
+        if (status.type() != fs::file_type::regular) continue;  // a folder named like a scan: not one
         ScanInput s;
         s.name = entry.path().stem().string();
         s.path = entry.path().string();
         fs::path lnd = entry.path();
         lnd.replace_extension(".lnd");
         const std::string suffix = "_scan";
-        if (!fs::exists(lnd) && s.name.size() > suffix.size() && s.name.compare(s.name.size() - suffix.size(), suffix.size(), suffix) == 0)
+        std::error_code lnd_error;
+        if (!fs::exists(lnd, lnd_error) && s.name.size() > suffix.size() && s.name.compare(s.name.size() - suffix.size(), suffix.size(), suffix) == 0)
             lnd = entry.path().parent_path() / (s.name.substr(0, s.name.size() - suffix.size()) + ".lnd");
-        if (fs::exists(lnd)) s.landmarks = lnd.string();
+        if (fs::exists(lnd, lnd_error)) s.landmarks = lnd.string();
         out.push_back(s);
     }
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+    std::sort(left_out.begin(), left_out.end());
+    if (skipped) *skipped = std::move(left_out);
     return out;
 }
 

@@ -36,8 +36,11 @@ struct ScanReading {
 ScanReading scan_reading(const std::string& units, const std::string& up);
 
 // Every .ply and .obj in the folder, sorted by name; landmarks NAME.lnd beside a scan (or, for the
-// simulator's PREFIX_scan.ply, PREFIX.lnd). IO for a folder that cannot be listed.
-std::vector<ScanInput> find_scans(const std::string& folder);
+// simulator's PREFIX_scan.ply, PREFIX.lnd). IO for a folder that cannot be listed. An entry named
+// as a scan that cannot be one (a link to nothing, a loop of links, no permission to look) is left
+// out and, with skipped, listed as "PATH: why" in name order: one stale link must not stop a
+// collection.
+std::vector<ScanInput> find_scans(const std::string& folder, std::vector<std::string>* skipped = nullptr);
 
 // The scan in the model's frame (metres, +Y up) with its landmarks matched to the model's by name
 // (names not in the model are listed in `ignored`). INVALID_ARGUMENT for a malformed file or one

@@ -233,6 +233,8 @@ _OFFLINE_DECLARATIONS = {
     "ssc_scan_list_destroy": (None, [c_void_p]),
     "ssc_scan_list_count": (c_uint32, [c_void_p]),
     "ssc_scan_list_get": (_STATUS, [c_void_p, c_uint32, POINTER(c_char_p), POINTER(c_char_p), POINTER(c_char_p)]),
+    "ssc_scan_list_skipped_count": (c_uint32, [c_void_p]),
+    "ssc_scan_list_get_skipped": (_STATUS, [c_void_p, c_uint32, POINTER(c_char_p), POINTER(c_char_p)]),
     "ssc_scan_file_job_init": (None, [POINTER(ScanFileJob), c_size_t]),
     "ssc_registration_run_file": (_STATUS, [c_void_p, POINTER(ScanFileJob), STAGE_PROGRESS_FN, c_void_p, POINTER(RegistrationReport),
                                             c_uint32_p]),

@@ -167,6 +167,24 @@ def test_bootstrap_settings_name_the_posture_normalization(scans, tmp_path):
         pipeline.Bootstrapping(str(scans), str(tmp_path / "x"), posture="wuhrer")
 
 
+def test_a_folder_with_stale_links_and_a_name_that_is_not_utf8_lists(tmp_path):
+    # A link to nothing and a loop of links are left out with a warning naming them (they once
+    # stopped the listing); a file name that is not UTF-8 is kept as the bytes it is.
+    (tmp_path / "a.ply").write_text("x")
+    odd = os.fsencode(str(tmp_path)) + b"/\xe4rger.ply"
+    with open(odd, "w") as f:
+        f.write("x")
+    os.symlink("nowhere.ply", tmp_path / "stale.ply")
+    os.symlink("loop_b.ply", tmp_path / "loop_a.ply")
+    os.symlink("loop_a.ply", tmp_path / "loop_b.ply")
+    with pytest.warns(UserWarning) as said:
+        found = pipeline.list_scans(tmp_path)
+    assert sorted(os.fsencode(s.path) for s in found) == sorted([os.fsencode(str(tmp_path / "a.ply")), odd])
+    messages = [str(w.message) for w in said]
+    assert any("stale.ply left out of the scans: a link to nothing" in m for m in messages), messages
+    assert sum("symbolic links" in m for m in messages) == 2, messages
+
+
 def test_fit_and_measure_collections_equal_the_serial_command_line(scans, client, tmp_path):
     out, serial = tmp_path / "fits", tmp_path / "serial"
     serial.mkdir()

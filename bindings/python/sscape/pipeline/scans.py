@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ctypes
 import os
+import warnings
 from typing import List, NamedTuple, Optional, Sequence, Tuple, Union
 
 from .._native import lib, need_offline
@@ -25,10 +26,17 @@ def list_scans(folder: Union[str, os.PathLike]) -> List[Scan]:
     check(lib.ssc_scan_list_create(os.fsencode(folder), ctypes.byref(handle)))
     try:
         out = []
+        # File names are bytes to the file system: os.fsdecode keeps any of them (a name that is
+        # not UTF-8 round-trips to the same file).
         for i in range(lib.ssc_scan_list_count(handle)):
             name, path, lnd = ctypes.c_char_p(), ctypes.c_char_p(), ctypes.c_char_p()
             check(lib.ssc_scan_list_get(handle, i, ctypes.byref(name), ctypes.byref(path), ctypes.byref(lnd)))
-            out.append(Scan(name.value.decode(), path.value.decode(), lnd.value.decode() or None))
+            out.append(Scan(os.fsdecode(name.value), os.fsdecode(path.value), os.fsdecode(lnd.value) or None))
+        # Entries that cannot be scans (a link to nothing, a loop of links): left out, said.
+        for i in range(lib.ssc_scan_list_skipped_count(handle)):
+            path, reason = ctypes.c_char_p(), ctypes.c_char_p()
+            check(lib.ssc_scan_list_get_skipped(handle, i, ctypes.byref(path), ctypes.byref(reason)))
+            warnings.warn(f"{os.fsdecode(path.value)} left out of the scans: {reason.value.decode(errors='replace')}", stacklevel=2)
         return out
     finally:
         lib.ssc_scan_list_destroy(handle)
