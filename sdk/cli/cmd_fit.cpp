@@ -4,7 +4,7 @@
 #include "progress.hpp"
 
 #include "capi/cpp_access.hpp"
-#include "common/files.hpp"
+#include "common/output_paths.hpp"
 #include "export/body_export.hpp"
 #include "export/mesh_writers.hpp"
 #include "fitting/depth_image.hpp"

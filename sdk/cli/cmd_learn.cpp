@@ -5,7 +5,7 @@
 
 #include "capi/cpp_access.hpp"
 #include "common/error.hpp"
-#include "common/files.hpp"
+#include "common/output_paths.hpp"
 #include "io/readers.hpp"
 #include "learning/learn_model.hpp"
 #include "learning/registration_record.hpp"

@@ -5,7 +5,6 @@
 
 #include <cerrno>
 #include <cstdio>
-#include <filesystem>
 #include <cstring>
 #include <random>
 
@@ -147,17 +146,6 @@ std::string content_digest(const void* data, std::size_t size) {
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(XXH3_64bits(data, size)));
     return hex;
-}
-
-void refuse_output_over_input(const std::string& output, const std::vector<std::string>& inputs) {
-    if (output.empty()) return;
-    for (const std::string& input : inputs) {
-        if (input.empty()) continue;
-        std::error_code error;  // equivalent() reports an error when neither exists: not the same file
-        if (std::filesystem::equivalent(output, input, error) && !error)
-            throw Error(SSC_ERROR_INVALID_ARGUMENT, "the output " + output + " is the input " + input +
-                                                        (output == input ? "" : " (the same file)") + "; write it elsewhere: an input is never replaced");
-    }
 }
 
 }  // namespace ssc

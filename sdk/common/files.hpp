@@ -13,7 +13,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include <vector>
 
 namespace ssc {
 
@@ -26,12 +25,6 @@ std::string read_regular_file(const std::string& path, uint64_t max_bytes, ssc_s
 // file gets (0666 less the umask). Throws ssc::Error(SSC_ERROR_IO) and leaves the target unchanged
 // on failure.
 void write_file_atomically(const std::string& path, const void* data, std::size_t size);
-
-// Throws ssc::Error(SSC_ERROR_INVALID_ARGUMENT) when `output` names the file of one of `inputs`: the
-// same path, another spelling of it, or a symbolic or hard link to it. A tool never replaces what it
-// reads (`register scan.ply -o scan.ply` once replaced the raw scan). Empty names are skipped; an
-// output that does not exist yet is no input.
-void refuse_output_over_input(const std::string& output, const std::vector<std::string>& inputs);
 
 // A short digest of bytes (XXH3, 16 hex digits): which model file or scan a result was made from.
 std::string content_digest(const void* data, std::size_t size);

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/files.hpp"
+#include "common/output_paths.hpp"
 #include "common/rigid.hpp"
 #include "io/readers.hpp"
 #include "io/units.hpp"

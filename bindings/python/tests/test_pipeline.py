@@ -185,6 +185,27 @@ def test_a_folder_with_stale_links_and_a_name_that_is_not_utf8_lists(tmp_path):
     assert sum("symbolic links" in m for m in messages) == 2, messages
 
 
+def test_settings_out_of_range_are_refused_before_anything_is_written(tmp_path):
+    # --rounds 0 once wrote round_0 then failed on a missing rounds.csv, --components -5 reached the
+    # library as 4294967291, --workers -1 waited forever for a worker.
+    out = tmp_path / "out"
+    for settings, word in (({"rounds": 0}, "rounds"), ({"components": -5}, "components"), ({"workers": -1}, "workers"),
+                           ({"segment_components": 2.5}, "segment_components"), ({"threads_per_task": 0}, "threads_per_task")):
+        with pytest.raises(ValueError, match=word):
+            pipeline.bootstrap(str(tmp_path), out_dir=str(out), progress=False, **settings)
+    for collection in (pipeline.register_collection, pipeline.fit_collection):
+        with pytest.raises(ValueError, match="workers"):
+            collection(str(tmp_path), None, str(out), workers=-1, progress=False)
+    assert not out.exists()
+    for argv, message in ((["bootstrap", str(tmp_path), "-o", str(out), "--components", "-5"], "-5 is not in 1..1000"),
+                          (["bootstrap", str(tmp_path), "-o", str(out), "--rounds", "0"], "0 is not in 1..100"),
+                          (["register", str(tmp_path), "-o", str(out), "--workers", "-1"], "-1 is not in 1..4096"),
+                          (["fit", str(tmp_path), "-o", str(out), "--components", "x"], "'x' is not a whole number")):
+        done = subprocess.run([sys.executable, "-m", "sscape.pipeline", *argv], capture_output=True, text=True, timeout=60)
+        assert done.returncode == 2 and message in done.stderr, (argv, done.returncode, done.stderr)
+    assert not out.exists()
+
+
 def test_fit_and_measure_collections_equal_the_serial_command_line(scans, client, tmp_path):
     out, serial = tmp_path / "fits", tmp_path / "serial"
     serial.mkdir()

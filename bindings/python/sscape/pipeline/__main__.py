@@ -7,9 +7,22 @@ import sys
 from ..errors import SscapeError
 
 
+def _whole(lo: int, hi: int):
+    """An argparse type: a whole number in lo..hi (a usage error, exit 2, otherwise)."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        if not lo <= value <= hi:
+            raise argparse.ArgumentTypeError(f"{value} is not in {lo}..{hi}")
+        return value
+    return parse
+
+
 def _cluster_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--scheduler", metavar="tcp://HOST:8786", help="a running Dask scheduler (default: a local cluster on this machine)")
-    p.add_argument("--workers", type=int, metavar="N", help="processes of the local cluster (default: one per core)")
+    p.add_argument("--workers", type=_whole(1, 4096), metavar="N", help="processes of the local cluster (default: one per core)")
     p.add_argument("--units", choices=["m", "cm", "mm"], help="units of the scans and landmark files (default: metres, .lnd millimetres)")
     p.add_argument("--up", choices=["x", "y", "z", "-x", "-y", "-z"], help="the scans' up axis (default y)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -30,15 +43,15 @@ def main(argv=None) -> int:
     b.add_argument("scans", metavar="SCANS_DIR")
     b.add_argument("-o", "--output", required=True, metavar="OUT_DIR")
     b.add_argument("--init", metavar="MODEL.sscape", help="the starting model (default: the built-in model)")
-    b.add_argument("--rounds", type=int, default=3)
-    b.add_argument("--components", type=int, default=20)
+    b.add_argument("--rounds", type=_whole(1, 100), default=3)
+    b.add_argument("--components", type=_whole(1, 1000), default=20)
     b.add_argument("--posture", choices=["skeleton", "none", "laplacian"], default="skeleton")
     b.add_argument("--posture-model", metavar="MODEL.sscape|own",
                    help="skeleton: the model whose fits to the scans unpose the registrations (default: the built-in model; "
                         "own: each round's own fits; as sscape bootstrap)")
     b.add_argument("--template-only", action="store_true")
     b.add_argument("--scale", action="store_true")
-    b.add_argument("--segment-components", type=int, default=0)
+    b.add_argument("--segment-components", type=_whole(0, 1000), default=0)
     b.add_argument("--fit-segments", action=argparse.BooleanOptionalAction, default=True,
                    help="register with the model's segment shape spaces in the model fit (default; as sscape bootstrap)")
     b.add_argument("--decisions", metavar="FILE.csv")
@@ -51,7 +64,7 @@ def main(argv=None) -> int:
     f.add_argument("-o", "--output", required=True, metavar="OUT_DIR")
     f.add_argument("--model", metavar="MODEL.sscape", help="default: the built-in model")
     f.add_argument("--hands", action="store_true", help="use the hand landmarks too")
-    f.add_argument("--components", type=int, default=0, help="shape components fitted (default: all)")
+    f.add_argument("--components", type=_whole(0, 1000), default=0, help="shape components fitted (default: all)")
     f.add_argument("--format", choices=["obj", "ply", "glb"], default="obj", help="the fitted bodies' files (default obj)")
     _cluster_options(f)
     m = sub.add_parser("measure", help="measure every fitted body of a folder (as sscape measure --shape)")
@@ -59,7 +72,7 @@ def main(argv=None) -> int:
     m.add_argument("-o", "--output", metavar="OUT.csv", help="default: FITS_DIR/measurements.csv")
     m.add_argument("--model", metavar="MODEL.sscape", help="the model the fits were made with (default: the built-in model)")
     m.add_argument("--scheduler", metavar="tcp://HOST:8786")
-    m.add_argument("--workers", type=int, metavar="N")
+    m.add_argument("--workers", type=_whole(1, 4096), metavar="N")
     m.add_argument("--quiet", action="store_true")
     a = parser.parse_args(argv)
     from . import bootstrap, fit_collection, measure_collection, register_collection

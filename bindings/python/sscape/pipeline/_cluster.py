@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import numbers
 import os
 import sys
 import tempfile
@@ -12,10 +13,27 @@ import time
 from typing import Callable, Iterator, List, Optional
 
 
+def whole_number(name: str, value, lo: int, hi: int) -> int:
+    """value as an int in lo..hi, else ValueError naming the setting (ctypes would take -5 as
+    4294967291, and a local cluster of -1 workers waits forever for one)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not lo <= value <= hi:
+        raise ValueError(f"{name} must be a whole number in {lo}..{hi}, not {value!r}")
+    return int(value)
+
+
+def check_cluster_settings(workers: Optional[int], threads_per_task: int = 1) -> None:
+    """The cluster settings every collection function takes, checked before it writes anything."""
+    if workers is not None:
+        whole_number("workers", workers, 1, 4096)
+    whole_number("threads_per_task", threads_per_task, 1, 256)
+
+
 @contextlib.contextmanager
 def client_for(client=None, scheduler: Optional[str] = None, workers: Optional[int] = None) -> Iterator[object]:
     """The given client; else one connected to `scheduler` (tcp://host:8786); else a LocalCluster of
     `workers` processes (default: one per core) with one thread each, closed at the end."""
+    if workers is not None:
+        whole_number("workers", workers, 1, 4096)
     if client is not None:
         yield client
         return

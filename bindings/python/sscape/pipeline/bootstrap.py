@@ -13,7 +13,7 @@ from .._handle import Handle, progress_callback
 from .._native import LINE_FN, BootstrapDef, ScanFileJob, lib, need_offline
 from ..errors import check
 from . import _worker
-from ._cluster import client_for, run_into_manifest
+from ._cluster import check_cluster_settings, client_for, run_into_manifest, whole_number
 
 _POSTURES = {"skeleton": 0, "none": 1, "laplacian": 2}
 
@@ -33,6 +33,10 @@ class Bootstrapping(Handle):
         need_offline("sscape.pipeline.bootstrap")
         if posture not in _POSTURES:
             raise ValueError(f"posture must be one of {', '.join(_POSTURES)}, not {posture!r}")
+        whole_number("components", components, 1, 1000)
+        whole_number("segment_components", segment_components, 0, 1000)
+        whole_number("threads", threads, 0, 256)
+        whole_number("contact_sheet_entries", contact_sheet_entries, 0, 100)
         d = BootstrapDef()
         lib.ssc_bootstrap_def_init(ctypes.byref(d), ctypes.sizeof(BootstrapDef))
         text = lambda v: None if v is None else os.fsencode(v)
@@ -102,6 +106,8 @@ def bootstrap(scans_dir: str, init_model: Optional[str] = None, rounds: int = 3,
     units, up, decisions, attributes, name, license, threads (of the learning here), contact_sheet_entries.
     Cluster as register_collection's. Returns rounds.csv's rows."""
     say = log or (lambda line: print(line, file=sys.stderr))
+    whole_number("rounds", rounds, 1, 100)  # before anything is written: 0 once left round_0 and no rounds.csv
+    check_cluster_settings(workers, threads_per_task)
     b = Bootstrapping(scans_dir, out_dir, init_model, **settings)
     b.prepare()
     with client_for(client, scheduler, workers) as c:

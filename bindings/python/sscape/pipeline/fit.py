@@ -15,7 +15,7 @@ from .._native import lib
 from ..body import measurement_names
 from ..errors import check
 from . import _worker
-from ._cluster import client_for, run_into_manifest, run_tasks
+from ._cluster import check_cluster_settings, client_for, run_into_manifest, run_tasks
 from .scans import as_scans
 
 _SI = {0: "m", 1: "m2", 2: "m3", 3: "kg"}
@@ -63,6 +63,7 @@ def fit_collection(scans, model: Optional[str] = None, out_dir: str = "fits", cl
     settings (status "reused")."""
     if body_format not in ("obj", "ply", "glb"):
         raise ValueError(f"body_format must be obj, ply or glb, not {body_format!r}")
+    check_cluster_settings(workers, threads_per_task)
     scan_list = as_scans(scans)
     os.makedirs(out_dir, exist_ok=True)
     model_path = os.path.abspath(model) if model else None

@@ -6,7 +6,7 @@ import os
 from typing import Dict, Optional
 
 from . import _worker
-from ._cluster import client_for, run_into_manifest
+from ._cluster import check_cluster_settings, client_for, run_into_manifest
 from .scans import as_scans
 
 def register_collection(scans, model: Optional[str] = None, out_dir: str = "registrations", client=None, *,
@@ -29,6 +29,7 @@ def register_collection(scans, model: Optional[str] = None, out_dir: str = "regi
     Each worker loads the model once. A failed scan is in the manifest with its error and does not
     stop the others; running again skips the scans already registered from the same model, scan,
     landmarks, units and up axis. Returns the manifest's scans by name."""
+    check_cluster_settings(workers, threads_per_task)
     scan_list = as_scans(scans)
     os.makedirs(out_dir, exist_ok=True)
     model_path = os.path.abspath(model) if model else None
