@@ -22,6 +22,16 @@ std::string slurp(const std::string& path) { return read_regular_file(path, kMax
 
 bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
+// The next whitespace-separated token as a number, read whole by strtod (unlike operator>>, it
+// takes "nan" and "inf" as a binary file's bytes give them); false at the end or on a non-number.
+bool read_number(std::istream& in, double& value) {
+    std::string token;
+    if (!(in >> token)) return false;
+    char* end = nullptr;
+    value = std::strtod(token.c_str(), &end);
+    return end == token.c_str() + token.size();
+}
+
 // A unit vector along v, or zero when v has no direction: computed without overflow, so huge
 // finite components still give a finite unit vector.
 Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& v) {
@@ -125,10 +135,8 @@ public:
         if (format_ == 0) {
             // strtod, not operator>>: "nan" and "inf" read as a binary file's NaN and Inf do (the
             // readers then treat a non-finite normal as unknown, a non-finite position as an error).
-            std::string token;
-            char* end = nullptr;
-            const double v = (text_ >> token) ? std::strtod(token.c_str(), &end) : 0.0;
-            if (token.empty() || end != token.c_str() + token.size()) bad(path_, "PLY data ends early or holds a non-number");
+            double v;
+            if (!read_number(text_, v)) bad(path_, "PLY data ends early or holds a non-number");
             return v;
         }
         const std::size_t n = ply_size(t);
@@ -290,14 +298,7 @@ PointFile obj_points(const std::string& data, const std::string& path) {
             // Numbers as strtod reads them, as the PLY reader does: a normal of "nan" is unknown (one
             // rule for both formats: real scanners write NaN normals), a position must be finite.
             Eigen::Vector3d p;
-            bool read = true;
-            for (int a = 0; a < 3 && read; ++a) {
-                std::string token;
-                char* end = nullptr;
-                read = bool(ls >> token);
-                if (read) p[a] = std::strtod(token.c_str(), &end);
-                read = read && end == token.c_str() + token.size();
-            }
+            const bool read = read_number(ls, p.x()) && read_number(ls, p.y()) && read_number(ls, p.z());
             if (!read || (tag == "v" && !finite(p))) bad(path, "line " + std::to_string(number) + ": malformed '" + tag + "'");
             (tag == "v" ? out.points : vn).push_back(p);
         } else if (tag == "f") {
