@@ -698,8 +698,14 @@ TEST_CASE("the C API fits landmarks by name and reports through ssc_fitter", "[f
     CHECK(std::string(ssc_last_error()).find("Left Elbow Tip") != std::string::npos);
     CHECK(ssc_fitter_add_landmarks_by_name(fitter, 1, names.data(), landmarks.data(), nullptr, L) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(ssc_fitter_frame_count(fitter) == 0);  // nothing added by the failures
+    const char* twice[2] = {names[0], names[0]};
+    CHECK(ssc_fitter_add_landmarks_by_name(fitter, 0, twice, landmarks.data(), nullptr, 2) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(ssc_last_error()).find("twice") != std::string::npos);
+    CHECK(ssc_fitter_frame_count(fitter) == 0);
     REQUIRE(ssc_fitter_add_landmarks_by_name(fitter, 0, names.data(), landmarks.data(), nullptr, L) == SSC_OK);
     CHECK(ssc_fitter_frame_count(fitter) == 1);
+    // A landmark the frame already holds, added again: refused (another frame may have it).
+    CHECK(ssc_fitter_add_landmarks_by_name(fitter, 0, names.data() + 1, landmarks.data(), nullptr, 1) == SSC_ERROR_INVALID_ARGUMENT);
 
     // Cancelling from the progress callback.
     auto cancel = [](void*, uint32_t iteration, float) { return iteration >= 2 ? 1 : 0; };

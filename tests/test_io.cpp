@@ -25,10 +25,11 @@ std::string temp_file(const std::string& name, const std::string& content) {
 }
 
 template <class F>
-ssc_status status_of(F&& f) {
+ssc_status status_of(F&& f, std::string* message = nullptr) {
     try {
         f();
     } catch (const Error& e) {
+        if (message) *message = e.what();
         return e.status();
     }
     return SSC_OK;
@@ -54,6 +55,40 @@ TEST_CASE("lnd files round-trip and skip missing landmarks", "[io]") {
     CHECK(status_of([&] { io::read_lnd(temp_file("c.lnd", "AUX =\n1 0 1 0 1 2 3 Sellion\n")); }) == SSC_ERROR_INVALID_ARGUMENT);  // no END
     CHECK(status_of([&] { io::read_lnd(temp_file("d.lnd", "AUX =\n1 0 1 zero 1 2 3 Sellion\nEND =\n")); }) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(status_of([&] { io::read_lnd("io_test_missing.lnd"); }) == SSC_ERROR_IO);
+}
+
+TEST_CASE("an lnd file naming one landmark twice is refused with both lines", "[io]") {
+    // Spelt differently, 300 mm apart: two positions for one point, which no rule can choose between.
+    const std::string twice = "AUX =\n1 0 1 0 10 1600 100 Sellion\n2 0 1 0 10 1300 100 Lt. Clavicale\n3 0 1 0 10 1900 100 SELLION\nEND =\n";
+    std::string message;
+    CHECK(status_of([&] { io::parse_lnd(twice, "twice.lnd"); }, &message) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(message.find("twice.lnd") != std::string::npos);
+    CHECK(message.find("line 4") != std::string::npos);
+    CHECK(message.find("first on line 2") != std::string::npos);
+    // Even when one of the two is marked not found: the file contradicts itself.
+    CHECK(status_of([&] { io::parse_lnd("AUX =\n1 0 1 0 1 2 3 Sellion\n2 -999 -999 0 0 0 0 Sellion\nEND =\n", "x.lnd"); }) ==
+          SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(io::parse_lnd("AUX =\n1 0 1 0 1 2 3 Sellion\n2 0 1 0 1 2 3 Lt. Clavicale\nEND =\n", "ok.lnd").size() == 2);
+}
+
+TEST_CASE("a PLY header that under-counts its vertices is refused instead of reading part of the scan", "[io]") {
+    // 5 vertices declared over 20 stored: once the first 5 were read and 15 ignored without a word.
+    const std::string head = "ply\nformat binary_little_endian 1.0\nelement vertex ";
+    const std::string props = "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+    std::vector<float> xyz(60);
+    for (std::size_t i = 0; i < xyz.size(); ++i) xyz[i] = float(i) * 0.01f;
+    const std::string data(reinterpret_cast<const char*>(xyz.data()), xyz.size() * sizeof(float));
+    std::string message;
+    CHECK(status_of([&] { io::parse_ply(head + "5" + props + data, "under.ply"); }, &message) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(message.find("180 bytes follow the elements the header declares (5 vertices)") != std::string::npos);
+    CHECK(io::parse_ply(head + "20" + props + data, "whole.ply").points.size() == 20);
+    CHECK(io::parse_ply(head + "20" + props + data + "\n", "newline.ply").points.size() == 20);  // a final newline is no data
+    // The same in ASCII; trailing blank lines are fine.
+    const std::string ascii = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+                              "0 0 0\n1 0 0\n";
+    CHECK(io::parse_ply(ascii + "\n  \n", "blank.ply").points.size() == 2);
+    CHECK(status_of([&] { io::parse_ply(ascii + "0 1 0\n", "more.ply"); }, &message) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(message.find("the header under-counts them") != std::string::npos);
 }
 
 TEST_CASE("PLY and OBJ point files read, with normals from faces", "[io]") {

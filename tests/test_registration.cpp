@@ -463,6 +463,10 @@ TEST_CASE("the C API registers a scan and refuses misuse with a status and a mes
     const char* names[1] = {"NoSuchLandmark"};
     const float where[3] = {0, 1, 0};
     CHECK(ssc_registration_set_landmarks_by_name(reg, names, where, 1) == SSC_ERROR_NOT_FOUND);
+    const char* twice[2] = {"Sellion", "Sellion"};
+    const float two_places[6] = {0, 1.6f, 0.1f, 0, 1.3f, 0.1f};
+    CHECK(ssc_registration_set_landmarks_by_name(reg, twice, two_places, 2) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(ssc_last_error()).find("twice") != std::string::npos);
     REQUIRE(ssc_registration_set_scan(reg, pts.data(), nullptr, n, 0, nullptr, 0) == SSC_OK);
     const uint32_t V = ssc_model_vertex_count(model);
     std::vector<float> verts(3ull * V);

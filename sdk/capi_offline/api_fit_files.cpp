@@ -94,6 +94,7 @@ ssc_status ssc_fitter_add_landmarks_file(ssc_fitter* fitter, uint32_t frame, con
             const auto it = by_name.find(io::normalized_landmark_name(r.name));
             if (it == by_name.end()) {
                 ++unknown;
+                model->context->message(SSC_LOG_WARNING, std::string(d.path) + ": landmark '" + r.name + "' is not one of the model's; ignored");
                 continue;
             }
             if (!d.use_hands && fitting::is_hand_landmark(r.name)) {

@@ -87,6 +87,9 @@ struct Handles {
 // Loads MODEL, or the default model compiled into the library when path is empty.
 ssc_model* load_model(const std::string& path);
 
+// A context whose log prints the library's warnings and errors on stderr (the caller destroys it).
+ssc_context* new_context();
+
 // Creates the folder an output file goes into (and its parents) when it is missing, as users expect
 // of `-o new/folder/body.obj`; a std::runtime_error naming the folder when it cannot be made.
 void create_parent_folder(const std::string& path);

@@ -55,7 +55,10 @@ int run_bootstrap(const Options& o) {
     def.threads = o.threads;
     def.posture_model_path = o.posture_model.empty() ? nullptr : o.posture_model == "own" ? "" : o.posture_model.c_str();
     ssc_bootstrap* b = nullptr;
-    check(ssc_bootstrap_create(nullptr, &def, &b), "bootstrap");
+    {
+        std::unique_ptr<ssc_context, void (*)(ssc_context*)> context(new_context(), ssc_context_destroy);
+        check(ssc_bootstrap_create(context.get(), &def, &b), "bootstrap");
+    }
     std::unique_ptr<ssc_bootstrap, void (*)(ssc_bootstrap*)> owned(b, ssc_bootstrap_destroy);
     std::printf("%u scans in %s; %u rounds from %s%s; output in %s\n", ssc_bootstrap_scan_count(b), o.scans.c_str(), o.rounds,
                 o.template_only ? "the template alone of " : "", o.init.empty() ? "the built-in model" : o.init.c_str(), o.out.c_str());

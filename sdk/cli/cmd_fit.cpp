@@ -80,7 +80,6 @@ int run_fit(Options o) {
         ssc_fit_file_info info;
         info.struct_size = sizeof info;
         check(ssc_fitter_add_landmarks_file(guard.fitter, frame, &d, &info), path);
-        if (info.unknown) std::fprintf(stderr, "%s: %u landmarks are not the model's (by name); ignored\n", path.c_str(), info.unknown);
         if (frame == 0 && !o.png.empty())
             for (const auto& r : io::read_lnd(path)) shown.push_back(r.position * (o.units.empty() ? 1.0 : o.units_scale / 1e-3));
         std::printf("%s: %u landmarks in %s%s, spanning %.2f m (%u hand landmarks left out; --hands uses them)\n", path.c_str(), info.used,

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <sstream>
 
 namespace ssc::cli {
@@ -119,10 +120,24 @@ void create_parent_folder(const std::string& path) {
         throw std::runtime_error("cannot create the output folder " + parent.string() + (error ? ": " + error.message() : ""));
 }
 
+ssc_context* new_context() {
+    ssc_context_def def;
+    ssc_context_def_init(&def, sizeof def);
+    // Every warning the library logs (a landmark name it does not know, ...) reaches the user.
+    def.log = [](void*, ssc_log_level level, const char* message) {
+        std::fprintf(stderr, "%s: %s\n", level >= SSC_LOG_ERROR ? "error" : level == SSC_LOG_WARNING ? "warning" : "note", message);
+    };
+    def.log_level = SSC_LOG_WARNING;
+    ssc_context* context = nullptr;
+    check(ssc_context_create(&def, &context), "cannot create the library's context");
+    return context;
+}
+
 ssc_model* load_model(const std::string& path) {
+    std::unique_ptr<ssc_context, void (*)(ssc_context*)> context(new_context(), ssc_context_destroy);  // the model keeps it
     ssc_model* model = nullptr;
-    if (path.empty()) check(ssc_model_load_default(nullptr, &model), "cannot load the default model");
-    else check(ssc_model_load_file(nullptr, path.c_str(), &model), "cannot load '" + path + "'");
+    if (path.empty()) check(ssc_model_load_default(context.get(), &model), "cannot load the default model");
+    else check(ssc_model_load_file(context.get(), path.c_str(), &model), "cannot load '" + path + "'");
     return model;
 }
 

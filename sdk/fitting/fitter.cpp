@@ -38,6 +38,16 @@ Frame& Fitter::frame_for_adding(uint32_t frame) {
 
 void Fitter::add_landmarks(uint32_t frame, const std::vector<LandmarkTarget>& targets) {
     for (std::size_t i = 0; i < targets.size(); ++i) validate_landmark(model().data(), targets[i], "landmark " + std::to_string(i));
+    SSC_REQUIRE_ARG_S(frame <= frames_.size(), "frame " << frame << " is beyond the next new frame (" << frames_.size() << ")");
+    // One landmark twice in a frame is two positions for one point: a caller's mistake (a file
+    // listing names twice), never a measurement to average.
+    std::vector<uint8_t> given(model().data().landmarks.size(), 0);
+    if (frame < frames_.size())
+        for (const auto& l : frames_[frame].landmarks) given[l.landmark] = 1;
+    for (const auto& l : targets) {
+        SSC_REQUIRE_ARG_S(!given[l.landmark], "landmark " << model().data().landmarks[l.landmark].name << " is given twice in frame " << frame);
+        given[l.landmark] = 1;
+    }
     Frame& f = frame_for_adding(frame);
     f.landmarks.insert(f.landmarks.end(), targets.begin(), targets.end());
 }

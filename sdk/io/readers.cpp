@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <sstream>
+#include <unordered_map>
 
 namespace ssc::io {
 
@@ -158,6 +159,19 @@ public:
         return 0;
     }
     std::size_t remaining() const { return format_ == 0 ? data_.size() : data_.size() - pos_; }
+    // What is left after the last declared element, whitespace aside: a header that under-counts its
+    // elements (the rest of the scan would be ignored) or two files joined.
+    std::size_t trailing_bytes() {
+        if (format_ != 0) {
+            std::size_t n = data_.size() - pos_;
+            while (n > 0 && std::isspace(static_cast<unsigned char>(data_[pos_ + n - 1]))) --n;  // a final newline
+            return n;
+        }
+        text_ >> std::ws;
+        if (text_.eof()) return 0;
+        const std::streamoff at = text_.tellg();
+        return at < 0 ? 1 : data_.size() - pos_ - std::size_t(at);  // ASCII: pos_ stays where the text starts
+    }
 
 private:
     const std::string& path_;
@@ -266,6 +280,9 @@ PointFile ply_points(const std::string& data, const std::string& path) {
             for (std::size_t k = 1; k + 1 < poly.size(); ++k) tris.insert(tris.end(), {poly[0], poly[k], poly[k + 1]});
         }
     }
+    if (const std::size_t left = cur.trailing_bytes(); left > 0)
+        bad(path, std::to_string(left) + " bytes follow the elements the header declares (" + std::to_string(out.points.size()) +
+                      " vertices): the header under-counts them, or another file follows");
     // Normals the file does not give usably come from the faces where it has them, else from the fitter.
     out.normals = given_normals(std::move(normals));
     const bool missing = out.normals.empty() ||
@@ -357,6 +374,7 @@ std::vector<LandmarkRecord> parse_lnd(const std::string& data, const std::string
     bool rows = false, ended = false;
     std::size_t number = 0;
     std::vector<LandmarkRecord> out;
+    std::unordered_map<std::string, std::size_t> seen;  // normalized name -> its line
     while (std::getline(in, line)) {
         ++number;
         if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -381,6 +399,13 @@ std::vector<LandmarkRecord> parse_lnd(const std::string& data, const std::string
         std::getline(row, name);
         const auto b = name.find_first_not_of(" \t");
         name = b == std::string::npos ? "" : name.substr(b);
+        // One name twice is two measurements of one point that disagree: no rule picks one.
+        if (const std::string key = normalized_landmark_name(name); !key.empty()) {
+            const auto [it, first_time] = seen.emplace(key, number);
+            if (!first_time)
+                bad(path, "line " + std::to_string(number) + ": landmark '" + name + "' is listed twice (first on line " +
+                              std::to_string(it->second) + ")");
+        }
         if (s1 == -999 || s2 == -999) continue;  // not found on this subject
         LandmarkRecord r;
         if (!(index >= 1 && index < 1e6)) bad(path, "line " + std::to_string(number) + ": landmark index out of range");

@@ -153,6 +153,8 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
                 ScanFileResult r = register_scan_file(registrar, digest, round_registration_job(spec, round, in), {}, &pool);
                 st.record = std::move(r.record);
                 st.ok = true;
+                for (const std::string& name : r.ignored_landmarks)
+                    say(in.name + ": landmark '" + name + "' is not one of the model's; ignored");
                 if (!r.reused) how = "registered", ++rep.registered;
                 else ++rep.reused;
             } catch (const Error& e) {

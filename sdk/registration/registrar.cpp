@@ -42,6 +42,11 @@ void Registrar::set_scan(fitting::PointCloud cloud, std::vector<uint32_t> triang
 void Registrar::set_landmarks(std::vector<fitting::LandmarkTarget> landmarks) {
     for (std::size_t l = 0; l < landmarks.size(); ++l)
         fitting::validate_landmark(model().data(), landmarks[l], "registration: landmark " + std::to_string(l));
+    std::vector<uint8_t> given(model().data().landmarks.size(), 0);  // one position per landmark
+    for (const auto& l : landmarks) {
+        SSC_REQUIRE_ARG_S(!given[l.landmark], "registration: landmark " << model().data().landmarks[l.landmark].name << " is given twice");
+        given[l.landmark] = 1;
+    }
     scan_.landmarks = std::move(landmarks);
     result_.reset();
 }

@@ -308,6 +308,11 @@ def test_fitter_recovers_a_body_from_its_surface(model):
         with pytest.raises(sscape.SscapeError) as e:
             fitter.add_landmarks(["Nowhere"], [[0, 0, 0]])
         assert e.value.status_name == "SSC_ERROR_NOT_FOUND"
+        with pytest.raises(sscape.SscapeError, match="twice"):  # one landmark at two places
+            fitter.add_landmarks([names[0], names[0]], landmarks[:2])
+        fitter.add_landmarks(names[:1], landmarks[:1])
+        with pytest.raises(sscape.SscapeError, match="twice"):  # already in the frame
+            fitter.add_landmarks(names[:1], landmarks[:1])
     with pytest.raises(TypeError, match="unknown fitter options: sigma"):
         sscape.Fitter(model, sigma=1)
 
@@ -396,6 +401,9 @@ def test_registration_brings_the_template_onto_a_scan(model):
         with pytest.raises(sscape.SscapeError) as e:
             reg.set_landmarks(["Nowhere"], [[0, 0, 0]])
         assert e.value.status_name == "SSC_ERROR_NOT_FOUND"
+        with pytest.raises(sscape.SscapeError, match="twice") as e:  # two positions for one point
+            reg.set_landmarks(["Sellion", "Sellion"], [[0, 1.6, 0.1], [0, 1.3, 0.1]])
+        assert e.value.status_name == "SSC_ERROR_INVALID_ARGUMENT"
     with pytest.raises(ValueError, match="start must be one of"):
         sscape.Registration(model, start="magic")
 
