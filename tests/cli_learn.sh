@@ -90,4 +90,19 @@ expect 1 "not a registration report" "$out/reg1.ply" "$out/reg2.ply" "$out/broke
 sed -n '1,/^f /p' "$out/other.obj" | grep '^v ' | head -100 > "$out/few.obj"
 cp "$out/reg1.json" "$out/few.json"
 expect 1 "100 vertices; the model has" "$out/reg1.ply" "$out/reg2.ply" "$out/few.obj" --components 2
+# Degenerate inputs say what is wrong with them (issue 47, items 5 and 14): once a constant column or
+# identical registrations failed on "attributes.covariance has a diagonal entry <= 0", evaluate
+# left a CSV of -nan, and 3000 columns ran past 170 s.
+echo "scan,age,height" > "$out/constant.csv"
+for i in $scans; do echo "reg$i,30,$((150 + i))" >> "$out/constant.csv"; done
+expect 1 "attribute age is 30 for every registration" "$out"/reg?.ply --components 2 --attributes "$out/constant.csv"
+/usr/bin/python3 -c 'import sys
+print("scan," + ",".join("a%d" % c for c in range(65)))
+for r in sys.argv[1:]: print(r + "," + ",".join(str(int(r[3:]) * 7 + c % 5) for c in range(65)))' $(for i in $scans; do echo reg$i; done) > "$out/wide.csv"
+expect 1 "65 attributes; at most 64" "$out"/reg?.ply --components 2 --attributes "$out/wide.csv"
+for i in 1 2 3; do cp "$out/reg1.ply" "$out/same$i.ply" && cp "$out/reg1.json" "$out/same$i.json"; done
+expect 1 "the 3 registrations are all the same body" "$out"/same?.ply --components 2
+"$sscape" evaluate "$out"/same?.ply -o "$out/same_eval" > "$out/same_eval.txt" 2>&1
+[ $? -eq 1 ] && grep -q "all the same body" "$out/same_eval.txt" && [ ! -e "$out/same_eval.csv" ] && [ ! -e "$out/same_eval_compactness.png" ] ||
+    { cat "$out/same_eval.txt"; ls "$out"; fail "evaluate on identical registrations"; }
 echo "learn: model written and read back; refusals clear"

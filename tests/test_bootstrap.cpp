@@ -257,6 +257,38 @@ TEST_CASE("a registration record reads back as written, in the scan's units and 
     std::filesystem::remove(mesh);
 }
 
+TEST_CASE("a registration report's values outside what a registration gives are refused before learning", "[bootstrap]") {
+    // scan_units_to_metres 1e-300 and fit.scale 1e300 once reached learn, which wrote a model whose
+    // first component moved vertices 215 mm per SD; fit.shape 1e308 failed late and obscurely.
+    const Model& m = test::default_cpp_model();
+    Scanned s = scanned(m, 9);
+    const std::string mesh = "record_range_test.ply", report = learning::record_report_path(mesh);
+    learning::write_registration_record(mesh, m, s.record);
+    const nlohmann::ordered_json good = nlohmann::ordered_json::parse(read_regular_file(report, 64ull << 20));
+    auto refused = [&](const char* pointer, nlohmann::ordered_json value, const char* message) {
+        nlohmann::ordered_json j = good;
+        j[nlohmann::ordered_json::json_pointer(pointer)] = std::move(value);
+        const std::string text = j.dump();
+        write_file_atomically(report, text.data(), text.size());
+        INFO(pointer);
+        CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, true), Catch::Contains(message));
+    };
+    refused("/scan_units_to_metres", 1e-300, "scan_units_to_metres 1e-300 is none of m, cm, mm");
+    refused("/scan_units_to_metres", 0.5, "is none of m, cm, mm");
+    refused("/fit/scale", 1e300, "the fit's scale 1e+300 is outside [0.1, 10]");
+    refused("/fit/shape/0", 1e308, "the fit's shape coefficient 0 is 1e+308");
+    refused("/fit/translation_m/1", -1e7, "the fit's translation is not finite or beyond 1e6 m");
+    refused("/fit/rotations_xyzw/3", 3.0, "not a unit quaternion");
+    refused("/quality/scan_to_registration_mean_m", -1.0, "scan_to_registration_mean_m -1 is outside [0, 1000]");
+    refused("/quality/vertices_within_2_5_10_20_mm/2", 1.5, "not a share");
+    refused("/seconds", -5.0, "seconds -5 is outside");
+    const std::string text = good.dump();  // the report as written reads
+    write_file_atomically(report, text.data(), text.size());
+    CHECK(learning::read_registration_record(mesh, m, true).registered.has_fit);
+    std::filesystem::remove(report);
+    std::filesystem::remove(mesh);
+}
+
 TEST_CASE("a person's decisions file: their rows, not the tool's, with quoted reasons", "[bootstrap]") {
     auto decisions = [](const std::string& text) {
         const std::string path = "decisions_test.csv";

@@ -38,12 +38,21 @@ double mean_vertex_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) 
     return sum / double(a.size() / 3);
 }
 
+// Identical bodies have no variance to learn: every curve would be 0 or NaN. Said before any work.
+void require_bodies_that_differ(const training::SampleMatrix& bodies) {
+    bool all_same = true;
+    for (Eigen::Index i = 1; i < bodies.rows() && all_same; ++i) all_same = (bodies.row(i) - bodies.row(0)).cwiseAbs().maxCoeff() < 1e-6f;
+    SSC_REQUIRE_ARG_S(!all_same, "evaluate: the " << bodies.rows() << " registrations are all the same body (within 1 micrometre): "
+                                                  "there is no shape variation to learn (were the same scan's registrations given several times?)");
+}
+
 }  // namespace
 
 std::vector<training::QualityPoint> evaluate_learning(const training::SampleMatrix& bodies, const EvaluationSpec& spec,
                                                       const EvaluationProgress& progress) {
     const Eigen::Index N = bodies.rows(), D = bodies.cols();
     SSC_REQUIRE_ARG_S(N >= 3, "evaluate: " << N << " registrations; at least 3");
+    require_bodies_that_differ(bodies);
     const uint32_t folds = spec.folds ? spec.folds : uint32_t(N <= 100 ? N : 10);
     SSC_REQUIRE_ARG_S(folds >= 2 && folds <= uint32_t(N), "evaluate: " << folds << " folds for " << N << " registrations (2 to " << N << ")");
     // The smallest training set has N - ceil(N / folds) bodies: at most one fewer components.
@@ -79,6 +88,7 @@ std::vector<SizedQuality> evaluate_training_sizes(const training::SampleMatrix& 
                                                   const EvaluationSpec& spec, const EvaluationProgress& progress) {
     const Eigen::Index N = bodies.rows(), D = bodies.cols();
     SSC_REQUIRE_ARG_S(N >= 10, "evaluate: " << N << " registrations; comparing training-set sizes needs at least 10");
+    require_bodies_that_differ(bodies);
     std::vector<Eigen::Index> train, held;
     for (Eigen::Index i = 0; i < N; ++i) (i % 5 == 4 ? held : train).push_back(i);
     std::mt19937 rng(spec.seed);

@@ -1,6 +1,8 @@
 #include "learning/fit_json.hpp"
 
 #include "common/error.hpp"
+#include "fitting/observations.hpp"
+#include "synthesis/shape_range.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,10 +34,16 @@ fitting::FitState fit_from_json(const nlohmann::ordered_json& fit, const Model& 
     for (uint32_t k = 0; k < J; ++k) f.pose.emplace_back(rotations[4 * k + 3], rotations[4 * k], rotations[4 * k + 1], rotations[4 * k + 2]);
     f.translation = Eigen::Vector3d(translation[0], translation[1], translation[2]);
     f.scale = fit.at("scale").get<double>();
-    bool finite = std::isfinite(f.scale) && f.scale > 0 && f.translation.allFinite();
-    for (double x : shape) finite &= std::isfinite(x);
-    for (const auto& q : f.pose) finite &= q.coeffs().allFinite() && q.norm() > 0.5;
-    SSC_REQUIRE_ARG(finite, "the fit holds values that are not finite or not rotations");
+    // What a fit can hold: shapes within the library's range, a body's scale, unit rotations, a
+    // position within the fitter's coordinates. Anything else is a corrupt or edited file.
+    SSC_REQUIRE_ARG_S(std::isfinite(f.scale) && f.scale >= 0.1 && f.scale <= 10, "the fit's scale " << f.scale << " is outside [0.1, 10]");
+    SSC_REQUIRE_ARG(f.translation.allFinite() && f.translation.cwiseAbs().maxCoeff() <= fitting::kMaxCoordinate,
+                    "the fit's translation is not finite or beyond 1e6 m");
+    for (std::size_t k = 0; k < shape.size(); ++k)
+        SSC_REQUIRE_ARG_S(std::isfinite(shape[k]) && std::abs(shape[k]) <= kShapeLimit,
+                          "the fit's shape coefficient " << k << " is " << shape[k] << "; shape coefficients lie within +-" << kShapeLimit);
+    for (const auto& q : f.pose)
+        SSC_REQUIRE_ARG(q.coeffs().allFinite() && std::abs(q.norm() - 1) <= 1e-3, "the fit's rotations_xyzw holds a value that is not a unit quaternion");
     return f;
 }
 

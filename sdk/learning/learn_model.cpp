@@ -23,6 +23,11 @@ namespace ssc::learning {
 
 namespace {
 
+// Known attributes beside the measurements: a collection records tens (sex, age, a few more);
+// the attribute model's size and the slider search grow with the square of their count.
+constexpr std::size_t kMaxKnownAttributes = 64;
+constexpr double kMaxAttributeValue = 1e9;  // beyond any unit a person is described in
+
 void check_inputs(const format::ModelData& t, const std::vector<RegisteredScan>& scans, const LearnSpec& spec) {
     const uint32_t V = t.mesh.vertex_count;
     SSC_REQUIRE_ARG_S(scans.size() >= 3, "learn: " << scans.size() << " registrations; a shape space needs at least 3");
@@ -44,11 +49,27 @@ void check_inputs(const format::ModelData& t, const std::vector<RegisteredScan>&
         training::segment_layout(t, spec.segment_band);  // refuses a template without body parts now, not after the PCA
     }
     if (spec.posture == Posture::Skeleton && spec.posture_model) check_posture_model(t, *spec.posture_model);
-    for (const auto& a : spec.attributes) {
+    // The same body again and again: the PCA would find no variance and the model would fail its
+    // own validation with a message about covariances; say what is wrong with the input instead.
+    bool all_same = true;
+    for (std::size_t i = 1; i < scans.size() && all_same; ++i)
+        for (std::size_t v = 0; v < V && all_same; ++v) all_same = (scans[i].vertices[v] - scans[0].vertices[v]).squaredNorm() < 1e-12;
+    SSC_REQUIRE_ARG_S(!all_same, "learn: the " << scans.size() << " registrations are all the same body (within 1 micrometre): a shape space "
+                                               "needs bodies that differ (were the same scan's registrations given several times?)");
+    SSC_REQUIRE_ARG_S(spec.attributes.size() <= kMaxKnownAttributes,
+                      "learn: " << spec.attributes.size() << " attributes; at most " << kMaxKnownAttributes << " are learned beside the shape");
+    for (std::size_t i = 0; i < spec.attributes.size(); ++i) {
+        const auto& a = spec.attributes[i];
         SSC_REQUIRE_ARG_S(!a.name.empty(), "learn: an attribute has no name");
+        for (std::size_t k = 0; k < i; ++k) SSC_REQUIRE_ARG_S(spec.attributes[k].name != a.name, "learn: attribute " << a.name << " is given twice");
         SSC_REQUIRE_ARG_S(a.values.size() == scans.size(), "learn: attribute " << a.name << " has " << a.values.size() << " values for "
                                                                              << scans.size() << " registrations");
-        for (double x : a.values) SSC_REQUIRE_ARG_S(std::isfinite(x), "learn: attribute " << a.name << " has a value that is not finite");
+        for (double x : a.values)
+            SSC_REQUIRE_ARG_S(std::isfinite(x) && std::abs(x) <= kMaxAttributeValue,
+                              "learn: attribute " << a.name << " has the value " << x << "; values lie within +-" << kMaxAttributeValue);
+        const auto [lo, hi] = std::minmax_element(a.values.begin(), a.values.end());
+        SSC_REQUIRE_ARG_S(*hi - *lo > 1e-12 * std::max(1.0, std::abs(*hi)),
+                          "learn: attribute " << a.name << " is " << *lo << " for every registration: it tells nothing about shape (leave its column out)");
     }
 }
 

@@ -24,6 +24,7 @@ using nlohmann::ordered_json;
 
 const std::vector<std::string> kAxes = {"x", "y", "z", "-x", "-y", "-z"};
 constexpr uint64_t kMaxReport = 64ull << 20;
+constexpr double kUnits[] = {1.0, 0.01, 0.001};
 
 ordered_json quality_json(const registration::DistanceSummary& d, const std::array<double, 4>& below) {
     return ordered_json{{"scan_to_registration_mean_m", d.mean},
@@ -34,14 +35,23 @@ ordered_json quality_json(const registration::DistanceSummary& d, const std::arr
                         {"vertices_within_2_5_10_20_mm", {below[0], below[1], below[2], below[3]}}};
 }
 
+// A number read from a report, within what a registration can produce (a hand-edited or corrupt
+// report once reached learning with scan_units_to_metres 1e-300 and wrote a broken model).
+double in_range(const ordered_json& j, const char* key, double lo, double hi) {
+    const double x = j.at(key).get<double>();
+    SSC_REQUIRE_ARG_S(std::isfinite(x) && x >= lo && x <= hi, "the report's " << key << " " << x << " is outside [" << lo << ", " << hi << "]");
+    return x;
+}
+
 void quality_from_json(const ordered_json& j, registration::DistanceSummary& d, std::array<double, 4>& below) {
-    d.mean = j.at("scan_to_registration_mean_m").get<double>();
-    d.median = j.at("scan_to_registration_median_m").get<double>();
-    d.p95 = j.at("scan_to_registration_p95_m").get<double>();
+    d.mean = in_range(j, "scan_to_registration_mean_m", 0, 1e3);
+    d.median = in_range(j, "scan_to_registration_median_m", 0, 1e3);
+    d.p95 = in_range(j, "scan_to_registration_p95_m", 0, 1e3);
     d.count = j.value("scan_points", std::size_t(0));  // sscape register's reports have no counts
     d.beyond_20mm = j.value("scan_points_beyond_20_mm", std::size_t(0));
     const std::vector<double> b = j.at("vertices_within_2_5_10_20_mm");
     SSC_REQUIRE_ARG(b.size() == 4, "vertices_within_2_5_10_20_mm needs 4 shares");
+    for (double x : b) SSC_REQUIRE_ARG_S(std::isfinite(x) && x >= 0 && x <= 1, "the report's vertices_within_2_5_10_20_mm holds " << x << ", not a share");
     std::copy(b.begin(), b.end(), below.begin());
 }
 
@@ -123,14 +133,15 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
         r.scan_up = j.value("scan_up", "y");
         r.scan_units_to_metres = j.value("scan_units_to_metres", 1.0);
         r.fit_segments = j.value("fit_segments", false);
-        r.seconds = j.value("seconds", 0.0);
-        r.fit_seconds = j.value("fit_seconds", 0.0);
+        r.seconds = j.contains("seconds") ? in_range(j, "seconds", 0, 1e9) : 0.0;
+        r.fit_seconds = j.contains("fit_seconds") ? in_range(j, "fit_seconds", 0, 1e9) : 0.0;
         r.rounds = j.value("rounds", 0u);
         r.solves = j.value("solves", 0u);
         r.model_digest = j.value("model_digest", "");
         r.scan_digest = j.value("scan_digest", "");
-        SSC_REQUIRE_ARG_S(std::isfinite(r.scan_units_to_metres) && r.scan_units_to_metres > 0 && r.scan_units_to_metres <= 1,
-                          "the report's scan_units_to_metres " << r.scan_units_to_metres << " is not a unit");
+        // The units a scan can be read in (io::units_to_metres): m, cm, mm.
+        const bool unit = std::any_of(std::begin(kUnits), std::end(kUnits), [&](double u) { return std::abs(r.scan_units_to_metres - u) <= 1e-9 * u; });
+        SSC_REQUIRE_ARG_S(unit, "the report's scan_units_to_metres " << r.scan_units_to_metres << " is none of m, cm, mm (1, 0.01, 0.001)");
         SSC_REQUIRE_ARG_S(std::find(kAxes.begin(), kAxes.end(), r.scan_up) != kAxes.end(), "the report's scan_up '" << r.scan_up << "' is no axis");
         if (j.contains("quality")) quality_from_json(j.at("quality"), r.quality.scan_to_registration, r.quality.below);
         if (j.contains("regions"))
@@ -143,7 +154,10 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
         if (j.contains("vertex_distance_mm")) {
             const std::vector<double> mm = j.at("vertex_distance_mm");
             SSC_REQUIRE_ARG(mm.size() == V, "vertex_distance_mm has a value per vertex of another model");
-            for (double d : mm) r.quality.vertex_distance.push_back(d < 0 ? -1.0 : d * 1e-3);
+            for (double d : mm) {
+                SSC_REQUIRE_ARG_S(std::isfinite(d) && d <= 1e6, "the report's vertex_distance_mm holds " << d);
+                r.quality.vertex_distance.push_back(d < 0 ? -1.0 : d * 1e-3);
+            }
         }
         if (j.contains("valid")) {
             r.valid = j.at("valid").get<std::vector<uint8_t>>();

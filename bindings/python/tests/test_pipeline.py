@@ -206,6 +206,25 @@ def test_settings_out_of_range_are_refused_before_anything_is_written(tmp_path):
     assert not out.exists()
 
 
+def test_a_task_past_its_timeout_fails_alone_and_writes_nothing(scans, client, tmp_path):
+    # There was no per-task limit: one scan whose call took too long held the whole run.
+    two = [(scans / f"p{i}_scan.ply", scans / f"p{i}.lnd") for i in (1, 2)]
+    for collection, suffix in ((pipeline.register_collection, ".ply"), (pipeline.fit_collection, ".obj")):
+        out = tmp_path / collection.__name__
+        done = collection(two, None, str(out), client=client, progress=False, task_timeout=0.01)
+        assert sorted(done) == ["p1_scan", "p2_scan"]
+        for name, scan in done.items():
+            assert scan["status"] == "failed" and "task timeout of 0.01 s" in scan["error"], scan
+            assert not (out / (name + suffix)).exists() and not (out / (name + ".json")).exists()
+    for bad in (0, -1, float("nan"), float("inf"), True, "10"):
+        with pytest.raises(ValueError, match="task_timeout"):
+            pipeline.register_collection(two, None, str(tmp_path / "never"), progress=False, task_timeout=bad)
+    assert not (tmp_path / "never").exists()
+    done = subprocess.run([sys.executable, "-m", "sscape.pipeline", "fit", str(scans), "-o", str(tmp_path / "never"), "--task-timeout", "0"],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2 and "not in (0, 1e6] seconds" in done.stderr, done.stderr
+
+
 def test_fit_and_measure_collections_equal_the_serial_command_line(scans, client, tmp_path):
     out, serial = tmp_path / "fits", tmp_path / "serial"
     serial.mkdir()

@@ -20,12 +20,25 @@ def _whole(lo: int, hi: int):
     return parse
 
 
+def _seconds(text: str) -> float:
+    """An argparse type: seconds in (0, 1e6]."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+    if not 0 < value <= 1e6:
+        raise argparse.ArgumentTypeError(f"{text} is not in (0, 1e6] seconds")
+    return value
+
+
 def _cluster_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--scheduler", metavar="tcp://HOST:8786", help="a running Dask scheduler (default: a local cluster on this machine)")
     p.add_argument("--workers", type=_whole(1, 4096), metavar="N", help="processes of the local cluster (default: one per core)")
     p.add_argument("--units", choices=["m", "cm", "mm"], help="units of the scans and landmark files (default: metres, .lnd millimetres)")
     p.add_argument("--up", choices=["x", "y", "z", "-x", "-y", "-z"], help="the scans' up axis (default y)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--task-timeout", type=_seconds, metavar="SECONDS",
+                   help="stop a scan's task after this long and record it as failed (default: no limit)")
 
 
 def main(argv=None) -> int:
@@ -79,7 +92,8 @@ def main(argv=None) -> int:
     try:
         if a.command == "register":
             scans = register_collection(a.scans, a.model, a.output, units=a.units, up=a.up, pictures=a.png, scheduler=a.scheduler,
-                                        workers=a.workers, progress=not a.quiet, fit_segments=a.segments)
+                                        workers=a.workers, progress=not a.quiet, fit_segments=a.segments,
+                                        task_timeout=a.task_timeout)
             failed = {n: s for n, s in scans.items() if s["status"] == "failed"}
             done = sum(s["status"] == "registered" for s in scans.values())
             print(f"{len(scans)} scans: {done} registered, {len(scans) - done - len(failed)} reused, {len(failed)} failed; "
@@ -90,7 +104,8 @@ def main(argv=None) -> int:
         if a.command in ("fit", "measure"):
             if a.command == "fit":
                 scans = fit_collection(a.scans, a.model, a.output, units=a.units, hands=a.hands, components=a.components,
-                                       body_format=a.format, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet)
+                                       body_format=a.format, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet,
+                                       task_timeout=a.task_timeout)
                 where = f"{a.output}/manifest.json"
             else:
                 scans = measure_collection(a.fits, a.model, a.output, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet)
@@ -104,7 +119,7 @@ def main(argv=None) -> int:
                          components=a.components, posture=a.posture, template_only=a.template_only, scale=a.scale,
                          segment_components=a.segment_components, fit_segments=a.fit_segments, units=a.units, up=a.up, decisions=a.decisions,
                          attributes=a.attributes, name=a.name, license=a.license,
-                         posture_model="" if a.posture_model == "own" else a.posture_model)
+                         posture_model="" if a.posture_model == "own" else a.posture_model, task_timeout=a.task_timeout)
         for row in rows:
             print(f"round {row['round']}: {row['accepted']} accepted, {row['rejected']} rejected, {row['failed']} failed")
         print(f"wrote {a.output}/model.sscape")

@@ -21,11 +21,14 @@ def whole_number(name: str, value, lo: int, hi: int) -> int:
     return int(value)
 
 
-def check_cluster_settings(workers: Optional[int], threads_per_task: int = 1) -> None:
+def check_cluster_settings(workers: Optional[int], threads_per_task: int = 1, task_timeout: Optional[float] = None) -> None:
     """The cluster settings every collection function takes, checked before it writes anything."""
     if workers is not None:
         whole_number("workers", workers, 1, 4096)
     whole_number("threads_per_task", threads_per_task, 1, 256)
+    if task_timeout is not None and (isinstance(task_timeout, bool) or not isinstance(task_timeout, numbers.Real)
+                                     or not 0 < task_timeout <= 1e6):
+        raise ValueError(f"task_timeout must be a number of seconds in (0, 1e6], not {task_timeout!r}")
 
 
 @contextlib.contextmanager

@@ -73,13 +73,34 @@ def _failing_alone(out: dict, work) -> dict:
     return out
 
 
+def _deadline(job: dict):
+    """A progress callback that cancels the library's call once job["timeout"] seconds have passed
+    (None: never). The library calls it between its stages and solver iterations, so a scan that
+    takes too long stops there, writes nothing and fails alone instead of holding the run."""
+    limit = job.get("timeout")
+    if limit is None:
+        return None
+    end = time.monotonic() + float(limit)
+    return lambda *progress: time.monotonic() > end
+
+
+def _timed_out(job: dict, error: SscapeError) -> Exception:
+    """The cancellation _deadline caused, said as a timeout."""
+    if error.status_name == "SSC_ERROR_CANCELLED" and job.get("timeout") is not None:
+        return TimeoutError(f"stopped after the task timeout of {job['timeout']:g} s (task_timeout); nothing written")
+    return error
+
+
 def register_job(job: dict) -> dict:
     """Registers job["scan"] into job["mesh"] (report beside it) with the model at job["model"]:
     a dict with the scan's name, status "registered", "reused" or "failed", error, seconds, quality."""
     def work():
         reg = registration_for(job.get("model"), job.get("threads", 1), job.get("fit_segments", True))
-        report = reg.run_file(job["scan"], job["mesh"], landmarks=job.get("landmarks"), units=job.get("units"), up=job.get("up"),
-                              report=True, reuse=job.get("reuse", True), picture=job.get("picture"))
+        try:
+            report = reg.run_file(job["scan"], job["mesh"], landmarks=job.get("landmarks"), units=job.get("units"), up=job.get("up"),
+                                  report=True, reuse=job.get("reuse", True), picture=job.get("picture"), progress=_deadline(job))
+        except SscapeError as e:
+            raise _timed_out(job, e) from None
         return {"status": "reused" if report["reused"] else "registered", "registration_seconds": report["seconds"],
                 "quality": report["quality"]}
 
@@ -102,7 +123,10 @@ def fit_job(job: dict) -> dict:
             if job.get("landmarks"):
                 fitter.add_landmarks_file(job["landmarks"], units=job.get("units"), hands=job.get("hands", False), frame=0)
             fitter.add_points_file(job["scan"], units=job.get("units"), frame=0)
-            report = fitter.solve()
+            try:
+                report = fitter.solve(progress=_deadline(job))
+            except SscapeError as e:
+                raise _timed_out(job, e) from None
             if np.float32(report["unexplained_fraction"]) > _FIT_UNEXPLAINED_LIMIT:
                 raise ValueError(f"{100 * report['unexplained_fraction']:.0f} % of the scan lies farther than 5 cm from the fitted body: "
                                  "a limb or the whole body is in the wrong place, or the scan holds clutter")

@@ -93,7 +93,7 @@ class Bootstrapping(Handle):
 
 def bootstrap(scans_dir: str, init_model: Optional[str] = None, rounds: int = 3, out_dir: str = "bootstrap", client=None, *,
               scheduler: Optional[str] = None, workers: Optional[int] = None, threads_per_task: int = 1, progress: bool = True,
-              log: Optional[Callable[[str], None]] = None, **settings) -> List[Dict[str, str]]:
+              log: Optional[Callable[[str], None]] = None, task_timeout: Optional[float] = None, **settings) -> List[Dict[str, str]]:
     """Bootstraps a model from the scans in scans_dir, as `sscape bootstrap` does: for each round,
     every scan registered with the previous round's model (one Dask task per scan; reused when
     already done), then inspected, decided and learned from here; out_dir holds round_N/ per round
@@ -104,10 +104,11 @@ def bootstrap(scans_dir: str, init_model: Optional[str] = None, rounds: int = 3,
     the registrations, made here; None: the built-in model where it shares the starting model's rig; "":
     each round's own fits), template_only, scale, segment_components, segment_band_mm, fit_segments,
     units, up, decisions, attributes, name, license, threads (of the learning here), contact_sheet_entries.
-    Cluster as register_collection's. Returns rounds.csv's rows."""
+    Cluster and task_timeout as register_collection's (a scan stopped on the cluster is registered
+    once more, without a limit, by the round's learning here). Returns rounds.csv's rows."""
     say = log or (lambda line: print(line, file=sys.stderr))
     whole_number("rounds", rounds, 1, 100)  # before anything is written: 0 once left round_0 and no rounds.csv
-    check_cluster_settings(workers, threads_per_task)
+    check_cluster_settings(workers, threads_per_task, task_timeout)
     b = Bootstrapping(scans_dir, out_dir, init_model, **settings)
     b.prepare()
     with client_for(client, scheduler, workers) as c:
@@ -115,6 +116,7 @@ def bootstrap(scans_dir: str, init_model: Optional[str] = None, rounds: int = 3,
             jobs = b.jobs(r)
             for job in jobs:
                 job["threads"] = threads_per_task
+                job["timeout"] = task_timeout
             header = {"command": "bootstrap", "round": r, "model": jobs[0]["model"]}
             folder = os.path.join(out_dir, f"round_{r}")
             os.makedirs(folder, exist_ok=True)

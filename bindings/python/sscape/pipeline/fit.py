@@ -51,19 +51,20 @@ def _kept_fits(out_dir: str, jobs):
 def fit_collection(scans, model: Optional[str] = None, out_dir: str = "fits", client=None, *, units: Optional[str] = None,
                    hands: bool = False, components: int = 0, iterations: int = 0, body_format: str = "obj",
                    scheduler: Optional[str] = None, workers: Optional[int] = None, threads_per_task: int = 1,
-                   progress: bool = True) -> Dict[str, dict]:
+                   progress: bool = True, task_timeout: Optional[float] = None) -> Dict[str, dict]:
     """Fits the model (shape and pose) to every scan: out_dir/NAME.obj (or .ply, .glb: body_format),
     the fitted body, and NAME.json, its parameters (shape, per-joint rotations, translation, the
     report), as `sscape fit --points SCAN [--landmarks NAME.lnd] -o NAME.obj --params NAME.json`
     writes them; a fit that does not explain its scan (or ends in an impossible pose) fails with its
     reason and writes nothing. Scans, model, units and the cluster as register_collection's; hands:
     use hand landmarks; components: shape components fitted (0: all); iterations: the solver's limit
-    (0: its default). out_dir/manifest.json: each scan's status ("fitted" or "failed"), error and
+    (0: its default); task_timeout: seconds after which a fit is stopped and recorded as failed
+    (None: no limit). out_dir/manifest.json: each scan's status ("fitted" or "failed"), error and
     report. Running again keeps the fits made from the same scan and landmark files, model and
     settings (status "reused")."""
     if body_format not in ("obj", "ply", "glb"):
         raise ValueError(f"body_format must be obj, ply or glb, not {body_format!r}")
-    check_cluster_settings(workers, threads_per_task)
+    check_cluster_settings(workers, threads_per_task, task_timeout)
     scan_list = as_scans(scans)
     os.makedirs(out_dir, exist_ok=True)
     model_path = os.path.abspath(model) if model else None
@@ -77,7 +78,7 @@ def fit_collection(scans, model: Optional[str] = None, out_dir: str = "fits", cl
             key = None  # unreadable: the task reports why
         jobs.append({"name": s.name, "scan": os.path.abspath(s.path), "landmarks": s.landmarks and os.path.abspath(s.landmarks),
                      "model": model_path, "units": units, "hands": hands, "shape_count": components, "max_iterations": iterations,
-                     "threads": threads_per_task, "key": key,
+                     "threads": threads_per_task, "key": key, "timeout": task_timeout,
                      "body": os.path.abspath(os.path.join(out_dir, f"{s.name}.{body_format}")),
                      "params": os.path.abspath(os.path.join(out_dir, f"{s.name}.json"))})
     todo, kept = _kept_fits(out_dir, jobs)
