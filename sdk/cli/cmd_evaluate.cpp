@@ -6,6 +6,7 @@
 
 #include "capi/cpp_access.hpp"
 #include "common/files.hpp"
+#include "common/output_paths.hpp"
 #include "learning/evaluate_learning.hpp"
 #include "learning/registration_record.hpp"
 #include "render/plot.hpp"
@@ -75,6 +76,14 @@ int run_evaluate(const Options& o) {
         std::printf("[%6.1f s] %s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), stage.c_str());
         std::fflush(stdout);
     };
+    const char* titles[3] = {"compactness", "generalization", "specificity"};
+    std::vector<std::string> written = {o.out + ".csv"};
+    for (const char* t : titles) written.push_back(o.out + "_" + t + ".png");
+    std::vector<std::string> inputs = o.registrations;
+    inputs.insert(inputs.end(), o.models.begin(), o.models.end());
+    inputs.push_back(o.model);
+    for (const auto& w : written) refuse_output_over_input(w, inputs);
+    OutputFiles outputs(written);  // the CSV and the three plots, or nothing (a failed plot once left the CSV)
     ssc_model* handle = load_model(o.model);
     Handles guard(handle);
     const Model& model = model_of(handle);
@@ -124,7 +133,13 @@ int run_evaluate(const Options& o) {
             std::size_t same = 0;
             for (const auto& other : o.models) same += std::filesystem::path(other).stem() == p.stem();
             const std::string name = same > 1 ? p.parent_path().filename().string() + "/" + p.stem().string() : p.stem().string();
-            series.push_back({name, learning::evaluate_model(format::read_model_file(path), X, spec)});
+            const format::ModelData other = format::read_model_file(path);
+            // Registrations are in --model's mesh: a model of another mesh with as many vertices
+            // once ran and reported errors of 600 mm.
+            if (other.mesh.triangles != model.data().mesh.triangles)
+                throw std::runtime_error(path + ": its mesh is not the one the registrations were made in (" + (o.model.empty() ? "the built-in model" : o.model) +
+                                         "'s): its triangles differ; evaluate models of the registrations' template");
+            series.push_back({name, learning::evaluate_model(other, X, spec)});
         }
     }
     std::printf("%-24s  %10s  %11s  %14s  %14s\n", "series", "components", "compactness", "generalization", "specificity");
@@ -133,6 +148,7 @@ int run_evaluate(const Options& o) {
             std::printf("%-24s  %10u  %11.4f  %11.2f mm  %11.2f mm\n", s.name.c_str(), q.components, q.compactness, q.generalization * 1e3,
                         q.specificity * 1e3);
     write_report(o.out, series, !o.models.empty());
+    outputs.keep();
     return 0;
 }
 

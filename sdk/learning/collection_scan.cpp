@@ -111,6 +111,9 @@ ScanFileResult register_scan_file(registration::Registrar& registrar, const std:
     const std::vector<std::string> inputs = {job.scan.path, job.scan.landmarks};
     for (const std::string& output : {job.mesh_path, record_report_path(job.mesh_path), fs::path(job.mesh_path).replace_extension(".failed.json").string(), job.picture_path})
         refuse_output_over_input(output, inputs);
+    // The mesh, its report and the picture: all written, or none left (an unwritable report once
+    // left the new mesh behind), and an unwritable path refused before the work.
+    OutputFiles outputs({job.mesh_path, job.write_report ? record_report_path(job.mesh_path) : "", job.picture_path});
     ScanFileResult out;
     std::string digest;
     try {
@@ -197,6 +200,7 @@ ScanFileResult register_scan_file(registration::Registrar& registrar, const std:
     // What is on disk from here on (floats in the scan's frame, distances to 0.01 mm): a run that
     // goes on from this record and one that resumes from the files then learn the same model.
     if (job.write_report) out.record = read_registration_record(job.mesh_path, model, false);
+    outputs.keep();
     return out;
 }
 
