@@ -27,6 +27,14 @@ grep -q "3 shape components\|components: 3\|3 components" "$out/info.txt" || { c
 grep -qi "age" "$out/info.txt" || { cat "$out/info.txt"; fail "info lists the given attribute"; }
 grep -q "CC-BY-4.0 (test scans)" "$out/info.txt" || { cat "$out/info.txt"; fail "the given licence"; }
 "$sscape" synth "$out/learned.sscape" --random 1 -o "$out/body.obj" > /dev/null 2>&1 || fail "a body of the learned model"
+# A fit's parameters carry its model's digest: read with another model they are refused (once they
+# made another body, 31 mm RMS away, and exit 0).
+"$sscape" fit "$out/learned.sscape" --landmarks "$out/s1.lnd" -o "$out/fit1.obj" --params "$out/fit1.json" > /dev/null 2>&1 || fail "fit with the learned model"
+grep -q '"model_digest"' "$out/fit1.json" || fail "the parameters name no model digest"
+"$sscape" synth "$out/learned.sscape" --params "$out/fit1.json" -o "$out/fit1_again.obj" > /dev/null 2>&1 || fail "synth --params with its model"
+"$sscape" synth --params "$out/fit1.json" -o "$out/fit1_other.obj" > "$out/other_model.txt" 2>&1
+[ $? -eq 1 ] && grep -q "was fitted with the model 'sscape-learned' (digest [0-9a-f]*), not this one" "$out/other_model.txt" && [ ! -e "$out/fit1_other.obj" ] ||
+    { cat "$out/other_model.txt"; fail "synth --params with another model"; }
 "$sscape" learn "$out"/reg?.ply --posture none --components 2 -o "$out/none.sscape" > /dev/null 2>&1 || fail "posture none"
 # The laplacian method needs no model fits (registrations started rigidly have none): the
 # reports' fits taken out, skeleton refuses and laplacian learns.

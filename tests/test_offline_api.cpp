@@ -300,6 +300,14 @@ TEST_CASE("a fitter reads scan and landmark files as sscape fit does and writes 
     const std::string json = read_regular_file(params, 1u << 20);
     CHECK(json.find("\"format\": \"sscape fit parameters 1\"") != std::string::npos);
     CHECK(json.find("\"upperarm_l\"") != std::string::npos);
+    // The model's digest, what a reader checks its model against: the built-in file's bytes'.
+    const char* digest = nullptr;
+    CHECK(ssc_model_get_digest(nullptr, &digest) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_model_get_digest(model, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+    REQUIRE(ssc_model_get_digest(model, &digest) == SSC_OK);
+    const std::string file = read_regular_file(test::default_model_file(), 1u << 30);
+    CHECK(std::string(digest) == content_digest(file.data(), file.size()));
+    CHECK(json.find("\"model_digest\": \"" + std::string(digest) + "\"") != std::string::npos);
     ssc_fitter_destroy(fitter);
     ssc_model_release(model);
 }

@@ -126,9 +126,18 @@ SSC_EXPERIMENTAL ssc_status ssc_fitter_add_landmarks_file(ssc_fitter* fitter, ui
                                                           ssc_fit_file_info* info);
 
 /**
- * Writes a solved fit's parameters as JSON, atomically: the model's name, the shape, each frame's
- * per-joint rotations (by joint name), translation and scale, and the report given (as
- * ssc_fitter_solve filled it): what `sscape fit --params` writes and `sscape synth --params` reads.
+ * The model's digest: 16 hex digits of the file bytes it was loaded from (the built-in model's as
+ * compiled in). Every result file records it (fit parameters as "model_digest", registration
+ * reports), so a tool reading a result with another model refuses it instead of making another
+ * body. *out is owned by the model. @return SSC_ERROR_INVALID_ARGUMENT for NULL.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_model_get_digest(const ssc_model* model, const char** out);
+
+/**
+ * Writes a solved fit's parameters as JSON, atomically: the model's name and digest
+ * ("model_digest"), the shape, each frame's per-joint rotations (by joint name), translation and
+ * scale, and the report given (as ssc_fitter_solve filled it): what `sscape fit --params` writes
+ * and `sscape synth --params` reads (refusing parameters of another model).
  * @return SSC_ERROR_INVALID_ARGUMENT for NULL or a fitter not solved; SSC_ERROR_IO.
  */
 SSC_EXPERIMENTAL ssc_status ssc_fitter_write_params(ssc_fitter* fitter, const ssc_fit_report* report, const char* path);

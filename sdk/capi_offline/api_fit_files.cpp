@@ -117,6 +117,14 @@ ssc_status ssc_fitter_add_landmarks_file(ssc_fitter* fitter, uint32_t frame, con
     });
 }
 
+ssc_status ssc_model_get_digest(const ssc_model* model, const char** out) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        need(out, "out");
+        *out = model->digest.c_str();
+    });
+}
+
 ssc_status ssc_fitter_write_params(ssc_fitter* fitter, const ssc_fit_report* report, const char* path) {
     return guarded(__func__, [&] {
         need(fitter, "fitter");
@@ -144,6 +152,7 @@ ssc_status ssc_fitter_write_params(ssc_fitter* fitter, const ssc_fit_report* rep
         nlohmann::ordered_json j;
         j["format"] = "sscape fit parameters 1";
         j["model"] = name;
+        j["model_digest"] = model->digest;  // what a reader of these parameters checks its model against
         j["shape"] = shape;
         j["frames"] = frames;
         const ssc_fit_report& r = *report;

@@ -4,6 +4,8 @@
 
 #include "common/files.hpp"
 
+#include <sscape/sscape_offline.h>
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -50,6 +52,15 @@ FitParams read_params(ssc_model* model, const std::string& path) {
     if (j.is_discarded() || !j.is_object()) throw UsageError(path + ": not a JSON object (write one with sscape fit --params)");
     FitParams p;
     try {
+        // Parameters mean something only in the model they were fitted with: with another one they
+        // once made another body (31 mm RMS away) without a word.
+        const char *digest = "", *name = "";
+        check(ssc_model_get_digest(model, &digest), "model digest");
+        check(ssc_model_get_metadata(model, SSC_METADATA_NAME, &name), "model name");
+        const std::string given_name = j.value("model", std::string()), given_digest = j.value("model_digest", std::string());
+        if ((!given_digest.empty() && given_digest != digest) || (given_digest.empty() && !given_name.empty() && given_name != name))
+            throw std::runtime_error(path + " was fitted with the model '" + given_name + "'" + (given_digest.empty() ? "" : " (digest " + given_digest + ")") +
+                                     ", not this one ('" + name + "', digest " + digest + "): give that model (sscape synth MODEL --params " + path + ")");
         p.shape = j.at("shape").get<std::vector<float>>();
         const auto& frame = j.at("frames").at(0);
         p.translation = frame.at("translation_m").get<std::vector<float>>();

@@ -52,7 +52,7 @@ PY
     > "$out/pipeline.log" 2>&1 || fail "the pipeline through the cluster"
 cat "$out/pipeline.log"
 grep -q "^4 scans: 4 registered, 0 reused, 0 failed" "$out/pipeline.log" || fail "4 scans registered"
-"$python" - "$out/registered/manifest.json" <<'PY' || fail "the manifest"
+"$python" - "$out/registered/pipeline/manifest.json" <<'PY' || fail "the manifest"
 import json, sys
 scans = json.load(open(sys.argv[1]))["scans"]
 assert sorted(scans) == [f"sim_00{i}" for i in range(1, 5)], sorted(scans)

@@ -242,6 +242,7 @@ _OFFLINE_DECLARATIONS = {
     "ssc_fitter_add_points_file": (_STATUS, [c_void_p, c_uint32, POINTER(FitFileDef), POINTER(FitFileInfo)]),
     "ssc_fitter_add_landmarks_file": (_STATUS, [c_void_p, c_uint32, POINTER(FitFileDef), POINTER(FitFileInfo)]),
     "ssc_fitter_write_params": (_STATUS, [c_void_p, POINTER(FitReport), c_char_p]),
+    "ssc_model_get_digest": (_STATUS, [c_void_p, POINTER(c_char_p)]),
     "ssc_bootstrap_def_init": (None, [POINTER(BootstrapDef), c_size_t]),
     "ssc_bootstrap_create": (_STATUS, [c_void_p, POINTER(BootstrapDef), POINTER(c_void_p)]),
     "ssc_bootstrap_destroy": (None, [c_void_p]),

@@ -7,7 +7,7 @@ from typing import Dict, List, NamedTuple, Union
 
 import numpy as np
 
-from ._native import BatchDesc, ContextDef, JointLimit, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib
+from ._native import BatchDesc, ContextDef, JointLimit, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib, need_offline
 from ._handle import Handle
 from .errors import check
 
@@ -92,6 +92,15 @@ class Model(Handle):
         buffer = bytes(data)
         check(lib.ssc_model_load_memory(None if context is None else context.handle, buffer, len(buffer), ctypes.byref(handle)))
         return cls(_handle=handle.value)
+
+    @property
+    def digest(self) -> str:
+        """16 hex digits of the file bytes the model was loaded from (the built-in model's as compiled
+        in): what fit parameters and registration reports record as model_digest (needs libsscape_offline)."""
+        need_offline("Model.digest")
+        out = ctypes.c_char_p()
+        check(lib.ssc_model_get_digest(self.handle, ctypes.byref(out)))
+        return out.value.decode()
 
     # Counts.
     @property

@@ -73,7 +73,7 @@ def test_register_collection_equals_the_serial_command_line(scans, registered, t
     assert result["broken"]["status"] == "failed"
     assert "not a PLY file" in result["broken"]["error"]
     assert not (out / "broken.ply").exists()
-    manifest = json.loads((out / "manifest.json").read_text())
+    manifest = json.loads((out / "pipeline" / "manifest.json").read_text())
     assert manifest["scans"] == json.loads(json.dumps(result)) and manifest["finished"]
     assert len({s["pid"] for s in result.values() if "pid" in s}) == 2  # both worker processes worked
     serial = tmp_path / "serial"
@@ -115,7 +115,7 @@ def test_a_killed_run_resumes(scans, client, tmp_path):
     deadline = time.time() + 300
     while time.time() < deadline and proc.poll() is None:
         try:
-            manifest = json.loads((out / "manifest.json").read_text())
+            manifest = json.loads((out / "pipeline" / "manifest.json").read_text())
             done = [n for n, s in manifest["scans"].items() if s["status"] == "registered"]
         except (OSError, ValueError):
             pass
@@ -147,7 +147,7 @@ def test_bootstrap_equals_the_serial_command_line(scans, client, tmp_path):
     for i in range(1, SCANS + 1):
         f = f"round_1/registrations/p{i}_scan.ply"
         assert filecmp.cmp(out / f, serial / f, shallow=False), f
-    manifest = json.loads((out / "round_1" / "manifest.json").read_text())
+    manifest = json.loads((out / "round_1" / "pipeline" / "manifest.json").read_text())
     assert manifest["scans"]["broken"]["status"] == "failed"
     learned = sscape.Model.from_file(out / "model.sscape")
     assert learned.shape_count == 2
@@ -223,6 +223,33 @@ def test_a_task_past_its_timeout_fails_alone_and_writes_nothing(scans, client, t
     done = subprocess.run([sys.executable, "-m", "sscape.pipeline", "fit", str(scans), "-o", str(tmp_path / "never"), "--task-timeout", "0"],
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 2 and "not in (0, 1e6] seconds" in done.stderr, done.stderr
+
+
+def test_a_scan_named_manifest_keeps_its_own_outputs(scans, client, tmp_path):
+    # The manifest once replaced manifest.ply's report: fit said "2 fitted", measure measured 1,
+    # register registered it again on every run.
+    folder = tmp_path / "scans"
+    folder.mkdir()
+    for i, name in ((1, "manifest"), (2, "other")):
+        shutil.copy(scans / f"p{i}_scan.ply", folder / f"{name}.ply")
+        shutil.copy(scans / f"p{i}.lnd", folder / f"{name}.lnd")
+    out = tmp_path / "registered"
+    first = pipeline.register_collection(folder, out_dir=out, client=client, progress=False)
+    assert {n: s["status"] for n, s in first.items()} == {"manifest": "registered", "other": "registered"}
+    assert json.loads((out / "manifest.json").read_text())["scan"].endswith("manifest.ply")  # its report
+    again = pipeline.register_collection(folder, out_dir=out, client=client, progress=False)
+    assert {n: s["status"] for n, s in again.items()} == {"manifest": "reused", "other": "reused"}
+    fits = tmp_path / "fits"
+    fitted = pipeline.fit_collection(folder, out_dir=fits, client=client, iterations=30, progress=False)
+    assert {n: s["status"] for n, s in fitted.items()} == {"manifest": "fitted", "other": "fitted"}
+    measured = pipeline.measure_collection(fits, client=client, progress=False)
+    assert {n: s["status"] for n, s in measured.items()} == {"manifest": "measured", "other": "measured"}
+    # Parameters of another model are refused, not measured as another body.
+    params = json.loads((fits / "other.json").read_text())
+    params["model_digest"] = "0123456789abcdef"
+    (fits / "other.json").write_text(json.dumps(params))
+    measured = pipeline.measure_collection(fits, client=client, progress=False)
+    assert measured["other"]["status"] == "failed" and "fitted with the model of digest 0123456789abcdef" in measured["other"]["error"]
 
 
 def test_fit_and_measure_collections_equal_the_serial_command_line(scans, client, tmp_path):

@@ -97,7 +97,7 @@ def main(argv=None) -> int:
             failed = {n: s for n, s in scans.items() if s["status"] == "failed"}
             done = sum(s["status"] == "registered" for s in scans.values())
             print(f"{len(scans)} scans: {done} registered, {len(scans) - done - len(failed)} reused, {len(failed)} failed; "
-                  f"{a.output}/manifest.json")
+                  f"{a.output}/pipeline/manifest.json")
             for name, s in failed.items():
                 print(f"failed: {name}: {s['error']}", file=sys.stderr)
             return 1 if failed else 0
@@ -106,7 +106,7 @@ def main(argv=None) -> int:
                 scans = fit_collection(a.scans, a.model, a.output, units=a.units, hands=a.hands, components=a.components,
                                        body_format=a.format, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet,
                                        task_timeout=a.task_timeout)
-                where = f"{a.output}/manifest.json"
+                where = f"{a.output}/pipeline/manifest.json"
             else:
                 scans = measure_collection(a.fits, a.model, a.output, scheduler=a.scheduler, workers=a.workers, progress=not a.quiet)
                 where = a.output or f"{a.fits}/measurements.csv"

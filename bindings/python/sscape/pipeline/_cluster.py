@@ -72,6 +72,14 @@ def say_dashboard(client) -> None:
             print(f"sscape.pipeline: the Dask dashboard is at {client.dashboard_link}", file=sys.stderr)
 
 
+def manifest_path(folder: str) -> str:
+    """Where a run over folder records its tasks: folder/pipeline/manifest.json. The pipeline's own
+    files live in a subfolder because every name a file of the folder could have is some scan's
+    (a scan named manifest.ply once had its report replaced by the manifest); scans' outputs are
+    files, so no scan's can be that folder."""
+    return os.path.join(folder, "pipeline", "manifest.json")
+
+
 def remove_stale_temporaries(folder: str) -> None:
     """Manifest temporaries a killed run left (it stopped between writing one and renaming it)."""
     with contextlib.suppress(OSError):
@@ -128,11 +136,12 @@ def run_tasks(client, function: Callable, jobs: List[dict], on_result: Callable[
 
 def run_into_manifest(client, function, jobs: List[dict], folder: str, header: dict, label: str, progress: bool,
                       kept: Optional[dict] = None) -> dict:
-    """Runs function(job) for every job, each result recorded by scan name in folder/manifest.json
+    """Runs function(job) for every job, each result recorded by scan name in manifest_path(folder)
     as it comes (header: what the run is; kept: results carried over without running). Returns the
     manifest's scans, sorted by name."""
-    remove_stale_temporaries(folder)
-    path = os.path.join(folder, "manifest.json")
+    path = manifest_path(folder)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    remove_stale_temporaries(os.path.dirname(path))
     manifest = {**header, "started": time.time(), "finished": None, "scans": dict(kept or {})}
 
     def record(result: dict) -> None:

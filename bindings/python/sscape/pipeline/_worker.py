@@ -149,8 +149,13 @@ def measure_job(job: dict) -> dict:
     job["model"], as `sscape measure --shape ...` does: every measurement by name, SI units."""
     def work():
         with open(job["params"]) as f:
-            shape = np.asarray(json.load(f)["shape"], np.float32)
+            params = json.load(f)
+        shape = np.asarray(params["shape"], np.float32)
         model = model_for(job.get("model"), job.get("threads", 1))
+        fitted_with = params.get("model_digest")
+        if fitted_with and fitted_with != model.digest:  # another model's coefficients make another body
+            raise ValueError(f"{job['params']} was fitted with the model of digest {fitted_with}, not this one ({model.digest}): "
+                             "measure with the model the fits were made with")
         with Body(model) as body:
             body.shape = shape
             return {"status": "measured", "measurements": body.measure()}

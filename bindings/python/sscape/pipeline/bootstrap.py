@@ -97,7 +97,7 @@ def bootstrap(scans_dir: str, init_model: Optional[str] = None, rounds: int = 3,
     """Bootstraps a model from the scans in scans_dir, as `sscape bootstrap` does: for each round,
     every scan registered with the previous round's model (one Dask task per scan; reused when
     already done), then inspected, decided and learned from here; out_dir holds round_N/ per round
-    (with manifest.json: each registration task's status and error), model.sscape and rounds.csv.
+    (with pipeline/manifest.json: each registration task's status and error), model.sscape and rounds.csv.
 
     init_model: the starting .sscape (None: the built-in model). settings: components, posture
     ("skeleton", "none" or "laplacian"), posture_model (skeleton: the model whose fits to the scans unpose

@@ -15,7 +15,7 @@ from .._native import lib
 from ..body import measurement_names
 from ..errors import check
 from . import _worker
-from ._cluster import check_cluster_settings, client_for, run_into_manifest, run_tasks
+from ._cluster import check_cluster_settings, client_for, manifest_path, run_into_manifest, run_tasks
 from .scans import as_scans
 
 _SI = {0: "m", 1: "m2", 2: "m3", 3: "kg"}
@@ -33,7 +33,7 @@ def _kept_fits(out_dir: str, jobs):
     """The jobs still to run, and the fits kept: made before from the same files and settings (the
     manifest says so) whose files are still there."""
     try:
-        with open(os.path.join(out_dir, "manifest.json")) as f:
+        with open(manifest_path(out_dir)) as f:
             old = json.load(f).get("scans", {})
     except (OSError, ValueError):
         old = {}
@@ -59,7 +59,7 @@ def fit_collection(scans, model: Optional[str] = None, out_dir: str = "fits", cl
     reason and writes nothing. Scans, model, units and the cluster as register_collection's; hands:
     use hand landmarks; components: shape components fitted (0: all); iterations: the solver's limit
     (0: its default); task_timeout: seconds after which a fit is stopped and recorded as failed
-    (None: no limit). out_dir/manifest.json: each scan's status ("fitted" or "failed"), error and
+    (None: no limit). out_dir/pipeline/manifest.json: each scan's status ("fitted" or "failed"), error and
     report. Running again keeps the fits made from the same scan and landmark files, model and
     settings (status "reused")."""
     if body_format not in ("obj", "ply", "glb"):
@@ -90,11 +90,11 @@ def fit_collection(scans, model: Optional[str] = None, out_dir: str = "fits", cl
 def measure_collection(fits_dir: str, model: Optional[str] = None, out_csv: Optional[str] = None, client=None, *,
                        scheduler: Optional[str] = None, workers: Optional[int] = None, progress: bool = True) -> Dict[str, dict]:
     """Measures the body of every fit in fits_dir (the NAME.json parameters fit_collection or `sscape
-    fit --params` wrote; the manifest.json is not one) with the model they were fitted with, as
+    fit --params` wrote) with the model they were fitted with, as
     `sscape measure --shape ...` does; writes out_csv (default fits_dir/measurements.csv): a row per
     scan, `scan,NAME_UNIT,...` in SI units, failed ones left out (they are in the returned dict with
     their error). Returns each scan's result by name."""
-    names = sorted(f[:-5] for f in os.listdir(fits_dir) if f.endswith(".json") and f != "manifest.json" and not f.startswith("."))
+    names = sorted(f[:-5] for f in os.listdir(fits_dir) if f.endswith(".json") and not f.startswith("."))
     model_path = os.path.abspath(model) if model else None
     jobs = [{"name": n, "params": os.path.abspath(os.path.join(fits_dir, n + ".json")), "model": model_path} for n in names]
     results: Dict[str, dict] = {}

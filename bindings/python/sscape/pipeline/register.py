@@ -15,7 +15,7 @@ def register_collection(scans, model: Optional[str] = None, out_dir: str = "regi
                         fit_segments: bool = True, task_timeout: Optional[float] = None) -> Dict[str, dict]:
     """Registers every scan into out_dir: NAME.ply (the model's topology, the scan's frame and
     units), NAME.json (the report sscape learn reads) and, with pictures, NAME.png; then
-    out_dir/manifest.json with each scan's status ("registered", "reused" or "failed"), error and
+    out_dir/pipeline/manifest.json with each scan's status ("registered", "reused" or "failed"), error and
     times.
 
     scans: a folder (every .ply and .obj; NAME.lnd beside a scan: its landmarks) or a list of scan
