@@ -51,7 +51,7 @@ for f in "$run/round_1/registrations/"*.json; do
     [ -s "$f" ] && [ -s "${f%.json}.ply" ] && registered=$((registered + 1))
 done
 [ "$registered" -ge 1 ] && [ "$registered" -lt 4 ] || fail "$registered registrations before the disk filled (expected 1 to 3)"
-leftovers=$(find "$run" -type f ! -name "*.ply" ! -name "*.json" ! -name "*.sscape" ! -name "*.csv" ! -name "*.png" | wc -l)
+leftovers=$(find "$run" -type f ! -name "*.ply" ! -name "*.json" ! -name "*.sscape" ! -name "*.csv" ! -name "*.png" ! -name .sscape-lock | wc -l)
 [ "$leftovers" -eq 0 ] || { find "$run" -type f; fail "temporary files left behind"; }
 
 # Room again: the same command resumes, reusing every registration that was written.

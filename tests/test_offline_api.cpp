@@ -370,6 +370,17 @@ TEST_CASE("bootstrapping refuses bad settings before writing, and gives each rou
     CHECK(job.reuse == 1);
     CHECK(fs::is_directory(out + "/round_2/registrations"));
     CHECK(ssc_bootstrap_run(b, 0, nullptr, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+    // A second bootstrapping into the folder in use is refused (two once both said "wrote
+    // model.sscape" and the folder kept the second's); once the first ends, it may start.
+    ssc_bootstrap* second = nullptr;
+    REQUIRE(ssc_bootstrap_create(nullptr, &def, &second) == SSC_OK);  // reading the inputs writes nothing
+    const std::string model_before = read_regular_file(out + "/round_0/model.sscape", 1u << 30);
+    CHECK(ssc_bootstrap_prepare(second) == SSC_ERROR_IO);
+    CHECK(last_error().find("the output folder " + out + " is in use by another bootstrap (process ") != std::string::npos);
+    CHECK(ssc_bootstrap_run(second, 1, nullptr, nullptr) == SSC_ERROR_IO);
+    CHECK(read_regular_file(out + "/round_0/model.sscape", 1u << 30) == model_before);
     ssc_bootstrap_destroy(b);
+    CHECK(ssc_bootstrap_prepare(second) == SSC_OK);
+    ssc_bootstrap_destroy(second);
     ssc_bootstrap_destroy(nullptr);
 }

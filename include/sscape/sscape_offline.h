@@ -195,6 +195,7 @@ SSC_EXPERIMENTAL void ssc_bootstrap_def_init(ssc_bootstrap_def* def, size_t size
  *         naming no scan, an attribute table without a row for a scan, a bad model; SSC_ERROR_IO.
  */
 SSC_EXPERIMENTAL ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, ssc_bootstrap** out);
+/** Ends the bootstrapping and releases its output folder (see ssc_bootstrap_prepare). NULL is ignored. */
 SSC_EXPERIMENTAL void ssc_bootstrap_destroy(ssc_bootstrap* bootstrap);
 
 /** The scans, as ssc_scan_list_get gives them; strings owned by the bootstrap. */
@@ -203,7 +204,10 @@ SSC_EXPERIMENTAL ssc_status ssc_bootstrap_get_scan(const ssc_bootstrap* bootstra
                                                    const char** path, const char** landmarks);
 
 /** Writes round 0's starting model (unless the same bytes are there): the first step of a run
- *  whose registrations are made elsewhere. Threads: one at a time per bootstrap. */
+ *  whose registrations are made elsewhere. The first of prepare and run locks the output folder
+ *  until ssc_bootstrap_destroy: a second bootstrapping into it (in any process) gets SSC_ERROR_IO
+ *  naming the folder, instead of both succeeding and the folder keeping one result. Threads: one
+ *  at a time per bootstrap. */
 SSC_EXPERIMENTAL ssc_status ssc_bootstrap_prepare(ssc_bootstrap* bootstrap);
 
 /**

@@ -6,6 +6,7 @@
 #include "capi/handles.hpp"
 #include "capi/registration_report.hpp"
 #include "common/files.hpp"
+#include "common/folder_lock.hpp"
 #include "learning/bootstrap.hpp"
 #include "learning/posture_fit.hpp"
 #include <sscape/sscape_offline.h>
@@ -13,6 +14,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 using namespace ssc;
 using namespace ssc::capi;
@@ -22,6 +24,22 @@ struct ssc_bootstrap {
     std::vector<unsigned char> initial_model;  // the starting model file's bytes
     std::string units, up;                     // as given (the file jobs carry them)
     std::string job_mesh, job_model;           // the last job's strings
+    std::unique_ptr<FolderLock> lock;          // the output folder's, from the first call that writes until destroy
+
+    void lock_output() {
+        if (!lock) lock = std::make_unique<FolderLock>(spec.out_dir, "bootstrap");
+    }
+    // A failed call ends the run: the folder is released (and removed if the run wrote nothing
+    // into it); a later call takes the lock again.
+    template <class F>
+    void unlocked_on_failure(F&& work) {
+        try {
+            work();
+        } catch (...) {
+            lock.reset();
+            throw;
+        }
+    }
 };
 
 namespace {
@@ -154,7 +172,8 @@ ssc_status ssc_bootstrap_get_scan(const ssc_bootstrap* bootstrap, uint32_t index
 ssc_status ssc_bootstrap_prepare(ssc_bootstrap* bootstrap) {
     return guarded(__func__, [&] {
         need(bootstrap, "bootstrap");
-        learning::prepare_bootstrap(bootstrap->initial_model, bootstrap->spec);
+        bootstrap->lock_output();
+        bootstrap->unlocked_on_failure([&] { learning::prepare_bootstrap(bootstrap->initial_model, bootstrap->spec); });
     });
 }
 
@@ -193,11 +212,12 @@ ssc_status ssc_bootstrap_run(ssc_bootstrap* bootstrap, uint32_t rounds, ssc_line
     return guarded(__func__, [&] {
         need(bootstrap, "bootstrap");
         SSC_REQUIRE_ARG_S(rounds >= 1 && rounds <= 100, "rounds " << rounds << " is not 1..100");
+        bootstrap->lock_output();
         learning::BootstrapSpec spec = bootstrap->spec;
         spec.rounds = rounds;
         learning::BootstrapProgress say;
         if (progress) say = [&](const std::string& line) { return progress(user, line.c_str()) == 0; };
-        learning::bootstrap(bootstrap->initial_model, spec, say);
+        bootstrap->unlocked_on_failure([&] { learning::bootstrap(bootstrap->initial_model, spec, say); });
     });
 }
 

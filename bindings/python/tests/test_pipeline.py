@@ -167,6 +167,20 @@ def test_bootstrap_settings_name_the_posture_normalization(scans, tmp_path):
         pipeline.Bootstrapping(str(scans), str(tmp_path / "x"), posture="wuhrer")
 
 
+def test_two_bootstraps_into_one_folder_the_second_is_refused(scans, tmp_path):
+    # Both once said "wrote model.sscape" and the folder kept only the second's model.
+    out = tmp_path / "shared"
+    first = pipeline.Bootstrapping(str(scans), str(out), components=2)
+    second = pipeline.Bootstrapping(str(scans), str(out), components=3)
+    first.prepare()
+    with pytest.raises(sscape.SscapeError, match="is in use by another bootstrap") as e:
+        second.prepare()
+    assert e.value.status_name == "SSC_ERROR_IO"
+    first.close()  # the folder is free again
+    second.prepare()
+    second.close()
+
+
 def test_a_folder_with_stale_links_and_a_name_that_is_not_utf8_lists(tmp_path):
     # A link to nothing and a loop of links are left out with a warning naming them (they once
     # stopped the listing); a file name that is not UTF-8 is kept as the bytes it is.
