@@ -348,6 +348,16 @@ TEST_CASE("learning refuses bad registrations with a clear message", "[learning]
     refuses(scans, attrs, "2 values for 4");
     attrs.attributes = {{"age", "years", "", true, {30, 40, std::nan(""), 20}}};
     refuses(scans, attrs, "not finite");
+    attrs.attributes = {{"age", "years", "", true, {30, 30, 30, 30}}};  // once "attributes.covariance has a diagonal entry <= 0"
+    refuses(scans, attrs, "age is 30 for every registration");
+    attrs.attributes = {{"age", "years", "", true, {30, 40, 1e300, 20}}};
+    refuses(scans, attrs, "has the value 1e+300");
+    attrs.attributes = {{"age", "years", "", true, {30, 40, 50, 20}}, {"age", "years", "", true, {1, 2, 3, 4}}};
+    refuses(scans, attrs, "age is given twice");
+    attrs.attributes.assign(65, {"a", "", "", true, {1, 2, 3, 4}});
+    for (std::size_t a = 0; a < attrs.attributes.size(); ++a) attrs.attributes[a].name += std::to_string(a);
+    refuses(scans, attrs, "65 attributes; at most 64");
+    refuses({scans[0], scans[0], scans[0], scans[0]}, spec, "all the same body");
     learning::LearnSpec other_rig = spec;
     auto moved = std::make_shared<format::ModelData>(m.data());
     moved->skeleton.rest_orientations[4] += 0.2f;  // a joint's rest frame turned: its poses mean other rotations

@@ -64,9 +64,10 @@ void check_inputs(const format::ModelData& t, const std::vector<RegisteredScan>&
         for (std::size_t k = 0; k < i; ++k) SSC_REQUIRE_ARG_S(spec.attributes[k].name != a.name, "learn: attribute " << a.name << " is given twice");
         SSC_REQUIRE_ARG_S(a.values.size() == scans.size(), "learn: attribute " << a.name << " has " << a.values.size() << " values for "
                                                                              << scans.size() << " registrations");
-        for (double x : a.values)
-            SSC_REQUIRE_ARG_S(std::isfinite(x) && std::abs(x) <= kMaxAttributeValue,
-                              "learn: attribute " << a.name << " has the value " << x << "; values lie within +-" << kMaxAttributeValue);
+        for (double x : a.values) {
+            SSC_REQUIRE_ARG_S(std::isfinite(x), "learn: attribute " << a.name << " has a value that is not finite");
+            SSC_REQUIRE_ARG_S(std::abs(x) <= kMaxAttributeValue, "learn: attribute " << a.name << " has the value " << x << "; values lie within +-" << kMaxAttributeValue);
+        }
         const auto [lo, hi] = std::minmax_element(a.values.begin(), a.values.end());
         SSC_REQUIRE_ARG_S(*hi - *lo > 1e-12 * std::max(1.0, std::abs(*hi)),
                           "learn: attribute " << a.name << " is " << *lo << " for every registration: it tells nothing about shape (leave its column out)");
