@@ -3,7 +3,11 @@
 #include "common/error.hpp"
 #include "sscape_format/model_data.hpp"
 
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
 #include <cmath>
+#include <unordered_set>
 
 namespace ssc::fitting {
 
@@ -32,14 +36,46 @@ void validate_cloud(const PointCloud& c, const std::string& where) {
     }
 }
 
+void validate_spread(const std::vector<const std::vector<Vector3d>*>& clouds, const std::string& where) {
+    std::size_t n = 0;
+    for (const auto* c : clouds) n += c->size();
+    if (n == 0) return;
+    // Distinct 1 cm cells: a body's surface fills thousands; a cloud needs min(100, n / 4).
+    const std::size_t needed = std::min<std::size_t>(100, std::max<std::size_t>(1, n / 4));
+    std::unordered_set<uint64_t> cells;
+    Vector3d mean = Vector3d::Zero();
+    for (const auto* c : clouds)
+        for (const Vector3d& p : *c) {
+            mean += p;
+            if (cells.size() >= needed) continue;
+            const Eigen::Array3d q = (p.array() / 0.01).floor();
+            const uint64_t key = (uint64_t(int64_t(q[0]) & 0x1FFFFF) << 42) | (uint64_t(int64_t(q[1]) & 0x1FFFFF) << 21) | uint64_t(int64_t(q[2]) & 0x1FFFFF);
+            cells.insert(key);
+        }
+    SSC_REQUIRE_ARG_S(cells.size() >= needed, where << ": its " << n << " points lie at only " << cells.size()
+                                                    << " places (1 cm apart): not a scan of a body (duplicated or collapsed points)");
+    mean /= double(n);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto* c : clouds)
+        for (const Vector3d& p : *c) cov += (p - mean) * (p - mean).transpose();
+    cov /= double(n);
+    const Eigen::Vector3d spread = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly).eigenvalues().cwiseMax(0).cwiseSqrt();
+    // A body (a hand, a face) is at least centimetres thick in every direction; a wall is not.
+    SSC_REQUIRE_ARG_S(!(spread[0] < 0.003 && spread[2] > 0.05), where << ": its points lie in one plane (" << 1e3 * spread[0]
+                                                                        << " mm thick over " << 1e3 * spread[2] << " mm): a wall or a floor, not a body");
+}
+
 void validate_frame(const format::ModelData& model, const Frame& frame, const std::string& where) {
     for (const auto& l : frame.landmarks) validate_landmark(model, l, where);
     std::size_t points = 0;
+    std::vector<const std::vector<Vector3d>*> clouds;
     for (const auto& c : frame.clouds) {
         validate_cloud(c, where);
         points += c.points.size();
+        clouds.push_back(&c.points);
     }
     SSC_REQUIRE_ARG_S(frame.landmarks.size() >= 3 || points >= 16, where << " has too little data (at least 3 landmarks or 16 points)");
+    validate_spread(clouds, where);
 }
 
 }  // namespace ssc::fitting

@@ -49,6 +49,11 @@ void validate_landmark(const format::ModelData& model, const LandmarkTarget& tar
 // point, normals unit or zero (unknown), confidences in [0, 1].
 void validate_cloud(const PointCloud& cloud, const std::string& where);
 
+// Points that cannot be a scan of a body, whatever their count: all at a few places (two clusters of
+// identical points once fitted as converged, 6.5 SD of shape) or in one plane (a wall, a floor).
+// Throws INVALID_ARGUMENT naming `where`. Linear in the points; stops counting places early.
+void validate_spread(const std::vector<const std::vector<Vector3d>*>& clouds, const std::string& where);
+
 // A frame's landmarks and clouds, and enough of them to fit: 3 landmarks or 16 points.
 void validate_frame(const format::ModelData& model, const Frame& frame, const std::string& where);
 

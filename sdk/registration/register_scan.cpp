@@ -5,6 +5,7 @@
 #include "fitting/nearest.hpp"
 #include "fitting/posed_surface.hpp"
 #include "fitting/scan_normals.hpp"
+#include "registration/landmark_agreement.hpp"
 #include "registration/nonrigid.hpp"
 #include "registration/scan_boundary.hpp"
 #include "synthesis/body.hpp"
@@ -26,6 +27,8 @@ constexpr double kRelaxedRange = 1000;
 constexpr double kSettled = 0.0005;
 // Scans smaller than this are no body scan.
 constexpr std::size_t kMinPoints = 100;
+// The least share of the registered template within 20 mm of the scan for a registration to count.
+constexpr double kLeastOnScan = 0.1;
 // Metres: from the model start, landmarks this close to the hands (the wrists' styloids, any on
 // the hands) pull in the model fit only, not in the deformation.
 constexpr double kNearHands = 0.03;
@@ -70,6 +73,7 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
     const format::ModelData& d = model.data();
     const uint32_t V = model.vertex_count();
     fitting::validate_cloud(scan.cloud, "register: scan");
+    fitting::validate_spread({&scan.cloud.points}, "register: the scan");
     SSC_REQUIRE_ARG_S(scan.cloud.points.size() >= kMinPoints,
                       "register: the scan has " << scan.cloud.points.size() << " points; a body scan needs at least " << kMinPoints);
     for (std::size_t l = 0; l < scan.landmarks.size(); ++l) fitting::validate_landmark(d, scan.landmarks[l], "register: landmark " + std::to_string(l));
@@ -87,8 +91,11 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
     const bool oriented = fitting::estimate_missing_normals(points, index, normals);
     const ScanRim rim = scan.triangles.empty() ? ScanRim(points, normals, index) : ScanRim(scan.triangles, points.size());
 
+    if (!scan.landmarks.empty()) require_landmarks_on_scan(d, scan.landmarks, index);
+
     // The start: the template placed, posed and shaped by the initialisation.
     Registration out;
+    std::vector<uint8_t> landmark_off(scan.landmarks.size(), 0);  // left out of the deformation
     std::vector<Vector3d> start;
     Body body(model, nullptr);
     body.set_pool(&workers);
@@ -110,11 +117,34 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
             // only place the template: it leaves the person's shape unexplained and bends joints
             // past their ranges to make up for it (spines 34-38 degrees on simulated MakeHuman
             // scans). Its fit is a rough start for the deformation, judged after it (acceptance).
+            // Wrong landmarks (moved, exchanged sides) pull the fit or make it fail: fitted to the
+            // points alone, the body says whether they were the cause, and which they are. Only
+            // on these failure paths: it costs a second fit.
+            auto landmarks_against_points_alone = [&](const std::string& prefix) {
+                frame.landmarks.clear();
+                const fitting::FitSolution alone = fitting::fit(lin, {frame}, options.fit, nullptr, fit_progress, &workers);
+                if (alone.report.cancelled) fail(SSC_ERROR_CANCELLED, "registration cancelled");
+                if (alone.report.frames.empty() || alone.report.frames[0].failed) return;
+                std::vector<Vector3d> fitted;
+                fitting::posed_surface(body, alone.frames[0], fitted);
+                const LandmarkAgreement a = landmark_agreement(d, scan.landmarks, fitted);
+                if (a.disagrees()) fail(SSC_ERROR_INVALID_ARGUMENT, prefix + a.describe(d, scan.landmarks));
+            };
             const fitting::FrameReport* judged = out.fit.report.frames.empty() ? nullptr : &out.fit.report.frames[0];
-            if (judged && judged->failed && lin.K > 0)
-                fail(SSC_ERROR_INVALID_ARGUMENT, "register: the model fit to the scan failed (" + judged->problem_text +
-                                                     "): a registration started from it would be wrong; landmarks on the scan help a hard pose");
+            if (judged && judged->failed && lin.K > 0) {
+                const std::string why = "register: the model fit to the scan failed (" + judged->problem_text + ")";
+                if (!scan.landmarks.empty()) landmarks_against_points_alone(why + " with the landmarks given; ");
+                fail(SSC_ERROR_INVALID_ARGUMENT, why + ": a registration started from it would be wrong; landmarks on the scan help a hard pose");
+            }
             fitting::posed_surface(body, out.fit.frames[0], start);
+            if (!scan.landmarks.empty() && lin.K > 0) {
+                const LandmarkAgreement a = landmark_agreement(d, scan.landmarks, start);
+                if (a.disagrees()) {
+                    landmarks_against_points_alone("register: ");
+                    fail(SSC_ERROR_INVALID_ARGUMENT, "register: " + a.describe(d, scan.landmarks));
+                }
+                landmark_off = a.off;  // a few: the fit ignored them; the deformation would pull the surface to them
+            }
             out.report.fit_seconds = out.fit.report.seconds;
             break;
         }
@@ -168,7 +198,9 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
             if (region[v] >= 0 && region_names[std::size_t(region[v])] == "hands") hand_vertices.push_back(start[v]);
     std::vector<TemplatePoint> marks;
     std::vector<LandmarkTarget> landmarks;
-    for (const auto& l : scan.landmarks) {
+    for (std::size_t k = 0; k < scan.landmarks.size(); ++k) {
+        const auto& l = scan.landmarks[k];
+        if (landmark_off[k]) continue;
         const fitting::SurfacePoint p = fitting::landmark_point(d, l.landmark);
         const Vector3d at = point_on(start, p);
         bool near_hands = false;
@@ -253,6 +285,13 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
     for (uint32_t v = 0; v < V; ++v) out.valid[v] = weights[v] > 0, out.report.valid += out.valid[v];
     out.report.quality = registration_quality(out.vertices, triangles, vertex_normals(out.vertices, triangles), region,
                                               region_names, points, normals, oriented, index, workers);
+    // A registration that lies mostly off its scan found no person there (two clusters of points
+    // once "registered" with 3 % of the template within 20 mm; a front view alone gives 45 %).
+    const double on_scan = out.report.quality.below[3];
+    if (on_scan < kLeastOnScan)
+        fail(SSC_ERROR_INVALID_ARGUMENT, "register: only " + std::to_string(int(std::lround(100 * on_scan))) +
+                                             " % of the registered template lies within 20 mm of the scan: it missed the person (not a body scan, "
+                                             "or one the start cannot reach)");
     out.report.scan_points = scan.cloud.points.size();
     out.report.landmarks = scan.landmarks.size();
     out.report.deformation_landmarks = landmarks.size();
