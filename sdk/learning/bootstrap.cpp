@@ -70,25 +70,6 @@ void check_spec(const BootstrapSpec& spec) {
 
 }  // namespace
 
-std::map<std::string, PersonDecision> read_decisions(const std::string& path) {
-    std::istringstream in(read_regular_file(path, 64ull << 20));
-    std::string line;
-    std::map<std::string, PersonDecision> out;
-    if (!std::getline(in, line) || csv_cells(line).at(0) != "scan")
-        throw Error(SSC_ERROR_INVALID_ARGUMENT, path + ": the first line must be the header scan,decision,reason,by");
-    for (std::size_t number = 2; std::getline(in, line); ++number) {
-        if (line.empty() || line == "\r") continue;
-        const std::vector<std::string> c = csv_cells(line);
-        const std::string where = path + ":" + std::to_string(number) + ": ";
-        if (c.size() < 2 || (c[1] != "accept" && c[1] != "reject"))
-            throw Error(SSC_ERROR_INVALID_ARGUMENT, where + "expected scan,accept|reject[,reason[,by]]");
-        if (c.size() >= 4 && c[3] == "auto") continue;
-        if (!out.emplace(c[0], PersonDecision{c[1] == "accept", c.size() >= 3 ? c[2] : std::string()}).second)
-            throw Error(SSC_ERROR_INVALID_ARGUMENT, where + "scan " + c[0] + " is decided twice");
-    }
-    return out;
-}
-
 std::string round_model_path(const std::string& out_dir, uint32_t round) { return round_dir(out_dir, round) + "/model.sscape"; }
 
 std::string round_registration_path(const std::string& out_dir, uint32_t round, const std::string& scan_name) {

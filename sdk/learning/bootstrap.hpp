@@ -30,11 +30,8 @@
 
 namespace ssc::learning {
 
-// A person's verdict on a scan (from an edited decisions file): holds in every round.
-struct PersonDecision {
-    bool accept = false;
-    std::string reason;
-};
+// A person's verdict on a scan (PersonDecision, scan_tables.hpp, from an edited decisions file)
+// holds in every round.
 
 struct BootstrapSpec {
     std::vector<ScanInput> scans;
@@ -91,11 +88,5 @@ ScanFileJob round_registration_job(const BootstrapSpec& spec, uint32_t round, co
 // and pass the decisions, then run again); IO; CANCELLED.
 std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_model, const BootstrapSpec& spec,
                                    const BootstrapProgress& progress = {});
-
-// Reads a decisions file: CSV scan,decision[,reason[,by]] with a header line; decision is accept or
-// reject. Rows whose `by` is "auto" are the tool's own verdicts and are skipped, so a person can
-// edit a round's decisions.csv (changing a row's decision and its by to "person") and pass it back.
-// Throws ssc::Error (IO; INVALID_ARGUMENT for a malformed row or a scan named twice).
-std::map<std::string, PersonDecision> read_decisions(const std::string& path);
 
 }  // namespace ssc::learning

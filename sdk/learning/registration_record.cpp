@@ -43,12 +43,24 @@ double in_range(const ordered_json& j, const char* key, double lo, double hi) {
     return x;
 }
 
+// A count read from a report: a whole number in [0, hi], `fallback` when absent. (nlohmann casts a
+// float like 3.7e52 to an integer type unchecked, undefined behaviour the fuzz target found.)
+uint64_t whole_in(const ordered_json& j, const char* key, uint64_t hi, uint64_t fallback) {
+    if (!j.contains(key)) return fallback;
+    const ordered_json& v = j.at(key);
+    SSC_REQUIRE_ARG_S(v.is_number_unsigned() || (v.is_number_integer() && v.get<int64_t>() >= 0),
+                      "the report's " << key << " is not a whole number >= 0");
+    const uint64_t x = v.is_number_unsigned() ? v.get<uint64_t>() : uint64_t(v.get<int64_t>());
+    SSC_REQUIRE_ARG_S(x <= hi, "the report's " << key << " " << x << " is above " << hi);
+    return x;
+}
+
 void quality_from_json(const ordered_json& j, registration::DistanceSummary& d, std::array<double, 4>& below) {
     d.mean = in_range(j, "scan_to_registration_mean_m", 0, 1e3);
     d.median = in_range(j, "scan_to_registration_median_m", 0, 1e3);
     d.p95 = in_range(j, "scan_to_registration_p95_m", 0, 1e3);
-    d.count = j.value("scan_points", std::size_t(0));  // sscape register's reports have no counts
-    d.beyond_20mm = j.value("scan_points_beyond_20_mm", std::size_t(0));
+    d.count = whole_in(j, "scan_points", 1ull << 40, 0);  // sscape register's reports have no counts
+    d.beyond_20mm = whole_in(j, "scan_points_beyond_20_mm", d.count ? d.count : 1ull << 40, 0);
     const std::vector<double> b = j.at("vertices_within_2_5_10_20_mm");
     SSC_REQUIRE_ARG(b.size() == 4, "vertices_within_2_5_10_20_mm needs 4 shares");
     for (double x : b) SSC_REQUIRE_ARG_S(std::isfinite(x) && x >= 0 && x <= 1, "the report's vertices_within_2_5_10_20_mm holds " << x << ", not a share");
@@ -118,14 +130,24 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
     const std::string path = record_report_path(mesh_path);
     if (!std::filesystem::exists(path))
         throw Error(SSC_ERROR_IO, mesh_path + ": no registration report " + path + " (sscape register --report writes it)");
+    RegistrationRecord r = parse_registration_report(read_regular_file(path, kMaxReport), path, model, need_fit);
+    r.registered.name = mesh_path;
+    const Eigen::Matrix3d R = up_axis_rotation(r.scan_up);
+    for (const auto& p : io::read_points(mesh_path).points) r.registered.vertices.push_back(R * (p * r.scan_units_to_metres));
+    if (r.registered.vertices.size() != model.vertex_count())
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, mesh_path + ": " + std::to_string(r.registered.vertices.size()) + " vertices; the model has " +
+                                                    std::to_string(model.vertex_count()) + " (was it registered with this model?)");
+    return r;
+}
+
+RegistrationRecord parse_registration_report(const std::string& text, const std::string& path, const Model& model, bool need_fit) {
     ordered_json j;  // keeps the regions in the order they were written
     try {
-        j = ordered_json::parse(read_regular_file(path, kMaxReport));
+        j = ordered_json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw Error(SSC_ERROR_INVALID_ARGUMENT, path + ": not a registration report: " + e.what());
     }
     RegistrationRecord r;
-    r.registered.name = mesh_path;
     const uint32_t V = model.vertex_count();
     try {
         SSC_REQUIRE_ARG(j.is_object(), "not a JSON object");
@@ -135,8 +157,8 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
         r.fit_segments = j.value("fit_segments", false);
         r.seconds = j.contains("seconds") ? in_range(j, "seconds", 0, 1e9) : 0.0;
         r.fit_seconds = j.contains("fit_seconds") ? in_range(j, "fit_seconds", 0, 1e9) : 0.0;
-        r.rounds = j.value("rounds", 0u);
-        r.solves = j.value("solves", 0u);
+        r.rounds = uint32_t(whole_in(j, "rounds", 1000000, 0));
+        r.solves = uint32_t(whole_in(j, "solves", 1000000000, 0));
         r.model_digest = j.value("model_digest", "");
         r.scan_digest = j.value("scan_digest", "");
         // The units a scan can be read in (io::units_to_metres): m, cm, mm.
@@ -160,7 +182,12 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
             }
         }
         if (j.contains("valid")) {
-            r.valid = j.at("valid").get<std::vector<uint8_t>>();
+            const ordered_json& flags = j.at("valid");
+            SSC_REQUIRE_ARG(flags.is_array(), "valid is not an array of flags");
+            for (const ordered_json& f : flags) {
+                SSC_REQUIRE_ARG(f.is_number_integer() && (f.get<int64_t>() == 0 || f.get<int64_t>() == 1), "valid holds a value other than 0 and 1");
+                r.valid.push_back(uint8_t(f.get<int64_t>()));
+            }
             SSC_REQUIRE_ARG(r.valid.size() == V, "valid has a flag per vertex of another model");
         }
         if (j.contains("fit")) {
@@ -174,11 +201,6 @@ RegistrationRecord read_registration_record(const std::string& mesh_path, const 
     }
     if (!r.registered.has_fit && need_fit)
         throw Error(SSC_ERROR_INVALID_ARGUMENT, path + ": the report has no model fit (registered with --start rigid or rbf); use --posture none or laplacian");
-    const Eigen::Matrix3d R = up_axis_rotation(r.scan_up);
-    for (const auto& p : io::read_points(mesh_path).points) r.registered.vertices.push_back(R * (p * r.scan_units_to_metres));
-    if (r.registered.vertices.size() != V)
-        throw Error(SSC_ERROR_INVALID_ARGUMENT, mesh_path + ": " + std::to_string(r.registered.vertices.size()) + " vertices; the model has " +
-                                                    std::to_string(V) + " (was it registered with this model?)");
     return r;
 }
 

@@ -39,6 +39,10 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
 // the model fit when need_fit).
 RegistrationRecord read_registration_record(const std::string& mesh_path, const Model& model, bool need_fit);
 
+// The report alone, from its text (`path` names it in messages): every value range-checked, the
+// mesh's vertices not read (what the fuzz target feeds). Throws as read_registration_record.
+RegistrationRecord parse_registration_report(const std::string& text, const std::string& path, const Model& model, bool need_fit);
+
 // A short digest of a file's bytes (hex): which model and which scan a registration was made from.
 std::string model_digest(const std::vector<unsigned char>& model_file);
 std::string file_digest(const std::string& bytes);

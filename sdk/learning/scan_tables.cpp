@@ -37,8 +37,31 @@ std::string csv_cell(const std::string& text) {
     return out + "\"";
 }
 
-AttributeTable read_attribute_table(const std::string& path) {
-    std::istringstream in(read_regular_file(path, 256ull << 20));
+AttributeTable read_attribute_table(const std::string& path) { return parse_attribute_table(read_regular_file(path, 256ull << 20), path); }
+
+std::map<std::string, PersonDecision> read_decisions(const std::string& path) { return parse_decisions(read_regular_file(path, 64ull << 20), path); }
+
+std::map<std::string, PersonDecision> parse_decisions(const std::string& text, const std::string& path) {
+    std::istringstream in(text);
+    std::string line;
+    std::map<std::string, PersonDecision> out;
+    if (!std::getline(in, line) || csv_cells(line).at(0) != "scan")
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, path + ": the first line must be the header scan,decision,reason,by");
+    for (std::size_t number = 2; std::getline(in, line); ++number) {
+        if (line.empty() || line == "\r") continue;
+        const std::vector<std::string> c = csv_cells(line);
+        const std::string where = path + ":" + std::to_string(number) + ": ";
+        if (c.size() < 2 || (c[1] != "accept" && c[1] != "reject"))
+            throw Error(SSC_ERROR_INVALID_ARGUMENT, where + "expected scan,accept|reject[,reason[,by]]");
+        if (c.size() >= 4 && c[3] == "auto") continue;
+        if (!out.emplace(c[0], PersonDecision{c[1] == "accept", c.size() >= 3 ? c[2] : std::string()}).second)
+            throw Error(SSC_ERROR_INVALID_ARGUMENT, where + "scan " + c[0] + " is decided twice");
+    }
+    return out;
+}
+
+AttributeTable parse_attribute_table(const std::string& text, const std::string& path) {
+    std::istringstream in(text);
     AttributeTable t;
     t.source = std::filesystem::path(path).filename().string();
     std::string line;

@@ -3,6 +3,7 @@
 //   OUT/model_memory/   .sscape files          OUT/model_payload/  their FlatBuffers payloads
 //   OUT/ply/            binary and ASCII PLY   OUT/obj/            OBJ with and without normals
 //   OUT/lnd/            CAESAR .lnd            OUT/pgm/            16-bit PGM with camera comments
+//   OUT/report/         registration reports   OUT/tables/         decisions and attributes CSV
 // usage: fuzz_seeds OUT
 #include "export/mesh_writers.hpp"
 #include "io/writers.hpp"
@@ -12,6 +13,8 @@
 #include "synthesis/kernels.hpp"
 #include "synthesis/model.hpp"
 #include "testing/synthetic_model.hpp"
+
+#include <sscape/sscape.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -73,7 +76,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     const fs::path out = argv[1];
-    for (const char* d : {"model_memory", "model_payload", "ply", "obj", "lnd", "pgm"}) fs::create_directories(out / d);
+    for (const char* d : {"model_memory", "model_payload", "ply", "obj", "lnd", "pgm", "report", "tables"}) fs::create_directories(out / d);
 
     // Models: small meshes on the 6-joint skeleton (the humanoid one needs a full-size mesh).
     int n = 0;
@@ -136,6 +139,26 @@ int main(int argc, char** argv) {
     ssc::io::write_pgm_depth((out / "pgm" / "camera.pgm").string(), depth);
     depth.has_intrinsics = depth.has_pose = false;
     ssc::io::write_pgm_depth((out / "pgm" / "plain.pgm").string(), depth);
+    // A registration report as sscape register writes it for the built-in model (its joints), with
+    // and without the model fit; the scan tables, their first byte choosing the kind.
+    ssc_model* builtin = nullptr;
+    if (ssc_model_load_default(nullptr, &builtin) != SSC_OK) return 1;
+    const uint32_t joints = ssc_model_joint_count(builtin);
+    ssc_model_release(builtin);
+    const std::string quality = R"({"scan_to_registration_mean_m": 0.001, "scan_to_registration_median_m": 0.0008, )"
+                                R"("scan_to_registration_p95_m": 0.003, "scan_points": 6000, "scan_points_beyond_20_mm": 3, )"
+                                R"("vertices_within_2_5_10_20_mm": [0.5, 0.7, 0.8, 0.9]})";
+    const std::string report = R"({"scan": "scans/s1.ply", "scan_up": "z", "scan_units_to_metres": 0.001, "fit_segments": false, )"
+                               R"("seconds": 1.5, "fit_seconds": 0.5, "rounds": 6, "solves": 18, "model_digest": "0123456789abcdef", )"
+                               R"("scan_digest": "fedcba9876543210", "quality": )" + quality + R"(, "regions": {"head": )" + quality +
+                               R"(, "trunk": )" + quality + "}";
+    std::string rotations;
+    for (uint32_t j = 0; j < joints; ++j) rotations += std::string(j ? ", " : "") + "0, 0, 0, 1";
+    put(out / "report" / "without_fit.json", report + "}\n");
+    put(out / "report" / "with_fit.json", report + R"(, "fit": {"shape": [0.5, -0.25, 1.0], "rotations_xyzw": [)" + rotations +
+                                               R"(], "translation_m": [0, 0.9, 0.1], "scale": 1}})" + "\n");
+    put(out / "tables" / "decisions.csv", "dscan,decision,reason,by\ns1,accept,,person\ns2,reject,\"arm, left\",person\ns3,accept,,auto\n");
+    put(out / "tables" / "attributes.csv", "ascan,age,stature_m\ns1,31,1.72\ns2,45,1.65\n\"s3\",28,1.80\n");
     std::printf("seed corpora written to %s\n", out.c_str());
     return 0;
 }
