@@ -113,4 +113,10 @@ expect 1 "the 3 registrations are all the same body" "$out"/same?.ply --componen
 "$sscape" evaluate "$out"/same?.ply -o "$out/same_eval" > "$out/same_eval.txt" 2>&1
 [ $? -eq 1 ] && grep -q "all the same body" "$out/same_eval.txt" && [ ! -e "$out/same_eval.csv" ] && [ ! -e "$out/same_eval_compactness.png" ] ||
     { cat "$out/same_eval.txt"; ls "$out"; fail "evaluate on identical registrations"; }
+# evaluate --models with a model of another mesh of as many vertices: refused (once it ran and
+# reported errors near 600 mm).
+"$sscape" make-test-model -o "$out/other_mesh.sscape" --vertices 13380 --components 3 > /dev/null || fail "make-test-model"
+"$sscape" evaluate "$out"/reg?.ply --models "$out/other_mesh.sscape" -o "$out/other_eval" > "$out/other_eval.txt" 2>&1
+[ $? -eq 1 ] && grep -q "its mesh is not the one the registrations were made in" "$out/other_eval.txt" && [ ! -e "$out/other_eval.csv" ] ||
+    { cat "$out/other_eval.txt"; fail "evaluate --models with another mesh"; }
 echo "learn: model written and read back; refusals clear"
