@@ -335,6 +335,26 @@ TEST_CASE("a scan registers onto the template closer than the model fit that sta
     CHECK(r.report.rounds == 6);  // the stiffness relaxed by 4 until it fell by 1000
 }
 
+TEST_CASE("a scan above the point bound is registered from an even subsample and says so", "[registration]") {
+    // 10 million points once took 3.4 GB (about 350 bytes a point): RegistrationOptions::max_scan_points
+    // (kMaxScanPoints, 2 million by default) bounds what a registration holds.
+    const Model& m = test::default_cpp_model();
+    const fitting::LinearModel lin(m, m.component_count(), nullptr, true, registration::RegistrationOptions().segments_left_out);
+    BumpyScan s(34, 8000);
+    s.scan.landmarks.clear();
+    registration::RegistrationOptions options;
+    options.max_scan_points = 999;
+    CHECK_THROWS_WITH(registration::register_scan(lin, s.scan, options), Catch::Contains("max_scan_points must be at least 1000"));
+    options.max_scan_points = 2000;
+    ThreadPool pool(2);
+    const registration::Registration r = registration::register_scan(lin, s.scan, options, {}, &pool);
+    CHECK(r.report.scan_points == 2000);
+    CHECK(r.report.scan_points_given == 8000);
+    CHECK(r.report.quality.scan_to_registration.count == 2000);
+    CHECK(r.report.quality.below[3] > 0.5);  // still the person: most of the template within 20 mm
+    CHECK(registration::kMaxScanPoints == registration::RegistrationOptions().max_scan_points);
+}
+
 TEST_CASE("landmarks given with a scan hold the model fit and the registration to them", "[registration]") {
     // The registration's fit weighs landmarks as if placed to 2 mm (registration_fit()). At the
     // fitter's 1 cm the scan's points outvoted them on this scan: after the fit the landmarks' rms

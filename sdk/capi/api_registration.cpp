@@ -137,6 +137,9 @@ ssc_status ssc_registration_run(ssc_registration* registration, ssc_stage_progre
         registration::RegistrationProgress cb;
         if (progress) cb = [&](const char* stage, uint32_t done, uint32_t total) { return progress(user, stage, done, total) == 0; };
         const registration::Registration& r = registration->registrar.run(cb, &registration->model->context->pool);
+        if (r.report.scan_points_given > r.report.scan_points)
+            registration->model->context->message(SSC_LOG_WARNING, "registration: the scan's " + std::to_string(r.report.scan_points_given) + " points; registered from " +
+                                                                       std::to_string(r.report.scan_points) + " of them, evenly spread (the registration's memory bound)");
         if (report) write_report(r.report.rounds, r.report.solves, r.report.valid, r.report.seconds, r.report.fit_seconds, r.report.quality,
                                  r.report.scan_points, r.report.landmarks, report);
     });

@@ -95,6 +95,10 @@ ssc_status ssc_registration_run_file(ssc_registration* registration, const ssc_s
         if (report)
             write_report(rec.rounds, rec.solves, std::size_t(std::count(rec.valid.begin(), rec.valid.end(), uint8_t(1))), rec.seconds,
                          rec.fit_seconds, rec.quality, r.reused ? rec.quality.scan_to_registration.count : r.points, r.landmarks, report);
+        const std::size_t most = registration->registrar.options().max_scan_points;
+        if (!r.reused && r.points > most)
+            registration->model->context->message(SSC_LOG_WARNING, std::string(j.scan_path) + ": " + std::to_string(r.points) + " points; registered from " +
+                                                                       std::to_string(most) + " of them, evenly spread (the registration's memory bound)");
         for (const auto& name : r.ignored_landmarks)
             registration->model->context->message(SSC_LOG_WARNING, std::string(j.landmarks_path) + ": landmark '" + name + "' is not one of the model's; ignored");
         if (out_reused) *out_reused = r.reused ? 1 : 0;

@@ -64,8 +64,30 @@ RegionRule region_rule(const std::string& region) {
     return {0.02, 60, 1.0, 1.0};
 }
 
-Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, const RegistrationOptions& options,
+namespace {
+
+// An even subsample of `most` points of a larger scan (kMaxScanPoints, register_scan.hpp); the scan itself otherwise.
+const Scan& bounded(const Scan& given, std::size_t most, Scan& thinned) {
+    const std::size_t n = given.cloud.points.size();
+    if (n <= most) return given;
+    const fitting::PointCloud& c = given.cloud;
+    for (std::size_t i = 0; i < most; ++i) {
+        const std::size_t k = std::size_t((unsigned __int128)i * n / most);
+        thinned.cloud.points.push_back(c.points[k]);
+        if (!c.normals.empty()) thinned.cloud.normals.push_back(c.normals[k]);
+        if (!c.confidence.empty()) thinned.cloud.confidence.push_back(c.confidence[k]);
+    }
+    thinned.landmarks = given.landmarks;
+    return thinned;
+}
+
+}  // namespace
+
+Registration register_scan(const fitting::LinearModel& lin, const Scan& given, const RegistrationOptions& options,
                            const RegistrationProgress& progress, ThreadPool* pool) {
+    SSC_REQUIRE_ARG(options.max_scan_points >= 1000, "register: max_scan_points must be at least 1000");
+    Scan thinned;
+    const Scan& scan = bounded(given, options.max_scan_points, thinned);
     const auto t0 = std::chrono::steady_clock::now();
     ThreadPool inline_pool(1);
     ThreadPool& workers = pool ? *pool : inline_pool;
@@ -293,6 +315,7 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, co
                                              " % of the registered template lies within 20 mm of the scan: it missed the person (not a body scan, "
                                              "or one the start cannot reach)");
     out.report.scan_points = scan.cloud.points.size();
+    out.report.scan_points_given = given.cloud.points.size();
     out.report.landmarks = scan.landmarks.size();
     out.report.deformation_landmarks = landmarks.size();
     out.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
