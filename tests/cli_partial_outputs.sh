@@ -1,6 +1,7 @@
 #!/bin/sh
 # A command's outputs are written all or none (issue 47, item 6): `register` with an unwritable
-# report or picture once exited 1 leaving the new mesh, `evaluate` its CSV and two plots. An
+# report or picture once exited 1 leaving the new mesh, `fit` its body, `evaluate` its CSV and two
+# plots. An
 # unwritable path is refused before any work; a write that fails midway (a disk that fills between
 # the mesh and its report: a small tmpfs in a private mount namespace, where this machine allows
 # one) leaves none of the command's files, and a file that was there before stays as it was.
@@ -32,6 +33,8 @@ refused() {  # refused WHAT COMMAND...: exit 1 at once, the path named, nothing 
 }
 refused "register, picture unwritable" "$sscape" register "$scan" -o "$out/reg.ply" --report "$out/reg.json" --png "$out/file/reg.png"
 refused "register, mesh unwritable" "$sscape" register "$scan" -o "$out/file/reg.ply"
+refused "fit, parameters unwritable" "$sscape" fit --points "$scan" -o "$out/fit.obj" --params "$out/file/fit.json"
+refused "fit, picture unwritable" "$sscape" fit --points "$scan" -o "$out/fit.obj" --png "$out/file/fit.png"
 # evaluate checks its outputs before it reads a registration: any existing files stand for them.
 refused "evaluate, prefix unwritable" "$sscape" evaluate "$scan" "$scan" "$scan" -o "$out/file/ev"
 

@@ -46,9 +46,15 @@ int run_fit(Options o) {
     finish(o);
     std::vector<std::string> inputs = {o.model};
     for (const auto* files : {&o.landmarks, &o.points, &o.depth}) inputs.insert(inputs.end(), files->begin(), files->end());
-    for (std::size_t f = 0; f < inputs.size(); ++f)  // with --frames, frame N's files carry _frameN
+    std::vector<std::string> outputs = {o.png, o.params};
+    for (std::size_t f = 0; f < inputs.size(); ++f) {  // with --frames, frame N's files carry _frameN
         for (const std::string& output : {o.out, o.png, o.params})
             if (!output.empty()) refuse_output_over_input(f == 0 ? output : with_suffix(output, "_frame" + std::to_string(f)), inputs);
+        outputs.push_back(f == 0 ? o.out : with_suffix(o.out, "_frame" + std::to_string(f)));
+    }
+    // The bodies, the parameters and the picture: an unwritable one refused before the fit, and a
+    // write that fails leaves none of them (an unwritable --params once left the body).
+    OutputFiles written(outputs);
     ssc_model* model = load_model(o.model);
     Handles guard(model);
     ssc_fitter_def def;
@@ -250,6 +256,7 @@ int run_fit(Options o) {
         render::write_fit_picture(o.png, model_of(model), s, shown, fitted, {});
         std::printf("wrote %s (input, then the fit; front and side)\n", o.png.c_str());
     }
+    written.keep();  // failed frames were never written; the others stay, as said below
     if (report.failed_frames > 0) {
         std::fprintf(stderr, "sscape fit: %u of %u frames failed (listed above) and were not written; the other %u were\n",
                      report.failed_frames, frame_count, frame_count - report.failed_frames);
