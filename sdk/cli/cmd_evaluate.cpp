@@ -36,6 +36,9 @@ struct Series {
     std::vector<training::QualityPoint> points;
 };
 
+// The three plots, each PREFIX_NAME.png beside PREFIX.csv.
+const char* const kPlots[3] = {"compactness", "generalization", "specificity"};
+
 void write_report(const std::string& prefix, const std::vector<Series>& series, bool given_models) {
     std::ostringstream csv;
     csv << "series,components,compactness,generalization_mm,specificity_mm\n";
@@ -45,7 +48,7 @@ void write_report(const std::string& prefix, const std::vector<Series>& series, 
     const std::string text = csv.str();
     write_file_atomically(prefix + ".csv", text.data(), text.size());
     std::printf("wrote %s.csv\n", prefix.c_str());
-    const char* titles[3] = {"compactness", "generalization", "specificity"};
+    const char* const* titles = kPlots;
     const char* labels[3] = {given_models ? "share of the model's own variance (cumulative)" : "explained variance (cumulative share)",
                              given_models ? "mean vertex error reconstructing the registrations (mm)" : "mean vertex error on unseen registrations (mm)",
                              "mean vertex distance to the nearest registration (mm)"};
@@ -76,9 +79,8 @@ int run_evaluate(const Options& o) {
         std::printf("[%6.1f s] %s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), stage.c_str());
         std::fflush(stdout);
     };
-    const char* titles[3] = {"compactness", "generalization", "specificity"};
     std::vector<std::string> written = {o.out + ".csv"};
-    for (const char* t : titles) written.push_back(o.out + "_" + t + ".png");
+    for (const char* t : kPlots) written.push_back(o.out + "_" + t + ".png");
     std::vector<std::string> inputs = o.registrations;
     inputs.insert(inputs.end(), o.models.begin(), o.models.end());
     inputs.push_back(o.model);

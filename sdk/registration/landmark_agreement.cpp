@@ -13,13 +13,6 @@ namespace ssc::registration {
 
 namespace {
 
-Eigen::Vector3d point_on(const std::vector<Eigen::Vector3d>& vertices, const fitting::SurfacePoint& p) {
-    Eigen::Vector3d x = Eigen::Vector3d::Zero();
-    for (int i = 0; i < 3; ++i)
-        if (p.weight[i] != 0) x += p.weight[i] * vertices[p.vertex[i]];
-    return x;
-}
-
 std::string millimetres(double metres) {
     char text[32];
     std::snprintf(text, sizeof text, "%.0f mm", metres * 1e3);
@@ -35,6 +28,13 @@ int64_t other_side(const format::ModelData& model, uint32_t l, const std::unorde
 }
 
 }  // namespace
+
+Eigen::Vector3d point_on(const std::vector<Eigen::Vector3d>& vertices, const fitting::SurfacePoint& p) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 3; ++i)
+        if (p.weight[i] != 0) x += p.weight[i] * vertices[p.vertex[i]];
+    return x;
+}
 
 void require_landmarks_on_scan(const format::ModelData& model, const std::vector<fitting::LandmarkTarget>& landmarks,
                                const fitting::PointIndex& scan) {

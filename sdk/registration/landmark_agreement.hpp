@@ -4,6 +4,7 @@
 // them moved 500 mm registered with exit 0. Judged here, before the deformation (docs/registration.md).
 #pragma once
 
+#include "fitting/kinematics.hpp"
 #include "fitting/nearest.hpp"
 #include "fitting/observations.hpp"
 #include "sscape_format/model_data.hpp"
@@ -25,6 +26,9 @@ constexpr double kLandmarkOff = 0.06;
 // The share of landmarks off from which the landmarks as a whole disagree with the scan (and the
 // registration is refused); fewer off are left out of the deformation.
 constexpr double kLandmarksOffShare = 0.2;
+
+// A template point (a landmark's barycentric place) on the given vertex positions.
+Eigen::Vector3d point_on(const std::vector<Eigen::Vector3d>& vertices, const fitting::SurfacePoint& p);
 
 // Throws ssc::Error (SSC_ERROR_INVALID_ARGUMENT) naming the landmarks farther than kLandmarkOffScan
 // from every scan point.

@@ -33,14 +33,6 @@ constexpr double kLeastOnScan = 0.1;
 // the hands) pull in the model fit only, not in the deformation.
 constexpr double kNearHands = 0.03;
 
-// A template point on the given vertex positions.
-Vector3d point_on(const std::vector<Vector3d>& vertices, const fitting::SurfacePoint& p) {
-    Vector3d x = Vector3d::Zero();
-    for (int i = 0; i < 3; ++i)
-        if (p.weight[i] != 0) x += p.weight[i] * vertices[p.vertex[i]];
-    return x;
-}
-
 // The stiffness of each round: relaxed by kRelax from `first` until it has fallen by kRelaxedRange,
 // or that many rounds at the last value.
 std::vector<double> round_factors(Schedule schedule) {
