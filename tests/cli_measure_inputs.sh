@@ -46,6 +46,24 @@ same "$out/fit_shape.txt" "$out/params.txt"
 echo '{"shape": [1, 2], "frames": []}' > "$out/not_a_fit.json"
 "$sscape" measure --params "$out/not_a_fit.json" > "$out/bad.txt" 2>&1 && fail "a broken params file accepted"
 grep -q "not_a_fit.json: .*expected sscape fit --params output" "$out/bad.txt" || { cat "$out/bad.txt"; fail "the params message"; }
+# Values no fit gives, in an otherwise good file: refused by measure and synth, naming the value
+# (a shape of 1e300 once failed late, 30 SD made a body, a rotation of length 2 was used).
+edit() {  # edit NAME PYTHON_STATEMENT_ON_j
+    /usr/bin/python3 -c 'import json, sys; j = json.load(open(sys.argv[1])); exec(sys.argv[3]); json.dump(j, open(sys.argv[2], "w"))' \
+        "$sim"_fit.json "$out/$1.json" "$2" || fail "editing $1"
+}
+edit huge 'j["shape"][0] = 1e300'
+edit far_out 'j["shape"][1] = 30'
+edit long_rotation 'r = j["frames"][0]["rotations_xyzw"]; k = next(iter(r)); r[k] = [0.9, 0.9, 0.9, 0.9]'
+edit too_many 'j["shape"] = j["shape"] + [0.0] * 400'
+for f in huge:"shape\[0\] is 1e+300, outside" far_out:"shape\[1\] is 30, outside" long_rotation:"is not a unit quaternion (length 1.8" too_many:"shape needs at most"; do
+    name=${f%%:*} message=${f#*:}
+    "$sscape" measure --params "$out/$name.json" > "$out/bad.txt" 2>&1 && fail "measure took $name"
+    grep -q "$name.json: .*$message" "$out/bad.txt" || { cat "$out/bad.txt"; fail "measure's message for $name"; }
+    "$sscape" synth --params "$out/$name.json" -o "$out/$name.obj" > "$out/bad.txt" 2>&1 && fail "synth took $name"
+    grep -q "$name.json: .*$message" "$out/bad.txt" || { cat "$out/bad.txt"; fail "synth's message for $name"; }
+    [ -e "$out/$name.obj" ] && fail "synth wrote a body from $name"
+done
 
 # A registration: brought to rest with its report's model fit, near the shape space; the posed truth
 # as it stands, said to be far.

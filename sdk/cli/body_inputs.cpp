@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 namespace ssc::cli {
 
@@ -47,7 +48,23 @@ void set_sliders(ssc_model* model, ssc_body* body, const std::vector<std::pair<s
 }
 
 FitParams read_params(ssc_model* model, const std::string& path) {
-    const std::string text = read_regular_file(path, 16u << 20, SSC_ERROR_INVALID_ARGUMENT);
+    return parse_params(model, read_regular_file(path, 16u << 20, SSC_ERROR_INVALID_ARGUMENT), path);
+}
+
+namespace {
+
+// A number of a parameter file as a float, refused when not finite or beyond `bound` (a float
+// cast of 1e300 is undefined, and a body 1e30 SD out is no body).
+float bounded(const nlohmann::json& value, double bound, const std::string& what) {
+    const double v = value.get<double>();
+    if (!std::isfinite(v) || std::fabs(v) > bound)
+        throw UsageError(what + " is " + value.dump() + ", outside [-" + nlohmann::json(bound).dump() + ", " + nlohmann::json(bound).dump() + "]");
+    return float(v);
+}
+
+}  // namespace
+
+FitParams parse_params(ssc_model* model, const std::string& text, const std::string& path) {
     const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
     if (j.is_discarded() || !j.is_object()) throw UsageError(path + ": not a JSON object (write one with sscape fit --params)");
     FitParams p;
@@ -61,21 +78,33 @@ FitParams read_params(ssc_model* model, const std::string& path) {
         if ((!given_digest.empty() && given_digest != digest) || (given_digest.empty() && !given_name.empty() && given_name != name))
             throw std::runtime_error(path + " was fitted with the model '" + given_name + "'" + (given_digest.empty() ? "" : " (digest " + given_digest + ")") +
                                      ", not this one ('" + name + "', digest " + digest + "): give that model (sscape synth MODEL --params " + path + ")");
-        p.shape = j.at("shape").get<std::vector<float>>();
+        // The bounds are those of a fit (learning's reader of the same fits has them too): shape
+        // coefficients within 20 SD, a translation within 1000 km, unit quaternions.
+        const auto& shape = j.at("shape");
+        const uint32_t K = ssc_model_shape_count(model);
+        if (!shape.is_array() || shape.size() > K)
+            throw UsageError(path + ": shape needs at most " + std::to_string(K) + " numbers (the model's components)");
+        for (std::size_t i = 0; i < shape.size(); ++i) p.shape.push_back(bounded(shape[i], 20.0, path + ": shape[" + std::to_string(i) + "]"));
         const auto& frame = j.at("frames").at(0);
-        p.translation = frame.at("translation_m").get<std::vector<float>>();
-        if (p.translation.size() != 3) throw UsageError(path + ": translation_m needs 3 numbers");
+        const auto& translation = frame.at("translation_m");
+        if (!translation.is_array() || translation.size() != 3) throw UsageError(path + ": translation_m needs 3 numbers");
+        for (const auto& t : translation) p.translation.push_back(bounded(t, 1e6, path + ": translation_m"));
         if (frame.contains("scale") && frame.at("scale").get<double>() != 1.0)
             throw UsageError(path + ": the fit has a scale other than 1 (--scale), which a body does not have");
         const uint32_t J = ssc_model_joint_count(model);
         p.pose.assign(4ull * J, 0.f);
         for (uint32_t k = 0; k < J; ++k) p.pose[4 * k + 3] = 1.f;
-        for (const auto& [name, q] : frame.at("rotations_xyzw").items()) {
+        for (const auto& [joint, q] : frame.at("rotations_xyzw").items()) {
             uint32_t k = 0;
-            if (ssc_model_find_joint(model, name.c_str(), &k) != SSC_OK) throw UsageError(path + ": the model has no joint '" + name + "'");
-            const auto v = q.get<std::vector<float>>();
-            if (v.size() != 4) throw UsageError(path + ": the rotation of " + name + " needs 4 numbers (x y z w)");
-            for (int c = 0; c < 4; ++c) p.pose[4 * k + uint32_t(c)] = v[std::size_t(c)];
+            if (ssc_model_find_joint(model, joint.c_str(), &k) != SSC_OK) throw UsageError(path + ": the model has no joint '" + joint + "'");
+            if (!q.is_array() || q.size() != 4) throw UsageError(path + ": the rotation of " + joint + " needs 4 numbers (x y z w)");
+            double norm = 0;
+            for (int c = 0; c < 4; ++c) {
+                p.pose[4 * k + uint32_t(c)] = bounded(q[std::size_t(c)], 1.0 + 1e-3, path + ": the rotation of " + joint);
+                norm += double(p.pose[4 * k + uint32_t(c)]) * p.pose[4 * k + uint32_t(c)];
+            }
+            if (std::fabs(std::sqrt(norm) - 1.0) > 1e-3)
+                throw UsageError(path + ": the rotation of " + joint + " is not a unit quaternion (length " + std::to_string(std::sqrt(norm)) + ")");
         }
     } catch (const nlohmann::json::exception& e) {
         throw UsageError(path + ": " + e.what() + " (expected sscape fit --params output)");

@@ -23,7 +23,10 @@ void set_sliders(ssc_model* model, ssc_body* body, const std::vector<std::pair<s
 struct FitParams {
     std::vector<float> shape, pose, translation;
 };
-// UsageError naming the file for anything that is not such a file of this model.
+// UsageError naming the file for anything that is not such a file of this model (another model's,
+// values no fit gives: not finite, shape beyond 20 SD, rotations not unit quaternions).
 FitParams read_params(ssc_model* model, const std::string& path);
+// The same from the file's text; `path` names it in messages (the fuzz target's entry).
+FitParams parse_params(ssc_model* model, const std::string& text, const std::string& path);
 
 }  // namespace ssc::cli

@@ -283,7 +283,9 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
         if (fs::exists(round_json) && fs::exists(model_path)) {
             try {
                 const nlohmann::json old = nlohmann::json::parse(read_regular_file(round_json, 64ull << 20));
-                rep.model_reused = old.at("settings") == nlohmann::json(settings) && old.at("model_digest") == model_digest(read_bytes(model_path));
+                // Compared as written: bytes of a name that are not UTF-8 were written replaced.
+                const nlohmann::json as_written = nlohmann::json::parse(nlohmann::json(settings).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+                rep.model_reused = old.at("settings") == as_written && old.at("model_digest") == model_digest(read_bytes(model_path));
             } catch (const std::exception&) {
                 rep.model_reused = false;
             }
@@ -295,7 +297,7 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
             write_file_atomically(model_path, bytes.data(), bytes.size());
             nlohmann::ordered_json j{{"round", round}, {"settings", settings}, {"model_digest", model_digest(bytes)},
                                      {"explained", lr.explained}, {"components", lr.components}};
-            write_text(round_json, j.dump(1) + "\n");
+            write_text(round_json, j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
         }
         rep.learn_seconds = since(t_learn);
         rep.components = learn.components;

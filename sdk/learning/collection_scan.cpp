@@ -168,7 +168,7 @@ ScanFileResult register_scan_file(registration::Registrar& registrar, const std:
         result = &registrar.run(progress, pool);
     } catch (const Error& e) {
         if (memo && e.status() == SSC_ERROR_INVALID_ARGUMENT) {
-            const std::string text = nlohmann::json{{"key", key}, {"error", e.what()}}.dump(1) + "\n";
+            const std::string text = nlohmann::json{{"key", key}, {"error", e.what()}}.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
             write_file_atomically(failure_path, text.data(), text.size());
         }
         throw;

@@ -82,7 +82,7 @@ fitting::FitState PostureModel::fit(const ScanInput& scan, const ScanReading& re
         made = solution.frames[0];
     }
     const nlohmann::ordered_json j{{"scan", scan.path}, {"key", key}, {"fit", fit_to_json(model, made)}};
-    const std::string text = j.dump(1) + "\n";
+    const std::string text = j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";  // a file name's bytes that are not UTF-8 as U+FFFD
     fs::create_directories(fs::path(path).parent_path());
     write_file_atomically(path, text.data(), text.size());
     // What is on disk (as a resumed run reads it), so both learn the same model.

@@ -122,7 +122,9 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
         j["vertex_distance_mm"] = mm;
     }
     if (!r.valid.empty()) j["valid"] = r.valid;
-    const std::string text = j.dump(1) + "\n";
+    // A scan's file name need not be UTF-8, which JSON must be: such bytes are written as U+FFFD
+    // (the path is for people; reuse goes by the files' digests).
+    const std::string text = j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
     write_file_atomically(record_report_path(mesh_path), text.data(), text.size());
 }
 

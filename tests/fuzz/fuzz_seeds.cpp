@@ -4,6 +4,7 @@
 //   OUT/ply/            binary and ASCII PLY   OUT/obj/            OBJ with and without normals
 //   OUT/lnd/            CAESAR .lnd            OUT/pgm/            16-bit PGM with camera comments
 //   OUT/report/         registration reports   OUT/tables/         decisions and attributes CSV
+//   OUT/params/         fit parameters
 // usage: fuzz_seeds OUT
 #include "export/mesh_writers.hpp"
 #include "io/writers.hpp"
@@ -76,7 +77,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     const fs::path out = argv[1];
-    for (const char* d : {"model_memory", "model_payload", "ply", "obj", "lnd", "pgm", "report", "tables"}) fs::create_directories(out / d);
+    for (const char* d : {"model_memory", "model_payload", "ply", "obj", "lnd", "pgm", "report", "tables", "params"}) fs::create_directories(out / d);
 
     // Models: small meshes on the 6-joint skeleton (the humanoid one needs a full-size mesh).
     int n = 0;
@@ -144,6 +145,18 @@ int main(int argc, char** argv) {
     ssc_model* builtin = nullptr;
     if (ssc_model_load_default(nullptr, &builtin) != SSC_OK) return 1;
     const uint32_t joints = ssc_model_joint_count(builtin);
+    const char* model_name = "";
+    if (ssc_model_get_metadata(builtin, SSC_METADATA_NAME, &model_name) != SSC_OK) return 1;
+    // Fit parameters as `sscape fit --params` writes them (checked by the model's name here: the
+    // digest lives in the offline API), rotations keyed by joint name.
+    std::string by_joint;
+    for (uint32_t j = 0; j < joints; ++j) {
+        const char* joint = "";
+        if (ssc_model_get_joint_name(builtin, j, &joint) != SSC_OK) return 1;
+        by_joint += std::string(j ? ", " : "") + "\"" + joint + "\": [0, 0, " + (j == 1 ? "0.6, 0.8" : "0, 1") + "]";
+    }
+    put(out / "params" / "fit.json", std::string(R"({"model": ")") + model_name + R"(", "shape": [0.5, -1.25, 2.0], "frames": [{"rotations_xyzw": {)" +
+                                         by_joint + R"(}, "translation_m": [0.01, 0.92, -0.3], "scale": 1}]})" + "\n");
     ssc_model_release(builtin);
     const std::string quality = R"({"scan_to_registration_mean_m": 0.001, "scan_to_registration_median_m": 0.0008, )"
                                 R"("scan_to_registration_p95_m": 0.003, "scan_points": 6000, "scan_points_beyond_20_mm": 3, )"

@@ -32,7 +32,7 @@ run() {  # run TARGET CORPUS_NAME
 
 status=0
 pairs=("fuzz_model_memory model_memory" "fuzz_model_payload model_payload" "fuzz_ply ply" "fuzz_obj obj" "fuzz_lnd lnd" "fuzz_pgm pgm"
-       "fuzz_report report" "fuzz_tables tables")
+       "fuzz_report report" "fuzz_tables tables" "fuzz_params params")
 for ((i = 0; i < ${#pairs[@]}; i += 2)); do
   run ${pairs[i]} & a=$!
   b=""

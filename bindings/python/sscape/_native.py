@@ -108,6 +108,8 @@ LINE_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_char_p)
 #: int (*ssc_progress_fn)(void* user, uint32_t iteration, float cost)
 PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_uint32, c_float)
 FRAME_FN = ctypes.CFUNCTYPE(ctypes.c_int, c_void_p, c_uint32, POINTER(FitFrameReport))
+#: void (*ssc_log_fn)(void* user, ssc_log_level level, const char* message)
+LOG_FN = ctypes.CFUNCTYPE(None, c_void_p, c_int32, c_char_p)
 
 _STATUS = c_int32
 _MODEL = c_void_p

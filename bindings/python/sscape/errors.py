@@ -18,4 +18,5 @@ def check(status: int) -> None:
     """Raises SscapeError for a failed status (read on the thread that made the call)."""
     if status != 0:
         message = lib.ssc_last_error()
-        raise SscapeError(status, message.decode() if message else "")
+        # A message names files, whose names need not be UTF-8: their odd bytes shown as \\xe4.
+        raise SscapeError(status, message.decode("utf-8", "backslashreplace") if message else "")

@@ -2,12 +2,13 @@
 from __future__ import annotations
 
 import ctypes
+import logging
 import os
 from typing import Dict, List, NamedTuple, Union
 
 import numpy as np
 
-from ._native import BatchDesc, ContextDef, JointLimit, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib, need_offline
+from ._native import LOG_FN, BatchDesc, ContextDef, JointLimit, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib, need_offline
 from ._handle import Handle
 from .errors import check
 
@@ -30,10 +31,26 @@ class Segment(NamedTuple):
     vertex_count: int
 
 
+#: The library's log messages (an unknown landmark name ignored, a scan subsampled, ...) go to this
+#: logger: warnings reach stderr unless the application configures logging otherwise.
+logger = logging.getLogger("sscape")
+_PYTHON_LEVEL = {0: logging.DEBUG, 1: logging.INFO, 2: logging.WARNING, 3: logging.ERROR}
+
+
+def _log(user, level, message):
+    logger.log(_PYTHON_LEVEL.get(level, logging.WARNING), "%s", message.decode("utf-8", "backslashreplace"))
+
+
+# One sink for the process, never freed: a context keeps its pointer as long as it lives.
+_LOG_SINK = LOG_FN(_log)
+
+
 class Context(Handle):
     """Library settings shared by the models loaded with it: worker threads for batch synthesis and
     the fits' searches (0: one per hardware thread; 1: the calling thread only), and the largest
-    model accepted (bytes, decompressed; 0: 256 MiB). Models keep their context alive."""
+    model accepted (bytes, decompressed; 0: 256 MiB). Models keep their context alive. The
+    library's messages go to the ``sscape`` logger (``sscape.model.logger``), from the level it
+    has when the context is made (warnings by default)."""
 
     _what = "context"
 
@@ -41,6 +58,9 @@ class Context(Handle):
         d = ContextDef()
         lib.ssc_context_def_init(ctypes.byref(d), ctypes.sizeof(ContextDef))
         d.worker_count, d.max_model_bytes = int(worker_count), int(max_model_bytes)
+        d.log = ctypes.cast(_LOG_SINK, ctypes.c_void_p)
+        effective = logger.getEffectiveLevel()
+        d.log_level = next((ssc for ssc, py in sorted(_PYTHON_LEVEL.items()) if py >= effective), 3)
         handle = ctypes.c_void_p()
         check(lib.ssc_context_create(ctypes.byref(d), ctypes.byref(handle)))
         self._own(handle, lib.ssc_context_destroy)
@@ -73,7 +93,8 @@ class Model(Handle):
     def __init__(self, context: Union[Context, None] = None, _handle: Union[int, None] = None):
         handle = ctypes.c_void_p()
         if _handle is None:
-            check(lib.ssc_model_load_default(None if context is None else context.handle, ctypes.byref(handle)))
+            context = context if context is not None else Context()  # held until loaded: the model then keeps it
+            check(lib.ssc_model_load_default(context.handle, ctypes.byref(handle)))
         else:
             handle.value = _handle
         self._own(handle, lib.ssc_model_release)
@@ -82,7 +103,8 @@ class Model(Handle):
     def from_file(cls, path: Union[str, os.PathLike], context: Union[Context, None] = None) -> "Model":
         """Loads and verifies a .sscape model file (SscapeError if it is missing, corrupt or of another version)."""
         handle = ctypes.c_void_p()
-        check(lib.ssc_model_load_file(None if context is None else context.handle, os.fsencode(path), ctypes.byref(handle)))
+        context = context if context is not None else Context()  # held until loaded: the model then keeps it
+        check(lib.ssc_model_load_file(context.handle, os.fsencode(path), ctypes.byref(handle)))
         return cls(_handle=handle.value)
 
     @classmethod
@@ -90,7 +112,8 @@ class Model(Handle):
         """Loads and verifies a model from the bytes of a .sscape file (copied; the caller may drop them)."""
         handle = ctypes.c_void_p()
         buffer = bytes(data)
-        check(lib.ssc_model_load_memory(None if context is None else context.handle, buffer, len(buffer), ctypes.byref(handle)))
+        context = context if context is not None else Context()  # held until loaded: the model then keeps it
+        check(lib.ssc_model_load_memory(context.handle, buffer, len(buffer), ctypes.byref(handle)))
         return cls(_handle=handle.value)
 
     @property

@@ -3,6 +3,7 @@ deformation), giving the scan in the template's topology."""
 from __future__ import annotations
 
 import ctypes
+import os
 from typing import Callable, Dict, Optional, Sequence
 
 import numpy as np
@@ -108,9 +109,10 @@ class Registration(Handle):
         need_offline("Registration.run_file")
         job = ScanFileJob()
         lib.ssc_scan_file_job_init(ctypes.byref(job), ctypes.sizeof(ScanFileJob))
+        path = lambda v: None if v is None else os.fsencode(v)  # any name the file system allows
         text = lambda v: None if v is None else str(v).encode()
-        job.scan_path, job.mesh_path = text(scan), text(mesh)
-        job.landmarks_path, job.units, job.up, job.picture_path = text(landmarks), text(units), text(up), text(picture)
+        job.scan_path, job.mesh_path = path(scan), path(mesh)
+        job.landmarks_path, job.units, job.up, job.picture_path = path(landmarks), text(units), text(up), path(picture)
         job.write_report, job.reuse = int(bool(report)), int(bool(reuse))
         out = RegistrationReport(struct_size=ctypes.sizeof(RegistrationReport))
         reused = ctypes.c_uint32()

@@ -266,6 +266,41 @@ def test_a_scan_named_manifest_keeps_its_own_outputs(scans, client, tmp_path):
     assert measured["other"]["status"] == "failed" and "fitted with the model of digest 0123456789abcdef" in measured["other"]["error"]
 
 
+def test_scans_whose_names_are_not_utf8_are_registered_fitted_and_measured(scans, client, tmp_path):
+    # A name the file system allows but UTF-8 does not ("\xe4rger", Latin-1) once stopped the
+    # pipeline with "'utf-8' codec can't decode byte 0xe4" and no file named; a failure's message
+    # naming such a file must reach the user too.
+    folder = tmp_path / "scans"
+    folder.mkdir()
+    odd = os.fsencode(str(folder)) + b"/\xe4rger"
+    shutil.copy(scans / "p1_scan.ply", odd + b".ply")
+    shutil.copy(scans / "p1.lnd", odd + b".lnd")
+    with open(odd + b"_broken.ply", "w") as f:
+        f.write("ply\nthis is not a scan\n")
+    name, broken = os.fsdecode(b"\xe4rger"), os.fsdecode(b"\xe4rger_broken")
+    out = tmp_path / "registered"
+    done = pipeline.register_collection(folder, out_dir=out, client=client, progress=False)
+    assert {n: s["status"] for n, s in done.items()} == {name: "registered", broken: "failed"}, done
+    assert "\\xe4rger_broken.ply" in done[broken]["error"], done[broken]["error"]
+    assert os.path.exists(os.fsencode(str(out)) + b"/\xe4rger.ply")
+    again = pipeline.register_collection(folder, out_dir=out, client=client, progress=False)
+    assert again[name]["status"] == "reused"
+    fits = tmp_path / "fits"
+    fitted = pipeline.fit_collection(folder, out_dir=fits, client=client, iterations=30, progress=False)
+    assert fitted[name]["status"] == "fitted" and fitted[broken]["status"] == "failed"
+    measured = pipeline.measure_collection(fits, client=client, progress=False)
+    assert {n: s["status"] for n, s in measured.items()} == {name: "measured"}
+    with open(fits / "measurements.csv", "rb") as f:
+        assert f.read().splitlines()[1].startswith(b"\xe4rger,")  # the file's own name
+    # Bootstrapping's tasks name the same files (it needs three scans).
+    shutil.copy(scans / "p2_scan.ply", folder / "plain.ply")
+    boot = pipeline.Bootstrapping(str(folder), str(tmp_path / "boot"), components=2)
+    boot.prepare()
+    assert sorted(boot.scan_names) == sorted([name, broken, "plain"])
+    assert sorted(os.fsencode(j["scan"]) for j in boot.jobs(1)) == sorted([odd + b".ply", odd + b"_broken.ply", os.fsencode(str(folder / "plain.ply"))])
+    boot.close()
+
+
 def test_fit_and_measure_collections_equal_the_serial_command_line(scans, client, tmp_path):
     out, serial = tmp_path / "fits", tmp_path / "serial"
     serial.mkdir()

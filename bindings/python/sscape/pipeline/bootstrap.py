@@ -60,7 +60,7 @@ class Bootstrapping(Handle):
         for i in range(lib.ssc_bootstrap_scan_count(self.handle)):
             name = ctypes.c_char_p()
             check(lib.ssc_bootstrap_get_scan(self.handle, i, ctypes.byref(name), None, None))
-            names.append(name.value.decode())
+            names.append(os.fsdecode(name.value))  # the file's name, any bytes
         return names
 
     def prepare(self) -> None:
@@ -74,7 +74,7 @@ class Bootstrapping(Handle):
             job, model = ScanFileJob(), ctypes.c_char_p()
             lib.ssc_scan_file_job_init(ctypes.byref(job), ctypes.sizeof(ScanFileJob))
             check(lib.ssc_bootstrap_get_job(self.handle, round, i, ctypes.byref(job), ctypes.byref(model)))
-            text = lambda v: None if v is None else os.path.abspath(v.decode()) if v else None
+            text = lambda v: os.path.abspath(os.fsdecode(v)) if v else None
             out.append({"name": name, "scan": text(job.scan_path), "landmarks": text(job.landmarks_path),
                         "units": job.units.decode() if job.units else None, "up": job.up.decode() if job.up else None,
                         "mesh": text(job.mesh_path), "model": text(model.value), "reuse": bool(job.reuse), "threads": 1,
@@ -84,7 +84,7 @@ class Bootstrapping(Handle):
     def run(self, rounds: int, progress: Optional[Callable[[str], None]] = None) -> None:
         """Runs rounds 1..rounds here, reusing every registration already on disk."""
         callback, errors = progress_callback(LINE_FN, (lambda line: progress(line) and False) if progress else None,
-                                             lambda line: (line.decode(),))
+                                             lambda line: (line.decode("utf-8", "backslashreplace"),))
         status = lib.ssc_bootstrap_run(self.handle, rounds, callback, None)
         if errors:
             raise errors[0]

@@ -108,7 +108,8 @@ def measure_collection(fits_dir: str, model: Optional[str] = None, out_csv: Opti
         units.append(_SI[unit.value])
     out_csv = out_csv or os.path.join(fits_dir, "measurements.csv")
     tmp = out_csv + ".partial"
-    with open(tmp, "w", newline="") as f:
+    # A scan's name is its file's, which need not be UTF-8: written as the same bytes.
+    with open(tmp, "w", newline="", encoding="utf-8", errors="surrogateescape") as f:
         w = csv.writer(f)
         w.writerow(["scan"] + [f"{n}_{u}" for n, u in zip(columns, units)])
         for name in names:
