@@ -20,7 +20,7 @@
 // pose of a fifth of the random poses' range, in any heading; N trials per pose; a fit is counted
 // failed when its mean vertex error exceeds 8 mm.
 // library (only when asked: --scenario library): every pose of simulation::pose_library() (--pose
-// NAME: that one), each trial a person the model was not trained on (--makehuman DIR, the shared
+// NAME: that one, each trial as in the run of every pose), each trial a person the model was not trained on (--makehuman DIR, the shared
 // MakeHuman assets; without it a random body of the model), the pose varied by a random pose of a
 // tenth of the random poses' range, in any heading, scanned all round by a booth of 8 depth cameras
 // (1 mm noise; what they cannot see is missing) to 20,000-60,000 points, and fitted from the points
@@ -629,7 +629,9 @@ int main(int argc, char** argv) {
         std::vector<std::string> captions;
         std::uniform_int_distribution<uint32_t> point_count(20000, 60000);
         for (const simulation::LibraryPose& lp : simulation::pose_library()) {
-            if (!library_only.empty() && lp.name != library_only) continue;
+            // --pose: the other poses are drawn and scanned, not fitted, so each trial of this
+            // one is the same person, pose and scan as in the run of every pose.
+            const bool skipped = !library_only.empty() && lp.name != library_only;
             const std::vector<float> base = simulation::library_pose(model, lp);
             Tally tally;
             for (int t = 0; t < std::max(trials, 1); ++t) {  // --trials 0: the picture of the poses only
@@ -644,7 +646,7 @@ int main(int argc, char** argv) {
                     if (inside_test.measure(truth.vertices, registration::vertex_normals(truth.vertices, triangles)).worst < simulation::kLibraryInside)
                         break;
                 }
-                if (t == 0 && !png.empty()) {  // the pose as defined, on the first person, facing the viewer
+                if (t == 0 && !png.empty() && !skipped) {  // the pose as defined, on the first person, facing the viewer
                     std::vector<float> xyz;
                     auto shown = simulation::pose_rest_vertices(model, people[0], base, Eigen::Vector3d::Zero());
                     simulation::transform_body(shown, simulation::library_orientation(lp), Eigen::Vector3d::Zero());
@@ -675,6 +677,7 @@ int main(int argc, char** argv) {
                 }
                 const uint32_t cloud_points = uint32_t(frame.clouds[0].points.size());
                 if (with_landmarks) frame.landmarks = simulation::simulate_landmarks(model, truth, 0.005, true, rng);
+                if (skipped) continue;
                 const auto sol = fitting::fit(lin, {frame}, options(), nullptr, {}, &pool);
                 const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
                 const double error = simulation::mean_vertex_error(fv, truth.vertices);
@@ -717,7 +720,7 @@ int main(int argc, char** argv) {
                     render::write_fit_picture(png + "_" + lp.name + "_" + std::to_string(t) + (silent ? "_silent" : false_alarm ? "_false_alarm" : "") + ".png", model,
                                               sol.frames[0], frame.clouds[0].points, fv, truth.vertices);
             }
-            if (trials == 0) continue;
+            if (trials == 0 || skipped) continue;
             tally.print(lp.name);
             all.add(tally);
         }
