@@ -40,6 +40,9 @@ constexpr std::size_t kMaxShortFits = 8;
 constexpr std::size_t kExtremityPicks = 6, kTipLabellings = 2;
 constexpr double kTipSigma = 0.03;
 constexpr std::size_t kExtremityPoints = 30000;
+// Landmarks that pose the body before the scan is fitted (landmark_stage): enough to place the
+// trunk and every limb.
+constexpr std::size_t kPosingLandmarks = 12;
 
 using Eigen::Quaterniond;
 
@@ -71,6 +74,10 @@ public:
         const Schedule plan = schedule(o_.max_iterations, K_, start && !o_.auto_start, whole_body_);
         bool cancelled = false;
         uint32_t iteration = 0;
+        if (!(start && !o_.auto_start) && !refine)
+            for (uint32_t f = 0; f < F_ && !cancelled; ++f)
+                if (p_.frame(f).own_landmarks >= kPosingLandmarks && p_.has_points(f))
+                    p_.run_stage(landmark_stage(), f, &progress, iteration, cancelled);
         // Frames whose start search ended with a short coarse fit need no rigid stage.
         const int first_stage = refine ? Schedule::kFine : searched_frames_ == F_ ? Schedule::kCoarse : Schedule::kRigid;
         bool converged = fit_stages(plan, first_stage, progress, iteration, cancelled, &sol.report.initial_cost);

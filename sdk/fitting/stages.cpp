@@ -68,6 +68,20 @@ Stage start_stage(uint32_t components) {
     return s;
 }
 
+Stage landmark_stage() {
+    Stage s{};
+    s.iterations = 20;
+    s.body_joints = true;
+    s.all_joints = false;
+    s.components = kCoarseComponents;
+    s.max_distance = 0;
+    s.gm_scale = 8.0;
+    s.min_normal_dot = 0.0;
+    s.point_fraction = 0;
+    s.tolerance = 1e-4;
+    return s;
+}
+
 Stage tip_stage() {
     Stage s{};
     s.iterations = 12;

@@ -46,6 +46,11 @@ Stage fine_stage(uint32_t iterations, uint32_t components, bool polish);
 // more robust than the coarse stage, on a quarter of the points.
 Stage start_stage(uint32_t components);
 
+// A frame with landmarks, after their rigid alignment: the trunk and limbs and the first shape
+// components drawn to the landmarks alone (no scan points), inverse kinematics under the pose
+// prior, so the scan's correspondences start from the person's pose rather than the rest pose.
+Stage landmark_stage();
+
 // The extremity start's first step (solver.cpp): the trunk and limbs drawn to the scan's head,
 // hands and feet alone (guides, no scan points): inverse kinematics under the pose prior.
 Stage tip_stage();
