@@ -32,7 +32,10 @@ void write_fit_picture(const std::string& path, const Model& model, const fittin
     std::vector<float> depth;
     const auto& tris = model.data().mesh.triangles;
     const uint8_t skin[3] = {225, 190, 160}, truth_colour[3] = {170, 200, 230}, dot[3] = {200, 40, 40};
-    const float scale = 0.92f * cell_h / std::max(hi[1] - lo[1], 1e-3f);
+    // The body's height fills a cell, or its width or depth when wider (a body bent double or
+    // lying: the front and side views drew over each other).
+    const float wide = std::max(hi[0] - lo[0], hi[2] - lo[2]);
+    const float scale = 0.92f * std::min(cell_h / std::max(hi[1] - lo[1], 1e-3f), cell_w / std::max(wide, 1e-3f));
     for (int col = 0; col < columns; ++col)
         for (int view = 0; view < 2; ++view) {
             Viewport vp;
