@@ -70,7 +70,7 @@ Stage start_stage(uint32_t components) {
 
 Stage landmark_stage() {
     Stage s{};
-    s.iterations = 20;
+    s.iterations = 10;
     s.body_joints = true;
     s.all_joints = false;
     s.components = kCoarseComponents;
