@@ -68,20 +68,6 @@ Stage start_stage(uint32_t components) {
     return s;
 }
 
-Stage landmark_stage() {
-    Stage s{};
-    s.iterations = 10;
-    s.body_joints = true;
-    s.all_joints = false;
-    s.components = kCoarseComponents;
-    s.max_distance = 0;
-    s.gm_scale = 8.0;
-    s.min_normal_dot = 0.0;
-    s.point_fraction = 0;
-    s.tolerance = 1e-4;
-    return s;
-}
-
 Stage tip_stage() {
     Stage s{};
     s.iterations = 12;
@@ -93,6 +79,15 @@ Stage tip_stage() {
     s.min_normal_dot = 0.0;
     s.point_fraction = 0;
     s.tolerance = 1e-4;
+    return s;
+}
+
+// The tip stage's inverse kinematics, drawn to landmarks instead of tips, with the coarse stage's
+// shape components.
+Stage landmark_stage() {
+    Stage s = tip_stage();
+    s.iterations = 10;
+    s.components = kCoarseComponents;
     return s;
 }
 
