@@ -443,7 +443,16 @@ TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan mad
     // model of another digest, so every accepted scan is fitted). The template alone registers
     // some of them poorly: a person accepts them all, so that every scan is posed (the posture
     // fits do not depend on the registration).
-    const std::vector<unsigned char> start = format::write_model(learning::template_only(m.data()));
+    // Under the sanitizers the round registers with the built-in model renamed instead (another
+    // digest, so every scan is still posed by the posture model): the template alone cannot take a
+    // person's shape, so three of its five fits were judged wrong and restarted four times each
+    // (this test alone there: 102 -> 83 s); the Release run compares the two models' poses.
+    format::ModelData start_data = learning::template_only(m.data());
+    if (test::sanitized) {
+        start_data = m.data();
+        start_data.metadata.name += " (renamed for the test)";
+    }
+    const std::vector<unsigned char> start = format::write_model(start_data);
     spec.posture_model = default_model_bytes();
     for (const auto& scan : c.scans) spec.decisions[scan.name] = {true, "accepted for the test"};
 
@@ -472,7 +481,7 @@ TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan mad
     const std::string round_json = read_regular_file(spec.out_dir + "/round_1/round.json", 1 << 20);
     CHECK(round_json.find("posture_model_digest") != std::string::npos);
     const std::string decisions = read_regular_file(spec.out_dir + "/round_1/decisions.csv", 1 << 20);
-    const Model template_model(learning::template_only(m.data()), nullptr);
+    const Model start_model(start_data, nullptr);
     const learning::PostureModel posture(spec.posture_model, spec.registration);
     double posture_error = 0, own_error = 0;
     for (std::size_t s = 0; s < c.scans.size(); ++s) {
@@ -483,7 +492,7 @@ TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan mad
         const fitting::FitState posture_fit = posture.fit(c.scans[s], spec.reading, path, nullptr, nullptr, &reused);
         CHECK(reused);
         const learning::RegistrationRecord own =
-            learning::read_registration_record(learning::round_registration_path(spec.out_dir, 1, c.scans[s].name), template_model, true);
+            learning::read_registration_record(learning::round_registration_path(spec.out_dir, 1, c.scans[s].name), start_model, true);
         for (uint32_t j = 0; j < m.joint_count(); ++j) {
             const std::vector<float>& t = c.poses[s];
             const Eigen::Quaterniond truth(t[4 * j + 3], t[4 * j], t[4 * j + 1], t[4 * j + 2]);
@@ -494,7 +503,7 @@ TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan mad
     posture_error /= double(c.scans.size()), own_error /= double(c.scans.size());
     INFO("mean joint rotation error: the built-in model's fits " << posture_error * 180 / M_PI << " deg, the template alone's " << own_error * 180 / M_PI
                                                                  << " deg");
-    CHECK(posture_error < own_error);
+    if (!test::sanitized) CHECK(posture_error < own_error);
     CHECK(posture_error * 180 / M_PI < 8);
 
     const std::vector<learning::RoundReport> again = learning::bootstrap(start, spec);
