@@ -689,6 +689,23 @@ TEST_CASE("a scan fit that ends implausible is redone from the next start candid
     CHECK(err < 0.01);
 }
 
+TEST_CASE("a scan fit that leaves its scan loosely explained is redone from the next start candidate", "[fitting]") {
+    // The benchmark's scan trial 23 (its generator advanced past trials 0-22): the first fit is
+    // judged right (no joint past its range, nothing unexplained) but leaves 2 % of the scan over
+    // 2.5 cm from its surface, its trunk upright where the person leans forward; it ended 4.34 mm
+    // off before loose fits were redone. Should a change make this fit right at once, restarts is 0: pick another trial
+    // (SSCAPE_BENCH_VERBOSE=1 sscape_fit_bench --trials 30 --scenario scan lists restarts).
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    std::mt19937 rng(200);
+    rng.discard(7194160);
+    const auto [sol, err] = fit_benchmark_scan(m, lin, rng);
+    INFO("mean vertex error " << err * 1e3 << " mm, " << sol.report.restarts << " restarts");
+    CHECK(sol.report.restarts >= 1);
+    CHECK(err < 0.002);
+    CHECK(sol.report.converged);
+}
+
 TEST_CASE("the start search goes on to the last rigid candidates while the checked ones end implausible", "[fitting]") {
     // A scan whose right heading the rigid start search ranks last of eight (the first four all
     // ended implausible: 577 mm mean vertex error when only those were checked).
