@@ -445,8 +445,8 @@ TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan mad
     // fits do not depend on the registration).
     // Under the sanitizers the round registers with the built-in model renamed instead (another
     // digest, so every scan is still posed by the posture model): the template alone cannot take a
-    // person's shape, so three of its five fits were judged wrong and restarted four times each
-    // (this test alone there: 102 -> 83 s); the Release run compares the two models' poses.
+    // person's shape, and with it three of the test's eight fits were judged wrong and restarted
+    // four times each (this test alone there: 102 -> 83 s); the Release run compares the poses.
     format::ModelData start_data = learning::template_only(m.data());
     if (test::sanitized) {
         start_data = m.data();
