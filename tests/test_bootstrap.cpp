@@ -3,10 +3,10 @@
 // on disk, and a person's decisions file.
 #include "learning/acceptance.hpp"
 #include "learning/bootstrap.hpp"
-#include "learning/registration_record.hpp"
+#include "scan_files/registration_record.hpp"
 #include "learning/evaluate_learning.hpp"
 #include "learning/posture_fit.hpp"
-#include "learning/simulated_collection.hpp"
+#include "testing/simulated_collection.hpp"
 #include "support.hpp"
 
 #include "anatomy/joint_limits.hpp"
@@ -39,7 +39,7 @@ namespace {
 struct Scanned {
     simulation::TrueBody truth;
     fitting::PointCloud cloud;
-    learning::RegistrationRecord record;
+    scan_files::RegistrationRecord record;
 };
 
 registration::RegistrationQuality quality_of(const Model& m, const std::vector<Vector3d>& x, const fitting::PointCloud& cloud) {
@@ -121,7 +121,7 @@ TEST_CASE("inspection accepts a good registration and rejects a limb gone astray
     CHECK(ok.joint_excess < 0.05);
 
     SECTION("the left arm moved 20 cm forward: its region uncovered, the scan's arm unexplained, the shoulder stretched") {
-        learning::RegistrationRecord astray = good.record;
+        scan_files::RegistrationRecord astray = good.record;
         const std::vector<uint32_t> arm = left_arm(m);
         REQUIRE(arm.size() > 100);
         for (uint32_t v : arm) astray.registered.vertices[v] += Vector3d(0, 0, 0.2);
@@ -134,7 +134,7 @@ TEST_CASE("inspection accepts a good registration and rejects a limb gone astray
         CHECK(mentions(i, "stretched"));
     }
     SECTION("the torso turned inside out") {
-        learning::RegistrationRecord folded = good.record;
+        scan_files::RegistrationRecord folded = good.record;
         const auto regions = registration::body_regions(m.data());
         const int torso = int(std::find(regions.names.begin(), regions.names.end(), "torso") - regions.names.begin());
         Vector3d c = Vector3d::Zero();
@@ -151,7 +151,7 @@ TEST_CASE("inspection accepts a good registration and rejects a limb gone astray
         CHECK(mentions(i, "folded over"));
     }
     SECTION("a knee bent the wrong way in the fit") {
-        learning::RegistrationRecord knee = good.record;
+        scan_files::RegistrationRecord knee = good.record;
         const std::vector<anatomy::JointLimit> limits = anatomy::joint_limits(m);
         const auto& names = m.data().skeleton.joint_names;
         const std::size_t j = std::size_t(std::find(names.begin(), names.end(), "calf_l") - names.begin());
@@ -181,16 +181,16 @@ TEST_CASE("a scan read with the wrong up axis: the report names the one the fit 
                                       s.record.registered.fit.pose[0];
     CHECK(nearest_axis_name(fitting::fitted_body_orientation(m.data(), s.record.registered.fit).col(1)) == "z");
     const std::string mesh = "up_test.ply";
-    learning::write_registration_record(mesh, m, s.record);
-    const auto report = nlohmann::json::parse(read_regular_file(learning::record_report_path(mesh), 1u << 26));
+    scan_files::write_registration_record(mesh, m, s.record);
+    const auto report = nlohmann::json::parse(read_regular_file(scan_files::record_report_path(mesh), 1u << 26));
     CHECK(report.at("scan_up") == "y");
     CHECK(report.at("scan_up_found") == "z");
     // Read z-up, the same body is found y-up in the scan's own axes (the frame turned back).
     s.record.scan_up = "z";
     s.record.registered.fit.pose[0] = R0.conjugate() * Eigen::Quaterniond(Eigen::AngleAxisd(-M_PI / 2, Vector3d::UnitX())) * R0 *
                                       s.record.registered.fit.pose[0];
-    learning::write_registration_record(mesh, m, s.record);
-    CHECK(nlohmann::json::parse(read_regular_file(learning::record_report_path(mesh), 1u << 26)).at("scan_up_found") == "z");
+    scan_files::write_registration_record(mesh, m, s.record);
+    CHECK(nlohmann::json::parse(read_regular_file(scan_files::record_report_path(mesh), 1u << 26)).at("scan_up_found") == "z");
     // The picture's frame: upright along +z, facing the way the body faces.
     s.record.registered.fit.pose[0] = R0.conjugate() * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitX())) * R0 *
                                       s.record.registered.fit.pose[0];
@@ -209,8 +209,8 @@ TEST_CASE("a registration record reads back as written, in the scan's units and 
     s.record.scan_up = "z";
     s.record.model_digest = "0123456789abcdef";
     const std::string mesh = "record_test.ply";
-    learning::write_registration_record(mesh, m, s.record);
-    const learning::RegistrationRecord back = learning::read_registration_record(mesh, m, true);
+    scan_files::write_registration_record(mesh, m, s.record);
+    const scan_files::RegistrationRecord back = scan_files::read_registration_record(mesh, m, true);
     CHECK(back.scan == "scans/b9.ply");
     CHECK(back.scan_up == "z");
     CHECK(back.model_digest == "0123456789abcdef");
@@ -232,28 +232,28 @@ TEST_CASE("a registration record reads back as written, in the scan's units and 
     CHECK(learning::inspect_registration(m, back, {}).accepted == learning::inspect_registration(m, s.record, {}).accepted);
 
     // A fit with the segment shape spaces: the whole body's coefficients, then the segments'.
-    learning::RegistrationRecord segmented = s.record;
+    scan_files::RegistrationRecord segmented = s.record;
     segmented.registered.fit.shape.resize(m.component_count(), 0.0);
     for (std::size_t i = 0; i < m.segment_coefficient_count(); ++i) segmented.registered.fit.shape.push_back(0.25 * double(i % 5) - 0.5);
-    learning::write_registration_record(mesh, m, segmented);
-    const learning::RegistrationRecord segmented_back = learning::read_registration_record(mesh, m, true);
+    scan_files::write_registration_record(mesh, m, segmented);
+    const scan_files::RegistrationRecord segmented_back = scan_files::read_registration_record(mesh, m, true);
     REQUIRE(segmented_back.registered.fit.shape.size() == segmented.registered.fit.shape.size());
     for (std::size_t k = 0; k < segmented.registered.fit.shape.size(); ++k)
         CHECK(segmented_back.registered.fit.shape[k] == Approx(segmented.registered.fit.shape[k]));
 
-    const std::string report = learning::record_report_path(mesh);
+    const std::string report = scan_files::record_report_path(mesh);
     const std::string partial = "{\"scan\": \"x\", \"fit\": {\"shape\": [1], \"segment_shape\": [1, 2], \"rotations_xyzw\": [0, 0, 0, 1], "
                                 "\"translation_m\": [0, 0, 0], \"scale\": 1}}";
     write_file_atomically(report, partial.data(), partial.size());  // segments after a part of the whole body's
-    CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, false), Catch::Contains("the fit's sizes do not match the model"));
+    CHECK_THROWS_WITH(scan_files::read_registration_record(mesh, m, false), Catch::Contains("the fit's sizes do not match the model"));
     const std::string broken = "{\"scan\": \"x\", \"fit\": {\"shape\": [1], \"rotations_xyzw\": [0, 0, 0, 1]";
     write_file_atomically(report, broken.data(), broken.size());
-    CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, false), Catch::Contains("not a registration report"));
+    CHECK_THROWS_WITH(scan_files::read_registration_record(mesh, m, false), Catch::Contains("not a registration report"));
     const std::string short_fit = "{\"scan\": \"x\", \"fit\": {\"shape\": [1], \"rotations_xyzw\": [0, 0, 0, 1], \"translation_m\": [0, 0, 0], \"scale\": 1}}";
     write_file_atomically(report, short_fit.data(), short_fit.size());
-    CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, false), Catch::Contains("the fit's sizes do not match the model"));
+    CHECK_THROWS_WITH(scan_files::read_registration_record(mesh, m, false), Catch::Contains("the fit's sizes do not match the model"));
     std::filesystem::remove(report);
-    CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, false), Catch::Contains("no registration report"));
+    CHECK_THROWS_WITH(scan_files::read_registration_record(mesh, m, false), Catch::Contains("no registration report"));
     std::filesystem::remove(mesh);
 }
 
@@ -262,8 +262,8 @@ TEST_CASE("a registration report's values outside what a registration gives are 
     // first component moved vertices 215 mm per SD; fit.shape 1e308 failed late and obscurely.
     const Model& m = test::default_cpp_model();
     Scanned s = scanned(m, 9);
-    const std::string mesh = "record_range_test.ply", report = learning::record_report_path(mesh);
-    learning::write_registration_record(mesh, m, s.record);
+    const std::string mesh = "record_range_test.ply", report = scan_files::record_report_path(mesh);
+    scan_files::write_registration_record(mesh, m, s.record);
     const nlohmann::ordered_json good = nlohmann::ordered_json::parse(read_regular_file(report, 64ull << 20));
     auto refused = [&](const char* pointer, nlohmann::ordered_json value, const char* message) {
         nlohmann::ordered_json j = good;
@@ -271,7 +271,7 @@ TEST_CASE("a registration report's values outside what a registration gives are 
         const std::string text = j.dump();
         write_file_atomically(report, text.data(), text.size());
         INFO(pointer);
-        CHECK_THROWS_WITH(learning::read_registration_record(mesh, m, true), Catch::Contains(message));
+        CHECK_THROWS_WITH(scan_files::read_registration_record(mesh, m, true), Catch::Contains(message));
     };
     refused("/scan_units_to_metres", 1e-300, "scan_units_to_metres 1e-300 is none of m, cm, mm");
     refused("/scan_units_to_metres", 0.5, "is none of m, cm, mm");
@@ -284,7 +284,7 @@ TEST_CASE("a registration report's values outside what a registration gives are 
     refused("/seconds", -5.0, "seconds -5 is outside");
     const std::string text = good.dump();  // the report as written reads
     write_file_atomically(report, text.data(), text.size());
-    CHECK(learning::read_registration_record(mesh, m, true).registered.has_fit);
+    CHECK(scan_files::read_registration_record(mesh, m, true).registered.has_fit);
     std::filesystem::remove(report);
     std::filesystem::remove(mesh);
 }
@@ -315,13 +315,13 @@ TEST_CASE("a simulated collection writes each scan's landmarks beside it and the
     const Model& m = test::default_cpp_model();
     const std::string folder = "collection_landmarks_test";
     std::filesystem::remove_all(folder);
-    learning::CollectionSpec cs;
+    testing::CollectionSpec cs;
     cs.scans = 2;
     cs.extra = 0;
     cs.points = 5000;
-    const learning::SimulatedCollection bare = learning::simulate_collection(root, m, cs, folder + "/bare");
+    const testing::SimulatedCollection bare = testing::simulate_collection(root, m, cs, folder + "/bare");
     cs.landmark_noise = 0;
-    const learning::SimulatedCollection marked = learning::simulate_collection(root, m, cs, folder + "/marked");
+    const testing::SimulatedCollection marked = testing::simulate_collection(root, m, cs, folder + "/marked");
     REQUIRE(marked.scans.size() == 2);
     for (std::size_t s = 0; s < 2; ++s) {
         CHECK(bare.scans[s].landmarks.empty());
@@ -357,11 +357,11 @@ TEST_CASE("one round of bootstrapping on 20 MakeHuman booth scans: most accepted
     std::filesystem::remove_all(folder);
     // Under the sanitizers: the same steps on 4 scans (20 take 12 minutes there), without the figures.
     const int scans = test::sanitized ? 4 : 20, held_out = test::sanitized ? 2 : 10, components = test::sanitized ? 2 : 8;
-    learning::CollectionSpec cs;
+    testing::CollectionSpec cs;
     cs.scans = scans;
     cs.extra = held_out;
     cs.points = test::sanitized ? 8000 : 15000;
-    const learning::SimulatedCollection c = learning::simulate_collection(root, m, cs, folder + "/scans");
+    const testing::SimulatedCollection c = testing::simulate_collection(root, m, cs, folder + "/scans");
     REQUIRE(c.scans.size() == std::size_t(scans));
     learning::BootstrapSpec spec;
     spec.scans = c.scans;
@@ -378,11 +378,11 @@ TEST_CASE("one round of bootstrapping on 20 MakeHuman booth scans: most accepted
 
     // The accepted registrations against the true meshes, vertex for vertex.
     double error = 0;
-    std::vector<learning::RegisteredScan> accepted;
+    std::vector<scan_files::RegisteredScan> accepted;
     const std::string decisions = read_regular_file(spec.out_dir + "/round_1/decisions.csv", 1 << 20);
     for (std::size_t s = 0; s < c.scans.size(); ++s) {
         if (decisions.find("\n" + c.scans[s].name + ",accept,") == std::string::npos) continue;
-        const learning::RegistrationRecord r = learning::read_registration_record(spec.out_dir + "/round_1/registrations/" + c.scans[s].name + ".ply", m, true);
+        const scan_files::RegistrationRecord r = scan_files::read_registration_record(spec.out_dir + "/round_1/registrations/" + c.scans[s].name + ".ply", m, true);
         error += simulation::mean_vertex_error(r.registered.vertices, c.truth[s]);
         accepted.push_back(r.registered);
     }
@@ -394,7 +394,7 @@ TEST_CASE("one round of bootstrapping on 20 MakeHuman booth scans: most accepted
     // The learned model loads, and reconstructs the 10 held-out people at rest about as well as a
     // model learned from the scanned people's true rest meshes.
     const format::ModelData learned = format::read_model_file(spec.out_dir + "/model.sscape");
-    std::vector<learning::RegisteredScan> true_rest;
+    std::vector<scan_files::RegisteredScan> true_rest;
     for (std::size_t s = 0; s < c.scans.size(); ++s) true_rest.push_back({"true", c.rest[s], false, {}});
     learning::LearnSpec direct_spec;
     direct_spec.components = uint32_t(components);
@@ -428,10 +428,10 @@ TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan mad
     const Model& m = test::default_cpp_model();
     const std::string folder = "bootstrap_posture_model_test";
     std::filesystem::remove_all(folder);
-    learning::CollectionSpec cs;
+    testing::CollectionSpec cs;
     cs.scans = test::sanitized ? 3 : 5;
     cs.points = 8000;
-    const learning::SimulatedCollection c = learning::simulate_collection(root, m, cs, folder + "/scans");
+    const testing::SimulatedCollection c = testing::simulate_collection(root, m, cs, folder + "/scans");
     learning::BootstrapSpec spec;
     spec.scans = c.scans;
     spec.out_dir = folder + "/run";
@@ -491,8 +491,8 @@ TEST_CASE("bootstrapping with a posture model: its fit to each accepted scan mad
         bool reused = false;
         const fitting::FitState posture_fit = posture.fit(c.scans[s], spec.reading, path, nullptr, nullptr, &reused);
         CHECK(reused);
-        const learning::RegistrationRecord own =
-            learning::read_registration_record(learning::round_registration_path(spec.out_dir, 1, c.scans[s].name), start_model, true);
+        const scan_files::RegistrationRecord own =
+            scan_files::read_registration_record(learning::round_registration_path(spec.out_dir, 1, c.scans[s].name), start_model, true);
         for (uint32_t j = 0; j < m.joint_count(); ++j) {
             const std::vector<float>& t = c.poses[s];
             const Eigen::Quaterniond truth(t[4 * j + 3], t[4 * j], t[4 * j + 1], t[4 * j + 2]);

@@ -32,7 +32,7 @@ std::vector<float> identity_pose(const Model& m) {
 // A body of the model's first `components` shape directions, posed and placed at random, as a
 // perfect registration with the fit that found it.
 struct Sample {
-    learning::RegisteredScan scan;
+    scan_files::RegisteredScan scan;
     std::vector<Vector3d> rest;  // the same body at rest, at the origin
 };
 
@@ -70,7 +70,7 @@ TEST_CASE("skeleton posture normalization undoes the fitted skinning", "[learnin
     CHECK(moved > 0.1);     // the pose moved the body
     CHECK(worst < 2e-5);    // and unposing brings it back (float synthesis)
     // With a scale, as a fit in unknown units reports it.
-    learning::RegisteredScan scaled = s.scan;
+    scan_files::RegisteredScan scaled = s.scan;
     scaled.fit.scale = 1.7;
     for (auto& x : scaled.vertices) x = 1.7 * (x - s.scan.fit.translation) + s.scan.fit.translation;
     const std::vector<Vector3d> again = learning::unpose_skeleton(m, scaled.fit, scaled.vertices);
@@ -160,7 +160,7 @@ TEST_CASE("a model learned from posed registrations: skeleton normalization keep
     const Model& m = test::default_cpp_model();
     std::mt19937 rng(11);
     constexpr uint32_t kShapes = 6, kTrain = 24, kTest = 6;
-    std::vector<learning::RegisteredScan> train;
+    std::vector<scan_files::RegisteredScan> train;
     std::vector<Sample> test;
     for (uint32_t i = 0; i < kTrain; ++i) train.push_back(sample(m, rng, kShapes, 0.6).scan);
     for (uint32_t i = 0; i < kTest; ++i) test.push_back(sample(m, rng, kShapes, 0.6));
@@ -189,7 +189,7 @@ TEST_CASE("a model learned from posed registrations: skeleton normalization keep
     CHECK(skeleton_error < 0.5e-3);
     CHECK(none_error > 5 * skeleton_error);
     // The laplacian method needs no fits; its space holds shape and far less posture than none's.
-    std::vector<learning::RegisteredScan> unfitted = train;
+    std::vector<scan_files::RegisteredScan> unfitted = train;
     for (auto& scan : unfitted) scan.has_fit = false, scan.fit = {};
     spec.posture = learning::Posture::Laplacian;
     learning::LearnReport laplacian_report;
@@ -203,7 +203,7 @@ TEST_CASE("a model learned from posed registrations: skeleton normalization keep
     CHECK(laplacian_error < 0.5 * none_error);
     // Normalization runs on threads: the same bodies on one or two, and a body that fails is
     // reported from inside the pool.
-    std::vector<learning::RegisteredScan> few(unfitted.begin(), unfitted.begin() + 4);
+    std::vector<scan_files::RegisteredScan> few(unfitted.begin(), unfitted.begin() + 4);
     const training::SampleMatrix one_thread = learning::normalized_bodies(m, few, learning::Posture::Laplacian, false, 1);
     const training::SampleMatrix two_threads = learning::normalized_bodies(m, few, learning::Posture::Laplacian, false, 2);
     CHECK(one_thread == two_threads);
@@ -238,7 +238,7 @@ TEST_CASE("a model learned from posed registrations: skeleton normalization keep
     posed_by.posture_model = std::make_shared<const format::ModelData>(m.data());
     const format::ModelData relearned = learning::learn_model(skeleton, train, posed_by);
     CHECK(relearned.metadata.provenance.find("with the poses of model '" + m.data().metadata.name + "'") != std::string::npos);
-    std::vector<learning::RegisteredScan> misread = train;
+    std::vector<scan_files::RegisteredScan> misread = train;
     for (auto& scan : misread) scan.fit.shape.resize(8);
     learning::LearnSpec own = posed_by;
     own.posture_model = nullptr;
@@ -259,7 +259,7 @@ TEST_CASE("evaluation: six shape directions generalize fully at six components, 
     const Model& m = test::default_cpp_model();
     std::mt19937 rng(17);
     constexpr uint32_t kShapes = 6;
-    std::vector<learning::RegisteredScan> scans;
+    std::vector<scan_files::RegisteredScan> scans;
     for (uint32_t i = 0; i < 16; ++i) scans.push_back(sample(m, rng, kShapes, 0.6).scan);
     learning::EvaluationSpec spec;
     spec.components = {1, 3, 6, 9};
@@ -317,11 +317,11 @@ TEST_CASE("evaluation: six shape directions generalize fully at six components, 
 TEST_CASE("learning refuses bad registrations with a clear message", "[learning]") {
     const Model& m = test::default_cpp_model();
     std::mt19937 rng(3);
-    std::vector<learning::RegisteredScan> scans;
+    std::vector<scan_files::RegisteredScan> scans;
     for (int i = 0; i < 4; ++i) scans.push_back(sample(m, rng, 4, 0.3).scan);
     learning::LearnSpec spec;
     spec.components = 3;
-    auto refuses = [&](const std::vector<learning::RegisteredScan>& s, const learning::LearnSpec& sp, const std::string& words) {
+    auto refuses = [&](const std::vector<scan_files::RegisteredScan>& s, const learning::LearnSpec& sp, const std::string& words) {
         try {
             learning::learn_model(m.data(), s, sp);
             FAIL("accepted: " << words);
@@ -368,7 +368,7 @@ TEST_CASE("learning refuses bad registrations with a clear message", "[learning]
 TEST_CASE("Procrustes with scale brings every body to one size and keeps their proportions", "[learning]") {
     const Model& m = test::default_cpp_model();
     std::mt19937 rng(23);
-    std::vector<learning::RegisteredScan> scans;
+    std::vector<scan_files::RegisteredScan> scans;
     for (uint32_t i = 0; i < 12; ++i) scans.push_back(sample(m, rng, 10, 0.0).scan);
     auto sizes = [&](const training::SampleMatrix& X) {
         std::vector<double> out;

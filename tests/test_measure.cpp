@@ -3,7 +3,7 @@
 #include "capi/handles.hpp"
 #include "measure/girth.hpp"
 #include "measure/measurements.hpp"
-#include "learning/simulated_collection.hpp"
+#include "testing/simulated_collection.hpp"
 #include "measure/mesh_body.hpp"
 #include "support.hpp"
 
@@ -269,11 +269,11 @@ TEST_CASE("people the model does not hold lie near its shape space at rest, and 
         return;
     }
     const Model& model = test::default_cpp_model();
-    learning::CollectionSpec cs;
+    testing::CollectionSpec cs;
     cs.scans = 4;
     cs.points = 500;
     const std::string folder = "mesh_body_makehuman_test";
-    const learning::SimulatedCollection c = learning::simulate_collection(root, model, cs, folder);
+    const testing::SimulatedCollection c = testing::simulate_collection(root, model, cs, folder);
     REQUIRE(c.truth.size() == cs.scans);
     for (std::size_t s = 0; s < c.truth.size(); ++s) {
         const double rest = measure::mesh_body(model, c.rest[s]).off_shape_space, posed = measure::mesh_body(model, c.truth[s]).off_shape_space;

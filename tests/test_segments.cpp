@@ -21,13 +21,13 @@ using namespace ssc;
 namespace {
 
 // Bodies of the default model's whole shape space at rest: registrations with nothing to normalize.
-std::vector<learning::RegisteredScan> rest_bodies(const Model& m, uint32_t count, uint32_t seed) {
+std::vector<scan_files::RegisteredScan> rest_bodies(const Model& m, uint32_t count, uint32_t seed) {
     std::mt19937 rng(seed);
     std::vector<float> pose(4 * std::size_t(m.joint_count()), 0.f);
     for (uint32_t j = 0; j < m.joint_count(); ++j) pose[4 * j + 3] = 1.f;
-    std::vector<learning::RegisteredScan> out;
+    std::vector<scan_files::RegisteredScan> out;
     for (uint32_t i = 0; i < count; ++i) {
-        learning::RegisteredScan s;
+        scan_files::RegisteredScan s;
         s.name = "body" + std::to_string(i);
         s.vertices = simulation::make_body(m, simulation::random_shape(m, rng), pose, Eigen::Vector3d::Zero()).vertices;
         out.push_back(std::move(s));

@@ -3,18 +3,16 @@
 // elsewhere), and the rounds themselves (learning/bootstrap.hpp does the work).
 #include "capi/cpp_access.hpp"
 #include "capi/guard.hpp"
-#include "capi/handles.hpp"
 #include "capi/registration_report.hpp"
-#include "common/files.hpp"
 #include "common/folder_lock.hpp"
 #include "learning/bootstrap.hpp"
-#include "learning/posture_fit.hpp"
+#include "learning/model_choice.hpp"
 #include <sscape/sscape_offline.h>
-#include "sscape_format/model_io.hpp"
 
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 using namespace ssc;
 using namespace ssc::capi;
@@ -44,49 +42,13 @@ struct ssc_bootstrap {
 
 namespace {
 
-// The built-in model's file, as compiled in (verified with the others in starting_model()).
+// The built-in model's file, as compiled in (verified with the others by learning/model_choice.hpp).
 std::vector<unsigned char> builtin_model() {
     const FileBytes file = default_model_file();
     return std::vector<unsigned char>(file.data, file.data + file.size);
 }
 
-std::vector<unsigned char> starting_model(const ssc_bootstrap_def& d) {
-    std::vector<unsigned char> bytes;
-    if (d.init_model_path) {
-        const std::string s = read_regular_file(d.init_model_path, 1ull << 30);
-        bytes.assign(s.begin(), s.end());
-    } else {
-        bytes = builtin_model();
-    }
-    if (d.template_only) bytes = format::write_model(learning::template_only(format::read_model(bytes.data(), bytes.size())));
-    else format::read_model(bytes.data(), bytes.size());  // refuses a bad model now
-    return bytes;
-}
-
-// The posture model's file bytes; empty: the rounds' own fits (see posture_model_path).
-std::vector<unsigned char> posture_model(const ssc_bootstrap_def& d, const std::vector<unsigned char>& start) {
-    if (d.posture != SSC_POSTURE_SKELETON || (d.posture_model_path && !*d.posture_model_path)) return {};
-    const format::ModelData start_data = format::read_model(start.data(), start.size());
-    if (d.posture_model_path) {
-        const std::string s = read_regular_file(d.posture_model_path, 1ull << 30);
-        std::vector<unsigned char> bytes(s.begin(), s.end());
-        format::ModelData posture;
-        try {
-            posture = format::read_model(bytes.data(), bytes.size());
-        } catch (const Error& e) {
-            throw Error(SSC_ERROR_INVALID_ARGUMENT, std::string("the posture model ") + d.posture_model_path + ": " + e.what());
-        }
-        learning::check_posture_model(start_data, posture);
-        return bytes;
-    }
-    std::vector<unsigned char> bytes = builtin_model();
-    try {
-        learning::check_posture_model(start_data, format::read_model(bytes.data(), bytes.size()));
-    } catch (const Error&) {
-        return {};  // a starting model of another template: its rounds' own fits
-    }
-    return bytes;
-}
+std::optional<std::string> optional_path(const char* path) { return path ? std::optional<std::string>(path) : std::nullopt; }
 
 }  // namespace
 
@@ -125,7 +87,7 @@ ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, 
 
         auto b = std::make_unique<ssc_bootstrap>();
         learning::BootstrapSpec& spec = b->spec;
-        spec.scans = learning::find_scans(d.scans_dir, &spec.skipped);
+        spec.scans = scan_files::find_scans(d.scans_dir, &spec.skipped);
         SSC_REQUIRE_ARG_S(spec.scans.size() >= 3, d.scans_dir << " holds " << spec.scans.size() << " scans (.ply or .obj); bootstrapping needs at least 3");
         spec.out_dir = d.out_dir;
         spec.threads = d.threads;
@@ -135,7 +97,7 @@ ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, 
         spec.registration = registration_options(registration);
         b->units = optional_string(d.units);
         b->up = optional_string(d.up);
-        spec.reading = learning::scan_reading(b->units, b->up);
+        spec.reading = scan_files::scan_reading(b->units, b->up);
         spec.learn.components = d.components;
         spec.learn.posture = posture == SSC_POSTURE_SKELETON  ? learning::Posture::Skeleton
                              : posture == SSC_POSTURE_LAPLACIAN ? learning::Posture::Laplacian
@@ -148,8 +110,9 @@ ssc_status ssc_bootstrap_create(ssc_context* ctx, const ssc_bootstrap_def* def, 
         spec.sheet_entries = int(d.contact_sheet_entries);
         if (d.decisions_path) spec.decisions = learning::read_decisions(d.decisions_path);
         if (d.attributes_path) spec.attributes = learning::read_attribute_table(d.attributes_path);
-        b->initial_model = starting_model(d);
-        spec.posture_model = posture_model(d, b->initial_model);
+        const std::vector<unsigned char> builtin = builtin_model();
+        b->initial_model = learning::starting_model_file(optional_path(d.init_model_path), d.template_only != 0, builtin);
+        spec.posture_model = learning::posture_model_file(spec.learn.posture, optional_path(d.posture_model_path), b->initial_model, builtin);
         *out = b.release();
     });
 }
@@ -186,7 +149,7 @@ ssc_status ssc_bootstrap_get_job(ssc_bootstrap* bootstrap, uint32_t round, uint3
         SSC_REQUIRE_ARG_S(round >= 1 && round <= 100, "round " << round << " is not 1..100");
         const auto& scans = bootstrap->spec.scans;
         SSC_REQUIRE_ARG_S(index < scans.size(), "index " << index << " is beyond the " << scans.size() << " scans");
-        const learning::ScanFileJob w = learning::round_registration_job(bootstrap->spec, round, scans[index]);
+        const scan_files::ScanFileJob w = learning::round_registration_job(bootstrap->spec, round, scans[index]);
         std::error_code ec;  // the round's folder, for the job to write into
         std::filesystem::create_directories(std::filesystem::path(w.mesh_path).parent_path(), ec);
         if (ec) fail(SSC_ERROR_IO, "cannot make the folder of " + w.mesh_path + ": " + ec.message());

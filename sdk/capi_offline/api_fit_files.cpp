@@ -3,7 +3,7 @@
 // same float arrays the command line gave them, so the command line and callers of these functions
 // (the Python pipeline) fit the same way.
 #include "capi/guard.hpp"
-#include "capi/handles.hpp"
+#include "capi/cpp_access.hpp"
 #include "common/files.hpp"
 #include "fitting/solver.hpp"
 #include "io/readers.hpp"
@@ -80,7 +80,7 @@ ssc_status ssc_fitter_add_landmarks_file(ssc_fitter* fitter, uint32_t frame, con
         need(fitter, "fitter");
         const ssc_fit_file_def d = read_file_def(def);
         const double to_metres = d.units ? io::units_to_metres(d.units) : 1e-3;  // the .lnd format's millimetres
-        const ssc_model* model = fitter->model;
+        const ssc_model* model = model_of(fitter);
         std::unordered_map<std::string, uint32_t> by_name;
         for (uint32_t l = 0; l < ssc_model_landmark_count(model); ++l) {
             const char* name = "";
@@ -94,7 +94,7 @@ ssc_status ssc_fitter_add_landmarks_file(ssc_fitter* fitter, uint32_t frame, con
             const auto it = by_name.find(io::normalized_landmark_name(r.name));
             if (it == by_name.end()) {
                 ++unknown;
-                model->context->message(SSC_LOG_WARNING, std::string(d.path) + ": landmark '" + r.name + "' is not one of the model's; ignored");
+                log_message(model, SSC_LOG_WARNING, std::string(d.path) + ": landmark '" + r.name + "' is not one of the model's; ignored");
                 continue;
             }
             if (!d.use_hands && fitting::is_hand_landmark(r.name)) {
@@ -121,7 +121,7 @@ ssc_status ssc_model_get_digest(const ssc_model* model, const char** out) {
     return guarded(__func__, [&] {
         need(model, "model");
         need(out, "out");
-        *out = model->digest.c_str();
+        *out = digest_of(model).c_str();
     });
 }
 
@@ -131,7 +131,7 @@ ssc_status ssc_fitter_write_params(ssc_fitter* fitter, const ssc_fit_report* rep
         need(report, "report");
         need(path, "path");
         SSC_REQUIRE_ARG(report->struct_size >= sizeof(ssc_fit_report), "report->struct_size must be sizeof(ssc_fit_report), as solve filled it");
-        const ssc_model* model = fitter->model;
+        const ssc_model* model = model_of(fitter);
         const uint32_t K = ssc_model_shape_count(model), J = ssc_model_joint_count(model), F = ssc_fitter_frame_count(fitter);
         std::vector<float> shape(K), rotations(4ull * J), translation(3);
         ok(ssc_fitter_get_shape(fitter, shape.data(), K));  // INVALID_ARGUMENT before a solve
@@ -152,7 +152,7 @@ ssc_status ssc_fitter_write_params(ssc_fitter* fitter, const ssc_fit_report* rep
         nlohmann::ordered_json j;
         j["format"] = "sscape fit parameters 1";
         j["model"] = name;
-        j["model_digest"] = model->digest;  // what a reader of these parameters checks its model against
+        j["model_digest"] = digest_of(model);  // what a reader of these parameters checks its model against
         j["shape"] = shape;
         j["frames"] = frames;
         const ssc_fit_report& r = *report;

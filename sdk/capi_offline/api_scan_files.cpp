@@ -1,9 +1,9 @@
 // Scan files of a collection (sscape_offline.h): a folder's scans, and one scan file registered
-// into its record on disk (learning/collection_scan.hpp does the work).
+// into its record on disk (scan_files/scan_input.hpp does the work).
 #include "capi/guard.hpp"
-#include "capi/handles.hpp"
+#include "capi/cpp_access.hpp"
 #include "capi/registration_report.hpp"
-#include "learning/collection_scan.hpp"
+#include "scan_files/register_scan_file.hpp"
 #include <sscape/sscape_offline.h>
 
 #include <algorithm>
@@ -12,7 +12,7 @@ using namespace ssc;
 using namespace ssc::capi;
 
 struct ssc_scan_list {
-    std::vector<learning::ScanInput> scans;
+    std::vector<scan_files::ScanInput> scans;
     std::vector<std::string> skipped_paths, skipped_reasons;  // entries left out (find_scans), in name order
 };
 
@@ -24,7 +24,7 @@ ssc_status ssc_scan_list_create(const char* folder, ssc_scan_list** out) {
         need(out, "out");
         auto list = std::make_unique<ssc_scan_list>();
         std::vector<std::string> skipped;
-        list->scans = learning::find_scans(folder, &skipped);
+        list->scans = scan_files::find_scans(folder, &skipped);
         for (const std::string& entry : skipped) {  // "PATH: why"; the path may hold ": " too, the reason does not
             const std::size_t colon = entry.rfind(": ");
             list->skipped_paths.push_back(entry.substr(0, colon));
@@ -53,7 +53,7 @@ ssc_status ssc_scan_list_get(const ssc_scan_list* list, uint32_t index, const ch
     return guarded(__func__, [&] {
         need(list, "list");
         SSC_REQUIRE_ARG_S(index < list->scans.size(), "index " << index << " is beyond the " << list->scans.size() << " scans");
-        const learning::ScanInput& s = list->scans[index];
+        const scan_files::ScanInput& s = list->scans[index];
         if (name) *name = s.name.c_str();
         if (path) *path = s.path.c_str();
         if (landmarks) *landmarks = s.landmarks.c_str();
@@ -78,10 +78,10 @@ ssc_status ssc_registration_run_file(ssc_registration* registration, const ssc_s
         need(j.mesh_path, "job->mesh_path");
         if (report)
             SSC_REQUIRE_ARG(report->struct_size >= sizeof(uint32_t), "report->struct_size must be set to sizeof(ssc_registration_report)");
-        learning::ScanFileJob work;
+        scan_files::ScanFileJob work;
         work.scan.path = j.scan_path;
         work.scan.landmarks = optional_string(j.landmarks_path);
-        work.reading = learning::scan_reading(optional_string(j.units), optional_string(j.up));
+        work.reading = scan_files::scan_reading(optional_string(j.units), optional_string(j.up));
         work.mesh_path = j.mesh_path;
         work.write_report = j.write_report != 0;
         work.reuse = j.reuse != 0;
@@ -89,18 +89,19 @@ ssc_status ssc_registration_run_file(ssc_registration* registration, const ssc_s
         work.picture_path = optional_string(j.picture_path);
         registration::RegistrationProgress cb;
         if (progress) cb = [&](const char* stage, uint32_t done, uint32_t total) { return progress(user, stage, done, total) == 0; };
-        const learning::ScanFileResult r =
-            learning::register_scan_file(registration->registrar, registration->model->digest, work, cb, &registration->model->context->pool);
-        const learning::RegistrationRecord& rec = r.record;
+        registration::Registrar& registrar = registrar_of(registration);
+        const ssc_model* model = model_of(registration);
+        const scan_files::ScanFileResult r = scan_files::register_scan_file(registrar, digest_of(model), work, cb, &pool_of(model));
+        const scan_files::RegistrationRecord& rec = r.record;
         if (report)
             write_report(rec.rounds, rec.solves, std::size_t(std::count(rec.valid.begin(), rec.valid.end(), uint8_t(1))), rec.seconds,
                          rec.fit_seconds, rec.quality, r.reused ? rec.quality.scan_to_registration.count : r.points, r.landmarks, report);
-        const std::size_t most = registration->registrar.options().max_scan_points;
+        const std::size_t most = registrar.options().max_scan_points;
         if (!r.reused && r.points > most)
-            registration->model->context->message(SSC_LOG_WARNING, std::string(j.scan_path) + ": " + std::to_string(r.points) + " points; registered from " +
+            log_message(model, SSC_LOG_WARNING, std::string(j.scan_path) + ": " + std::to_string(r.points) + " points; registered from " +
                                                                        std::to_string(most) + " of them, evenly spread (the registration's memory bound)");
         for (const auto& name : r.ignored_landmarks)
-            registration->model->context->message(SSC_LOG_WARNING, std::string(j.landmarks_path) + ": landmark '" + name + "' is not one of the model's; ignored");
+            log_message(model, SSC_LOG_WARNING, std::string(j.landmarks_path) + ": landmark '" + name + "' is not one of the model's; ignored");
         if (out_reused) *out_reused = r.reused ? 1 : 0;
     });
 }

@@ -8,7 +8,7 @@
 #include "common/files.hpp"
 #include "common/output_paths.hpp"
 #include "learning/evaluate_learning.hpp"
-#include "learning/registration_record.hpp"
+#include "scan_files/registration_record.hpp"
 #include "render/plot.hpp"
 #include "sscape_format/model_io.hpp"
 #include "synthesis/model.hpp"
@@ -93,8 +93,8 @@ int run_evaluate(const Options& o) {
     for (const auto& p : o.postures) postures.push_back(learning::posture_from_name(p));
     bool need_fit = false;
     for (auto p : postures) need_fit |= p == learning::Posture::Skeleton;
-    std::vector<learning::RegisteredScan> scans;
-    for (const auto& path : o.registrations) scans.push_back(learning::read_registration_record(path, model, need_fit).registered);
+    std::vector<scan_files::RegisteredScan> scans;
+    for (const auto& path : o.registrations) scans.push_back(scan_files::read_registration_record(path, model, need_fit).registered);
     if (scans.size() < 3) throw UsageError("evaluation needs at least 3 registrations (" + std::to_string(scans.size()) + " given)");
     learning::EvaluationSpec spec;
     spec.components = o.components;

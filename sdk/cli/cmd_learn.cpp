@@ -8,7 +8,7 @@
 #include "common/output_paths.hpp"
 #include "io/readers.hpp"
 #include "learning/learn_model.hpp"
-#include "learning/registration_record.hpp"
+#include "scan_files/registration_record.hpp"
 #include "learning/scan_tables.hpp"
 #include "sscape_format/model_io.hpp"
 #include "synthesis/model.hpp"
@@ -37,7 +37,7 @@ int run_learn(const Options& o) {
     const auto t0 = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     std::vector<std::string> inputs = {o.model, o.attributes};
-    for (const auto& path : o.registrations) inputs.push_back(path), inputs.push_back(learning::record_report_path(path));
+    for (const auto& path : o.registrations) inputs.push_back(path), inputs.push_back(scan_files::record_report_path(path));
     refuse_output_over_input(o.out, inputs);
     ssc_model* handle = load_model(o.model);
     Handles guard(handle);
@@ -54,8 +54,8 @@ int run_learn(const Options& o) {
     if (o.registrations.size() <= o.components)
         throw UsageError("--components " + std::to_string(o.components) + " needs more than that many registrations (" +
                          std::to_string(o.registrations.size()) + " given)");
-    std::vector<learning::RegisteredScan> scans;
-    for (const auto& path : o.registrations) scans.push_back(learning::read_registration_record(path, model, spec.posture == learning::Posture::Skeleton).registered);
+    std::vector<scan_files::RegisteredScan> scans;
+    for (const auto& path : o.registrations) scans.push_back(scan_files::read_registration_record(path, model, spec.posture == learning::Posture::Skeleton).registered);
     if (!o.attributes.empty()) {
         std::vector<std::string> stems;
         for (const auto& path : o.registrations) stems.push_back(stem_of(path));

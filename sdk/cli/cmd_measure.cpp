@@ -10,7 +10,7 @@
 #include "io/units.hpp"
 #if SSCAPE_WITH_TRAINING
 #include "learning/posture_normalization.hpp"
-#include "learning/registration_record.hpp"
+#include "scan_files/registration_record.hpp"
 #endif
 #include "measure/measurements.hpp"
 #include "measure/mesh_body.hpp"
@@ -70,7 +70,7 @@ std::vector<Eigen::Vector3d> read_mesh(ssc_model* model, const Options& o) {
         throw std::runtime_error(report + " is a registration's report, which this sscape cannot read (built without the offline tools)");
 #else
         if (!o.units.empty()) throw UsageError("--units: " + report + " gives the registration's units; leave --units out");
-        const learning::RegistrationRecord r = learning::read_registration_record(o.mesh, model_of(model), false);
+        const scan_files::RegistrationRecord r = scan_files::read_registration_record(o.mesh, model_of(model), false);
         if (!r.registered.has_fit) {
             std::printf("mesh: %s, its registration in the scan's posture (the report has no model fit to undo it)\n", o.mesh.c_str());
             return r.registered.vertices;

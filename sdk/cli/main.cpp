@@ -40,11 +40,6 @@ Run add_train(CLI::App& app) {
     c->allow_extras();
     return [] () -> int { throw std::runtime_error("this sscape was built without training (SSCAPE_BUILD_TRAINING=OFF)"); };
 }
-Run add_register(CLI::App& app) {
-    CLI::App* c = app.add_subcommand("register", "deform the model's template onto a raw body scan (not in this build)");
-    c->allow_extras();
-    return [] () -> int { throw std::runtime_error("this sscape was built without the offline tools (SSCAPE_BUILD_TRAINING=OFF)"); };
-}
 Run add_learn(CLI::App& app) {
     CLI::App* c = app.add_subcommand("learn", "learn a model from registered scans (not in this build)");
     c->allow_extras();

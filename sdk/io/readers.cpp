@@ -14,9 +14,7 @@ namespace ssc::io {
 
 namespace {
 
-constexpr std::size_t kMaxFileBytes = std::size_t(2) << 30;  // 2 GiB: larger inputs are refused, not half read
-
-std::string slurp(const std::string& path) { return read_regular_file(path, kMaxFileBytes); }
+std::string slurp(const std::string& path) { return read_regular_file(path, kMaxInputBytes); }
 
 [[noreturn]] void bad(const std::string& path, const std::string& what) { fail(SSC_ERROR_INVALID_ARGUMENT, path + ": " + what); }
 [[noreturn]] void internal_error(const std::string& path, const std::string& what) { fail(SSC_ERROR_INTERNAL, path + ": " + what); }
@@ -352,9 +350,14 @@ PointFile parse_ply(const std::string& data, const std::string& name) { return c
 PointFile parse_obj(const std::string& data, const std::string& name) { return checked(obj_points(data, name), name); }
 
 PointFile read_points(const std::string& path) {
-    if (ends_with(path, ".ply")) return parse_ply(slurp(path), path);
-    if (ends_with(path, ".obj")) return parse_obj(slurp(path), path);
-    bad(path, "unknown point file type (expected .ply or .obj)");
+    if (!ends_with(path, ".ply") && !ends_with(path, ".obj")) bad(path, "unknown point file type (expected .ply or .obj)");
+    return parse_points(slurp(path), path);
+}
+
+PointFile parse_points(const std::string& data, const std::string& name) {
+    if (ends_with(name, ".ply")) return parse_ply(data, name);
+    if (ends_with(name, ".obj")) return parse_obj(data, name);
+    bad(name, "unknown point file type (expected .ply or .obj)");
 }
 
 std::vector<LandmarkRecord> read_lnd(const std::string& path) { return parse_lnd(slurp(path), path); }

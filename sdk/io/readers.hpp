@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -35,6 +36,9 @@ struct PointFile {
 // a point on no face); the fitter estimates those.
 PointFile read_points(const std::string& path);
 
+// The most bytes an input file may hold (2 GiB): a larger one is refused, not half read.
+constexpr std::size_t kMaxInputBytes = std::size_t(2) << 30;
+
 struct DepthImage {
     uint32_t width = 0, height = 0;
     std::vector<float> depth;  // metres, row-major from the top; 0 = no measurement
@@ -55,6 +59,7 @@ DepthImage read_pgm_depth(const std::string& path);
 std::vector<LandmarkRecord> parse_lnd(const std::string& data, const std::string& name);
 PointFile parse_ply(const std::string& data, const std::string& name);
 PointFile parse_obj(const std::string& data, const std::string& name);
+PointFile parse_points(const std::string& data, const std::string& name);  // by name's extension, as read_points
 DepthImage parse_pgm_depth(const std::string& data, const std::string& name);
 
 // Landmark names compared as the CAESAR files spell them: case, spaces and punctuation ignored

@@ -19,7 +19,7 @@ std::string fmt(const char* f, double a, double b = 0, double c = 0) {
 
 }  // namespace
 
-Inspection inspect_registration(const Model& model, const RegistrationRecord& record, const AcceptanceRules& rules) {
+Inspection inspect_registration(const Model& model, const scan_files::RegistrationRecord& record, const AcceptanceRules& rules) {
     Inspection out;
     for (const auto& q : record.quality.regions) {
         const auto it = rules.min_within_by_region.find(q.region);
@@ -32,7 +32,7 @@ Inspection inspect_registration(const Model& model, const RegistrationRecord& re
             out.reasons.push_back(q.region + fmt(": %.1f%% of the scan's points nearest to it lie over 20 mm from it (at most %.1f%%)", 100 * unexplained,
                                                  100 * rules.max_unexplained));
     }
-    const RegisteredScan& r = record.registered;
+    const scan_files::RegisteredScan& r = record.registered;
     if (r.has_fit && r.vertices.size() == model.vertex_count()) {
         Body body(model, nullptr);
         std::vector<Eigen::Vector3d> fitted;

@@ -5,7 +5,7 @@
 // and joint angles no person takes. docs/learning.md gives the figures the defaults come from.
 #pragma once
 
-#include "learning/registration_record.hpp"
+#include "scan_files/registration_record.hpp"
 #include "synthesis/model.hpp"
 
 #include <map>
@@ -43,6 +43,6 @@ struct Inspection {
 
 // Judges a registration read back or just made (the record's per-region quality, registered
 // vertices and model fit; without a fit only the regions are judged).
-Inspection inspect_registration(const Model& model, const RegistrationRecord& record, const AcceptanceRules& rules);
+Inspection inspect_registration(const Model& model, const scan_files::RegistrationRecord& record, const AcceptanceRules& rules);
 
 }  // namespace ssc::learning

@@ -9,6 +9,7 @@
 #include "registration/registrar.hpp"
 #include "runtime/runtime_model.hpp"
 #include "render/registration_picture.hpp"
+#include "scan_files/cached_result.hpp"
 #include "sscape_format/model_io.hpp"
 
 #include <nlohmann/json.hpp>
@@ -41,7 +42,7 @@ std::vector<unsigned char> read_bytes(const std::string& path) {
 struct ScanState {
     bool ok = false;         // registered (now or before)
     std::string failure;     // why not
-    RegistrationRecord record;
+    scan_files::RegistrationRecord record;
     Inspection inspection;
     bool accepted = false, by_person = false;
     std::string reason;
@@ -85,8 +86,8 @@ void prepare_bootstrap(const std::vector<unsigned char>& initial_model, const Bo
     if (!fs::exists(start_path) || read_bytes(start_path) != initial_model) write_file_atomically(start_path, initial_model.data(), initial_model.size());
 }
 
-ScanFileJob round_registration_job(const BootstrapSpec& spec, uint32_t round, const ScanInput& scan) {
-    ScanFileJob job;
+scan_files::ScanFileJob round_registration_job(const BootstrapSpec& spec, uint32_t round, const scan_files::ScanInput& scan) {
+    scan_files::ScanFileJob job;
     job.scan = scan;
     job.reading = spec.reading;
     job.mesh_path = round_registration_path(spec.out_dir, round, scan.name);
@@ -94,9 +95,215 @@ ScanFileJob round_registration_job(const BootstrapSpec& spec, uint32_t round, co
     return job;
 }
 
+namespace {
+
+using Say = std::function<void(const std::string&)>;
+
+// A round's starting model (the previous round's), loaded as the C API loads a model (a runtime
+// model, its anatomy shared). With the C API's registration options (ssc_bootstrap_create sets
+// them) a registration made here is the one ssc_registration_run_file makes elsewhere, to the bit.
+struct RoundModel {
+    RoundModel(const BootstrapSpec& spec, uint32_t round)
+        : bytes(read_bytes(round_model_path(spec.out_dir, round - 1))),
+          digest(scan_files::model_digest(bytes)),
+          runtime(format::read_model(bytes.data(), bytes.size()), &heap),
+          registrar(runtime.model(), spec.registration, runtime.anatomy()) {}
+    const Model& model() const { return runtime.model(); }
+
+    const std::vector<unsigned char> bytes;
+    const std::string digest;
+    const Allocator heap;
+    const RuntimeModel runtime;
+    registration::Registrar registrar;
+};
+
+// Registers (or reuses) scan i and decides on it: the inspection's verdict, a person's where the
+// decisions name the scan, and with a posture model its fit (a scan it cannot fit is rejected).
+ScanState register_and_decide(const BootstrapSpec& spec, uint32_t round, std::size_t i, RoundModel& start, const PostureModel* posture, ThreadPool& pool,
+                              RoundReport& rep, const Say& say) {
+    const scan_files::ScanInput& in = spec.scans[i];
+    ScanState st;
+    std::string how = "reused";
+    try {
+        scan_files::ScanFileResult r = scan_files::register_scan_file(start.registrar, start.digest, round_registration_job(spec, round, in), {}, &pool);
+        st.record = std::move(r.record);
+        st.ok = true;
+        for (const std::string& name : r.ignored_landmarks) say(in.name + ": landmark '" + name + "' is not one of the model's; ignored");
+        if (!r.reused) how = "registered", ++rep.registered;
+        else ++rep.reused;
+    } catch (const Error& e) {
+        if (e.status() != SSC_ERROR_INVALID_ARGUMENT) throw;  // I/O, memory, cancel: stop (resumable)
+        st.failure = e.what();
+        ++rep.failed;
+    }
+    if (st.ok) {
+        st.inspection = inspect_registration(start.model(), st.record, spec.rules);
+        st.accepted = st.inspection.accepted;
+        for (const auto& r : st.inspection.reasons) st.reason += (st.reason.empty() ? "" : "; ") + r;
+    } else {
+        st.reason = "registration failed: " + st.failure;
+    }
+    const auto person = spec.decisions.find(in.name);
+    if (person != spec.decisions.end()) {
+        st.by_person = true;
+        st.accepted = person->second.accept && st.ok;  // a failed registration has nothing to learn from
+        st.reason = person->second.reason.empty() ? "decided by a person" : person->second.reason;
+    }
+    if (st.accepted && posture) {
+        // The round's own fit is the posture fit when the round registered with the posture model.
+        const fitting::FitState* known = start.digest == posture->digest() && st.record.registered.has_fit ? &st.record.registered.fit : nullptr;
+        try {
+            bool reused = false;
+            st.posture_fit = posture->fit(in, spec.reading, posture_fit_path(spec.out_dir, in.name), known, &pool, &reused);
+            if (!reused) ++rep.posture_fitted;
+        } catch (const Error& e) {
+            if (e.status() != SSC_ERROR_INVALID_ARGUMENT) throw;
+            st.accepted = false;
+            st.reason = std::string("the posture model could not be fitted: ") + e.what();
+        }
+    }
+    st.accepted ? ++rep.accepted : ++rep.rejected;
+    const std::string line = format_text("round %u: %s %zu of %zu: %s %s", round, in.name.c_str(), i + 1, spec.scans.size(), st.ok ? how.c_str() : "failed",
+                                         st.accepted ? "accepted" : "rejected");
+    say(line + (st.accepted || st.reason.empty() ? "" : " (" + st.reason + ")"));
+    return st;
+}
+
+// The verdicts, then the figures they were drawn from (for review; read_decisions reads the first
+// four columns).
+std::string decisions_table(const BootstrapSpec& spec, const std::vector<ScanState>& states) {
+    std::string decisions = "scan,decision,reason,by,lowest_region,lowest_within_20mm,most_unexplained_pct,folded_pct,stretched_pct,worst_joint,joint_excess_deg\n";
+    for (std::size_t i = 0; i < states.size(); ++i) {
+        const ScanState& st = states[i];
+        decisions += spec.scans[i].name + "," + (st.accepted ? "accept" : "reject") + "," + csv_cell(st.reason) + "," + (st.by_person ? "person" : "auto");
+        if (st.ok) {
+            const registration::RegionQuality* low = nullptr;
+            double unexplained = 0;
+            const double all = double(std::max<std::size_t>(1, st.record.quality.scan_to_registration.count));
+            for (const auto& q : st.record.quality.regions) {
+                if (!low || q.below[3] < low->below[3]) low = &q;
+                unexplained = std::max(unexplained, double(q.scan_to_registration.beyond_20mm) / all);
+            }
+            char figures[200];
+            std::snprintf(figures, sizeof figures, ",%s,%.3f,%.2f,%.3f,%.3f,%s,%.1f", low ? low->region.c_str() : "", low ? low->below[3] : 0.0, 100 * unexplained,
+                          100 * st.inspection.folded, 100 * st.inspection.stretched, st.inspection.worst_joint.c_str(), st.inspection.joint_excess * 180 / M_PI);
+            decisions += figures;
+        }
+        decisions += "\n";
+    }
+    return decisions;
+}
+
+// Writes the round's decisions.csv; true when it already held these verdicts (the contact sheets
+// drawn from them are then current: a resumed run skips them).
+bool write_decisions(const BootstrapSpec& spec, const std::string& dir, const std::string& decisions) {
+    bool current = false;
+    if (fs::exists(dir + "/decisions.csv") && spec.sheet_entries > 0) {
+        try {
+            current = read_regular_file(dir + "/decisions.csv", 64ull << 20) == decisions;
+        } catch (const Error&) {
+            current = false;
+        }
+    }
+    write_text(dir + "/decisions.csv", decisions);
+    return current;
+}
+
+// Contact sheets, a page at a time (each page reads its scans again: memory stays flat); pages
+// already drawn from the same verdicts are kept. Returns the pages' paths.
+std::vector<std::string> write_contact_sheets(const BootstrapSpec& spec, uint32_t round, const std::string& dir, const Model& model,
+                                              const std::vector<ScanState>& states, bool current, const RoundReport& rep) {
+    std::vector<std::string> sheets;
+    const std::size_t per = std::size_t(spec.sheet_entries), pages = (states.size() + per - 1) / per;
+    for (std::size_t page = 0; page < pages; ++page) {
+        char name[40];
+        std::snprintf(name, sizeof name, "/contact_sheet_%02zu.png", page + 1);
+        if (current && fs::exists(dir + name)) {
+            sheets.push_back(dir + name);
+            continue;
+        }
+        std::vector<render::SheetEntry> entries;
+        for (std::size_t i = page * per; i < std::min(states.size(), (page + 1) * per); ++i) {
+            render::SheetEntry e;
+            e.name = spec.scans[i].name;
+            e.accepted = states[i].accepted;
+            e.reason = states[i].reason;
+            if (states[i].ok) {
+                const scan_files::RegistrationRecord& rec = states[i].record;
+                e.frame = render::fit_picture_frame(model, rec.registered.fit);
+                e.points = scan_files::load_scan(spec.scans[i], model, spec.reading).cloud.points;
+                e.registered = rec.registered.vertices;
+                e.error = rec.quality.vertex_distance;
+                e.error.resize(e.registered.size(), -1.0);
+            }
+            entries.push_back(std::move(e));
+        }
+        char title[120];
+        std::snprintf(title, sizeof title, "round %u, page %zu of %zu: %zu accepted, %zu rejected", round, page + 1, pages, rep.accepted, rep.rejected);
+        render::write_contact_sheet(dir + name, model, entries, title);
+        sheets.push_back(dir + name);
+    }
+    return sheets;
+}
+
+// Learns the round's model from the accepted registrations, or reuses the one learned from the
+// same ones (round.json); fills the report's learning figures.
+void learn_round(const BootstrapSpec& spec, uint32_t round, const std::string& dir, const RoundModel& start, const std::vector<ScanState>& states,
+                 const PostureModel* posture, const ThreadPool& pool, RoundReport& rep, const Say& say) {
+    // Learn from the accepted registrations (or reuse the model learned from the same ones).
+    std::vector<scan_files::RegisteredScan> accepted;
+    std::vector<std::string> accepted_names;
+    for (std::size_t i = 0; i < states.size(); ++i)
+        if (states[i].accepted) {
+            accepted.push_back(states[i].record.registered), accepted_names.push_back(spec.scans[i].name);
+            if (posture) accepted.back().fit = states[i].posture_fit;
+        }
+    if (accepted.size() < 3)
+        throw Error(SSC_ERROR_INVALID_ARGUMENT, "bootstrap: round " + std::to_string(round) + " accepted " + std::to_string(accepted.size()) + " of " +
+                                                    std::to_string(states.size()) + " registrations; a model needs at least 3 (see " + dir +
+                                                    "/decisions.csv: edit it and pass it with --decisions)");
+    LearnSpec learn = spec.learn;
+    learn.components = std::min<uint32_t>(learn.components, uint32_t(accepted.size() - 1));
+    learn.segment_components = std::min<uint32_t>(learn.segment_components, uint32_t(accepted.size() - 1));
+    if (!spec.attributes.names.empty()) learn.attributes = attributes_for(spec.attributes, accepted_names);
+    std::ostringstream prov;
+    // Not the run's planned rounds: a round's model is the same whether more rounds follow.
+    prov << "bootstrap round " << round << "; " << accepted.size() << " of " << states.size() << " registrations accepted";
+    learn.provenance = prov.str();
+    learn.threads = pool.size();
+    learn.posture_model = posture ? posture->data() : nullptr;  // the fits in `accepted` are its
+    nlohmann::ordered_json settings{{"start_model_digest", start.digest}, {"accepted", accepted_names}, {"components", learn.components},
+                                    {"posture", posture_name(learn.posture)}, {"name", learn.name}, {"license", learn.license},
+                                    {"provenance", learn.provenance}, {"segment_components", learn.segment_components},
+                                    {"segment_band", learn.segment_band}, {"scale", learn.scale}};
+    for (const auto& a : learn.attributes) settings["attributes"][a.name] = a.values;
+    if (posture) settings["posture_model_digest"] = posture->digest();
+    // The registrations themselves: one made again (another reading of its scan) relearns the model.
+    for (const auto& name : accepted_names)
+        settings["registrations"].push_back(scan_files::file_digest(read_regular_file(scan_files::record_report_path(round_registration_path(spec.out_dir, round, name)), 64ull << 20)));
+    const std::string model_path = round_model_path(spec.out_dir, round), round_json = dir + "/round.json";
+    const auto t_learn = Clock::now();
+    // Reused when learned from the same settings and registrations, and its file is the one learned then.
+    const scan_files::CachedResult kept(round_json, settings, "settings");
+    if (const auto old = fs::exists(model_path) ? kept.find() : std::nullopt)
+        rep.model_reused = old->contains("model_digest") && old->at("model_digest") == scan_files::model_digest(read_bytes(model_path));
+    if (!rep.model_reused) {
+        say("round " + std::to_string(round) + ": learning from " + std::to_string(accepted.size()) + " registrations");
+        LearnReport lr;
+        const std::vector<unsigned char> bytes = format::write_model(learn_model(start.model().data(), accepted, learn, &lr));
+        write_file_atomically(model_path, bytes.data(), bytes.size());
+        kept.store({{"round", round}, {"model_digest", scan_files::model_digest(bytes)}, {"explained", lr.explained}, {"components", lr.components}});
+    }
+    rep.learn_seconds = since(t_learn);
+    rep.components = learn.components;
+    rep.model_path = model_path;
+}
+
+}  // namespace
+
 std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_model, const BootstrapSpec& spec, const BootstrapProgress& progress) {
     prepare_bootstrap(initial_model, spec);
-    auto say = [&](const std::string& line) {
+    const Say say = [&](const std::string& line) {
         if (progress && !progress(line)) throw Error(SSC_ERROR_CANCELLED, "bootstrap: stopped; run it again to resume");
     };
     for (const std::string& entry : spec.skipped) say("left out of the scans: " + entry);
@@ -111,69 +318,13 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
     for (uint32_t round = 1; round <= spec.rounds; ++round) {
         RoundReport rep;
         rep.round = round;
-        const std::string dir = round_dir(spec.out_dir, round), previous = round_model_path(spec.out_dir, round - 1);
+        const std::string dir = round_dir(spec.out_dir, round);
         fs::create_directories(dir + "/registrations");
-        const std::vector<unsigned char> model_bytes = read_bytes(previous);
-        const std::string digest = model_digest(model_bytes);
-        // Loaded as the C API loads a model (a runtime model, its anatomy shared). With the C API's
-        // registration options (ssc_bootstrap_create sets them) a registration made here is the one
-        // ssc_registration_run_file makes elsewhere, to the bit.
-        const Allocator heap;
-        const RuntimeModel runtime(format::read_model(model_bytes.data(), model_bytes.size()), &heap);
-        const Model& model = runtime.model();
-        registration::Registrar registrar(model, spec.registration, runtime.anatomy());
+        RoundModel start(spec, round);
 
-        // Register (or reuse) and inspect every scan.
         const auto t_register = Clock::now();
-        std::vector<ScanState> states(spec.scans.size());
-        for (std::size_t i = 0; i < spec.scans.size(); ++i) {
-            const ScanInput& in = spec.scans[i];
-            ScanState& st = states[i];
-            std::string how = "reused";
-            try {
-                ScanFileResult r = register_scan_file(registrar, digest, round_registration_job(spec, round, in), {}, &pool);
-                st.record = std::move(r.record);
-                st.ok = true;
-                for (const std::string& name : r.ignored_landmarks)
-                    say(in.name + ": landmark '" + name + "' is not one of the model's; ignored");
-                if (!r.reused) how = "registered", ++rep.registered;
-                else ++rep.reused;
-            } catch (const Error& e) {
-                if (e.status() != SSC_ERROR_INVALID_ARGUMENT) throw;  // I/O, memory, cancel: stop (resumable)
-                st.failure = e.what();
-                ++rep.failed;
-            }
-            if (st.ok) {
-                st.inspection = inspect_registration(model, st.record, spec.rules);
-                st.accepted = st.inspection.accepted;
-                for (const auto& r : st.inspection.reasons) st.reason += (st.reason.empty() ? "" : "; ") + r;
-            } else {
-                st.reason = "registration failed: " + st.failure;
-            }
-            const auto person = spec.decisions.find(in.name);
-            if (person != spec.decisions.end()) {
-                st.by_person = true;
-                st.accepted = person->second.accept && st.ok;  // a failed registration has nothing to learn from
-                st.reason = person->second.reason.empty() ? "decided by a person" : person->second.reason;
-            }
-            if (st.accepted && posture) {
-                // The round's own fit is the posture fit when the round registered with the posture model.
-                const fitting::FitState* known = digest == posture->digest() && st.record.registered.has_fit ? &st.record.registered.fit : nullptr;
-                try {
-                    bool reused = false;
-                    st.posture_fit = posture->fit(in, spec.reading, posture_fit_path(spec.out_dir, in.name), known, &pool, &reused);
-                    if (!reused) ++rep.posture_fitted;
-                } catch (const Error& e) {
-                    if (e.status() != SSC_ERROR_INVALID_ARGUMENT) throw;
-                    st.accepted = false;
-                    st.reason = std::string("the posture model could not be fitted: ") + e.what();
-                }
-            }
-            st.accepted ? ++rep.accepted : ++rep.rejected;
-            const std::string line = format_text("round %u: %s %zu of %zu: %s %s", round, in.name.c_str(), i + 1, spec.scans.size(),
-                                                 st.ok ? how.c_str() : "failed", st.accepted ? "accepted" : "rejected");
-            say(line + (st.accepted || st.reason.empty() ? "" : " (" + st.reason + ")"));
-        }
+        std::vector<ScanState> states;
+        for (std::size_t i = 0; i < spec.scans.size(); ++i) states.push_back(register_and_decide(spec, round, i, start, posture.get(), pool, rep, say));
         rep.register_seconds = since(t_register);
         if (spec.learn.posture == Posture::Skeleton && !posture)
             say("round " + std::to_string(round) + ": the accepted scans posed by their own fits (no posture model)");
@@ -181,129 +332,11 @@ std::vector<RoundReport> bootstrap(const std::vector<unsigned char>& initial_mod
             say("round " + std::to_string(round) + ": the accepted scans posed by '" + posture->data()->metadata.name + "' (" + std::to_string(rep.posture_fitted) +
                 " new fits, the others' found in " + (fs::path(spec.out_dir) / "posture_fits").string() + ")");
 
-        // The verdicts, then the figures they were drawn from (for review; read_decisions reads the first four columns).
-        std::string decisions = "scan,decision,reason,by,lowest_region,lowest_within_20mm,most_unexplained_pct,folded_pct,stretched_pct,worst_joint,joint_excess_deg\n";
-        for (std::size_t i = 0; i < states.size(); ++i) {
-            const ScanState& st = states[i];
-            decisions += spec.scans[i].name + "," + (st.accepted ? "accept" : "reject") + "," + csv_cell(st.reason) + "," + (st.by_person ? "person" : "auto");
-            if (st.ok) {
-                const registration::RegionQuality* low = nullptr;
-                double unexplained = 0;
-                const double all = double(std::max<std::size_t>(1, st.record.quality.scan_to_registration.count));
-                for (const auto& q : st.record.quality.regions) {
-                    if (!low || q.below[3] < low->below[3]) low = &q;
-                    unexplained = std::max(unexplained, double(q.scan_to_registration.beyond_20mm) / all);
-                }
-                char figures[200];
-                std::snprintf(figures, sizeof figures, ",%s,%.3f,%.2f,%.3f,%.3f,%s,%.1f", low ? low->region.c_str() : "", low ? low->below[3] : 0.0, 100 * unexplained,
-                              100 * st.inspection.folded, 100 * st.inspection.stretched, st.inspection.worst_joint.c_str(),
-                              st.inspection.joint_excess * 180 / M_PI);
-                decisions += figures;
-            }
-            decisions += "\n";
-        }
-        // Contact sheets are drawn again only when the verdicts changed (a resumed run skips them).
-        bool sheets_current = false;
-        if (fs::exists(dir + "/decisions.csv") && spec.sheet_entries > 0) {
-            try {
-                sheets_current = read_regular_file(dir + "/decisions.csv", 64ull << 20) == decisions;
-            } catch (const Error&) {
-                sheets_current = false;
-            }
-        }
-        write_text(dir + "/decisions.csv", decisions);
-
-        // Contact sheets, a page at a time (each page reads its scans again: memory stays flat).
-        if (spec.sheet_entries > 0) {
-            const std::size_t per = std::size_t(spec.sheet_entries), pages = (states.size() + per - 1) / per;
-            for (std::size_t page = 0; page < pages; ++page) {
-                char name[40];
-                std::snprintf(name, sizeof name, "/contact_sheet_%02zu.png", page + 1);
-                if (sheets_current && fs::exists(dir + name)) {
-                    rep.sheets.push_back(dir + name);
-                    continue;
-                }
-                std::vector<render::SheetEntry> entries;
-                for (std::size_t i = page * per; i < std::min(states.size(), (page + 1) * per); ++i) {
-                    render::SheetEntry e;
-                    e.name = spec.scans[i].name;
-                    e.accepted = states[i].accepted;
-                    e.reason = states[i].reason;
-                    if (states[i].ok) {
-                        const RegistrationRecord& rec = states[i].record;
-                        e.frame = render::fit_picture_frame(model, rec.registered.fit);
-                        e.points = load_scan(spec.scans[i], model, spec.reading).cloud.points;
-                        e.registered = rec.registered.vertices;
-                        e.error = rec.quality.vertex_distance;
-                        e.error.resize(e.registered.size(), -1.0);
-                    }
-                    entries.push_back(std::move(e));
-                }
-                char title[120];
-                std::snprintf(title, sizeof title, "round %u, page %zu of %zu: %zu accepted, %zu rejected", round, page + 1, pages, rep.accepted,
-                              rep.rejected);
-                render::write_contact_sheet(dir + name, model, entries, title);
-                rep.sheets.push_back(dir + name);
-            }
-        }
-
-        // Learn from the accepted registrations (or reuse the model learned from the same ones).
-        std::vector<RegisteredScan> accepted;
-        std::vector<std::string> accepted_names;
-        for (std::size_t i = 0; i < states.size(); ++i)
-            if (states[i].accepted) {
-                accepted.push_back(states[i].record.registered), accepted_names.push_back(spec.scans[i].name);
-                if (posture) accepted.back().fit = states[i].posture_fit;
-            }
-        if (accepted.size() < 3)
-            throw Error(SSC_ERROR_INVALID_ARGUMENT, "bootstrap: round " + std::to_string(round) + " accepted " + std::to_string(accepted.size()) + " of " +
-                                                        std::to_string(states.size()) + " registrations; a model needs at least 3 (see " + dir +
-                                                        "/decisions.csv: edit it and pass it with --decisions)");
-        LearnSpec learn = spec.learn;
-        learn.components = std::min<uint32_t>(learn.components, uint32_t(accepted.size() - 1));
-        learn.segment_components = std::min<uint32_t>(learn.segment_components, uint32_t(accepted.size() - 1));
-        if (!spec.attributes.names.empty()) learn.attributes = attributes_for(spec.attributes, accepted_names);
-        std::ostringstream prov;
-        // Not the run's planned rounds: a round's model is the same whether more rounds follow.
-        prov << "bootstrap round " << round << "; " << accepted.size() << " of " << states.size() << " registrations accepted";
-        learn.provenance = prov.str();
-        learn.threads = pool.size();
-        learn.posture_model = posture ? posture->data() : nullptr;  // the fits in `accepted` are its
-        nlohmann::ordered_json settings{{"start_model_digest", digest}, {"accepted", accepted_names}, {"components", learn.components},
-                                        {"posture", posture_name(learn.posture)}, {"name", learn.name}, {"license", learn.license},
-                                        {"provenance", learn.provenance}, {"segment_components", learn.segment_components},
-                                        {"segment_band", learn.segment_band}, {"scale", learn.scale}};
-        for (const auto& a : learn.attributes) settings["attributes"][a.name] = a.values;
-        if (posture) settings["posture_model_digest"] = posture->digest();
-        // The registrations themselves: one made again (another reading of its scan) relearns the model.
-        for (const auto& name : accepted_names)
-            settings["registrations"].push_back(file_digest(read_regular_file(record_report_path(round_registration_path(spec.out_dir, round, name)), 64ull << 20)));
-        const std::string model_path = round_model_path(spec.out_dir, round), round_json = dir + "/round.json";
-        const auto t_learn = Clock::now();
-        if (fs::exists(round_json) && fs::exists(model_path)) {
-            try {
-                const nlohmann::json old = nlohmann::json::parse(read_regular_file(round_json, 64ull << 20));
-                // Compared as written: bytes of a name that are not UTF-8 were written replaced.
-                const nlohmann::json as_written = nlohmann::json::parse(nlohmann::json(settings).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
-                rep.model_reused = old.at("settings") == as_written && old.at("model_digest") == model_digest(read_bytes(model_path));
-            } catch (const std::exception&) {
-                rep.model_reused = false;
-            }
-        }
-        if (!rep.model_reused) {
-            say("round " + std::to_string(round) + ": learning from " + std::to_string(accepted.size()) + " registrations");
-            LearnReport lr;
-            const std::vector<unsigned char> bytes = format::write_model(learn_model(model.data(), accepted, learn, &lr));
-            write_file_atomically(model_path, bytes.data(), bytes.size());
-            nlohmann::ordered_json j{{"round", round}, {"settings", settings}, {"model_digest", model_digest(bytes)},
-                                     {"explained", lr.explained}, {"components", lr.components}};
-            write_text(round_json, j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-        }
-        rep.learn_seconds = since(t_learn);
-        rep.components = learn.components;
-        rep.model_path = model_path;
+        const bool sheets_current = write_decisions(spec, dir, decisions_table(spec, states));
+        if (spec.sheet_entries > 0) rep.sheets = write_contact_sheets(spec, round, dir, start.model(), states, sheets_current, rep);
+        learn_round(spec, round, dir, start, states, posture.get(), pool, rep, say);
         say(format_text("round %u: %zu registered, %zu reused, %zu failed; %zu accepted, %zu rejected; model %s (%u components)%s", round,
-                        rep.registered, rep.reused, rep.failed, rep.accepted, rep.rejected, model_path.c_str(), rep.components,
+                        rep.registered, rep.reused, rep.failed, rep.accepted, rep.rejected, rep.model_path.c_str(), rep.components,
                         rep.model_reused ? ", reused" : ""));
         rounds_csv += format_text("%u,%zu,%zu,%zu,%zu,%zu,%zu,%.1f,%.1f,%u\n", round, states.size(), rep.registered, rep.reused, rep.failed,
                                   rep.accepted, rep.rejected, rep.register_seconds, rep.learn_seconds, rep.components);

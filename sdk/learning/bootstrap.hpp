@@ -18,7 +18,7 @@
 #pragma once
 
 #include "learning/acceptance.hpp"
-#include "learning/collection_scan.hpp"
+#include "scan_files/register_scan_file.hpp"
 #include "learning/learn_model.hpp"
 #include "learning/scan_tables.hpp"
 #include "registration/register_scan.hpp"
@@ -34,11 +34,11 @@ namespace ssc::learning {
 // holds in every round.
 
 struct BootstrapSpec {
-    std::vector<ScanInput> scans;
-    std::vector<std::string> skipped;  // entries of the scans' folder that cannot be scans (find_scans), said at the start
+    std::vector<scan_files::ScanInput> scans;
+    std::vector<std::string> skipped;  // entries of the scans' folder that cannot be scans (scan_files::find_scans), said at the start
     std::string out_dir;
     uint32_t rounds = 3;
-    ScanReading reading;              // the scans' and landmark files' units, the axis that is up
+    scan_files::ScanReading reading;              // the scans' and landmark files' units, the axis that is up
     registration::RegistrationOptions registration;  // ssc_bootstrap_create: the C API's defaults (floats)
     AcceptanceRules rules;
     LearnSpec learn;                  // components (capped at accepted - 1), posture, name, licence (its posture_model is set from below)
@@ -79,7 +79,7 @@ void prepare_bootstrap(const std::vector<unsigned char>& initial_model, const Bo
 
 // The registration of one scan in a round, as bootstrap() makes it (reused when current): what a
 // distributed run's tasks call with round - 1's model, before bootstrap() finds them all done.
-ScanFileJob round_registration_job(const BootstrapSpec& spec, uint32_t round, const ScanInput& scan);
+scan_files::ScanFileJob round_registration_job(const BootstrapSpec& spec, uint32_t round, const scan_files::ScanInput& scan);
 
 // Runs (or resumes) the rounds from the starting model's file bytes. Throws ssc::Error:
 // INVALID_ARGUMENT for bad settings (fewer than 3 scans, duplicate names, decisions naming no scan,

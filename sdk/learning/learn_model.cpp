@@ -28,14 +28,14 @@ namespace {
 constexpr std::size_t kMaxKnownAttributes = 64;
 constexpr double kMaxAttributeValue = 1e9;  // beyond any unit a person is described in
 
-void check_inputs(const format::ModelData& t, const std::vector<RegisteredScan>& scans, const LearnSpec& spec) {
+void check_inputs(const format::ModelData& t, const std::vector<scan_files::RegisteredScan>& scans, const LearnSpec& spec) {
     const uint32_t V = t.mesh.vertex_count;
     SSC_REQUIRE_ARG_S(scans.size() >= 3, "learn: " << scans.size() << " registrations; a shape space needs at least 3");
     SSC_REQUIRE_ARG_S(spec.components >= 1 && spec.components < scans.size(),
                       "learn: " << spec.components << " components from " << scans.size() << " registrations (at most " << scans.size() - 1 << ")");
     SSC_REQUIRE_ARG(std::isfinite(spec.tolerance) && spec.tolerance > 0 && spec.tolerance <= 1e-2, "learn: tolerance must be in (0, 0.01] m");
     SSC_REQUIRE_ARG(!spec.name.empty() && !spec.license.empty(), "learn: the model needs a name and a licence");
-    for (const RegisteredScan& s : scans) {
+    for (const scan_files::RegisteredScan& s : scans) {
         SSC_REQUIRE_ARG_S(s.vertices.size() == V, "learn: " << s.name << " has " << s.vertices.size() << " vertices; the template has " << V
                                                             << " (was it registered with this model?)");
         for (const auto& x : s.vertices) SSC_REQUIRE_ARG_S(x.allFinite(), "learn: " << s.name << " has a vertex that is not finite");
@@ -99,11 +99,11 @@ void align_to_template(training::SampleMatrix& X, const format::ModelData& t) {
 
 }  // namespace
 
-training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale,
+training::SampleMatrix normalized_bodies(const Model& model, const std::vector<scan_files::RegisteredScan>& scans, Posture posture, bool scale,
                                          uint32_t threads, const Model* posture_model) {
     const Model& rig = posture_model ? *posture_model : model;
     const uint32_t N = uint32_t(scans.size()), V = model.vertex_count();
-    for (const RegisteredScan& s : scans) {
+    for (const scan_files::RegisteredScan& s : scans) {
         SSC_REQUIRE_ARG_S(s.vertices.size() == V, "learn: " << s.name << " has " << s.vertices.size() << " vertices; the model has " << V);
         SSC_REQUIRE_ARG_S(posture != Posture::Skeleton || s.has_fit, "learn: " << s.name << " has no model fit");
     }
@@ -133,7 +133,7 @@ training::SampleMatrix normalized_bodies(const Model& model, const std::vector<R
     return X;
 }
 
-format::ModelData learn_model(const format::ModelData& template_model, const std::vector<RegisteredScan>& scans, const LearnSpec& spec,
+format::ModelData learn_model(const format::ModelData& template_model, const std::vector<scan_files::RegisteredScan>& scans, const LearnSpec& spec,
                               LearnReport* report, const LearnProgress& progress) {
     auto say = [&](const std::string& stage) {
         if (progress) progress(stage);

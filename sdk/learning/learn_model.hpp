@@ -5,6 +5,7 @@
 #pragma once
 
 #include "learning/posture_normalization.hpp"
+#include "scan_files/registration_record.hpp"
 #include "sscape_format/model_data.hpp"
 #include "training/attributes.hpp"
 #include "training/pca.hpp"
@@ -16,15 +17,6 @@
 #include <vector>
 
 namespace ssc::learning {
-
-// One registered scan: the template's vertices on the scan (model frame: metres, +Y up) and the
-// model fit that started the registration (needed by Posture::Skeleton).
-struct RegisteredScan {
-    std::string name;
-    std::vector<Eigen::Vector3d> vertices;
-    bool has_fit = false;
-    fitting::FitState fit;
-};
 
 struct LearnSpec {
     uint32_t components = 20;        // at most bodies - 1
@@ -73,14 +65,14 @@ using LearnProgress = std::function<void(const std::string& stage)>;
 // The bodies are normalized on `threads` threads (0: every hardware thread); the result does not
 // depend on the count. posture_model: Posture::Skeleton unposes with its skeleton (the scans' fits
 // are its fits; it shares the model's mesh and rig); null: the model's.
-training::SampleMatrix normalized_bodies(const Model& model, const std::vector<RegisteredScan>& scans, Posture posture, bool scale = false,
+training::SampleMatrix normalized_bodies(const Model& model, const std::vector<scan_files::RegisteredScan>& scans, Posture posture, bool scale = false,
                                          uint32_t threads = 0, const Model* posture_model = nullptr);
 
 // Throws ssc::Error (INVALID_ARGUMENT) for fewer than 3 scans, a scan of another vertex count,
 // non-finite vertices, Posture::Skeleton with a scan lacking its fit, components (or segment components)
 // outside [1, bodies - 1], segments on a template without the body-part vertex sets, attributes without one finite value per scan, or a
 // posture model that does not share the template's mesh and rig.
-format::ModelData learn_model(const format::ModelData& template_model, const std::vector<RegisteredScan>& scans, const LearnSpec& spec,
+format::ModelData learn_model(const format::ModelData& template_model, const std::vector<scan_files::RegisteredScan>& scans, const LearnSpec& spec,
                               LearnReport* report = nullptr, const LearnProgress& progress = {});
 
 // The weakest start for bootstrapping: the model's template alone (its mean body with its skeleton,

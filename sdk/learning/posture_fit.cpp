@@ -3,8 +3,9 @@
 #include "common/error.hpp"
 #include "common/files.hpp"
 #include "fitting/solver.hpp"
-#include "learning/fit_json.hpp"
-#include "learning/registration_record.hpp"
+#include "scan_files/cached_result.hpp"
+#include "scan_files/fit_json.hpp"
+#include "scan_files/registration_record.hpp"
 #include "sscape_format/model_io.hpp"
 
 #include <filesystem>
@@ -38,30 +39,28 @@ PostureModel::PostureModel(const std::vector<unsigned char>& file, const registr
       runtime_(format::ModelData(*data_), &heap_),
       lin_(runtime_.model(), runtime_.model().component_count(), runtime_.anatomy(), options.segments, options.segments_left_out),
       options_(options),
-      digest_(model_digest(file)) {}
+      digest_(scan_files::model_digest(file)) {}
 
-fitting::FitState PostureModel::fit(const ScanInput& scan, const ScanReading& reading, const std::string& path, const fitting::FitState* known,
+fitting::FitState PostureModel::fit(const scan_files::ScanInput& scan, const scan_files::ScanReading& reading, const std::string& path, const fitting::FitState* known,
                                     ThreadPool* pool, bool* reused) const {
     const Model& model = runtime_.model();
     if (reused) *reused = false;
-    std::string digest;
+    scan_files::ScanBytes bytes;  // read once: the key's digest names the bytes fitted
     try {
-        digest = scan_digest(scan);
+        bytes = scan_files::read_scan_bytes(scan);
     } catch (const Error& e) {  // an unreadable scan fails alone in a collection
         throw Error(SSC_ERROR_INVALID_ARGUMENT, e.what());
     }
-    const nlohmann::ordered_json key{{"model_digest", digest_}, {"scan_digest", digest}, {"scan_units_to_metres", reading.scan_units_to_metres},
-                                     {"scan_up", reading.up}, {"fit_segments", options_.segments}};
-    if (fs::exists(path)) {
+    const std::string digest = scan_files::scan_digest(bytes);
+    const scan_files::CachedResult kept(path, {{"model_digest", digest_}, {"scan_digest", digest}, {"scan_units_to_metres", reading.scan_units_to_metres},
+                                               {"scan_up", reading.up}, {"fit_segments", options_.segments}});
+    if (const auto old = kept.find()) {
         try {
-            const nlohmann::ordered_json old = nlohmann::ordered_json::parse(read_regular_file(path, 16ull << 20));
-            if (old.at("key") == key) {
-                const fitting::FitState f = fit_from_json(old.at("fit"), model);
-                if (reused) *reused = true;
-                return f;
-            }
+            const fitting::FitState f = scan_files::fit_from_json(old->at("fit"), model);
+            if (reused) *reused = true;
+            return f;
         } catch (const std::exception&) {
-            // unreadable or from another model: fitted again below
+            // not a fit of this model: fitted again below
         }
     }
     fitting::FitState made;
@@ -70,7 +69,8 @@ fitting::FitState PostureModel::fit(const ScanInput& scan, const ScanReading& re
     } else {
         registration::Scan s;
         try {
-            s = load_scan(scan, model, reading);
+            s = scan_files::parse_scan(bytes, scan, model, reading);
+            bytes = scan_files::ScanBytes();
         } catch (const Error& e) {
             throw Error(SSC_ERROR_INVALID_ARGUMENT, e.what());
         }
@@ -81,12 +81,10 @@ fitting::FitState PostureModel::fit(const ScanInput& scan, const ScanReading& re
         SSC_REQUIRE_ARG(!solution.frames.empty(), scan.name + ": the posture model could not be fitted to the scan");
         made = solution.frames[0];
     }
-    const nlohmann::ordered_json j{{"scan", scan.path}, {"key", key}, {"fit", fit_to_json(model, made)}};
-    const std::string text = j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";  // a file name's bytes that are not UTF-8 as U+FFFD
     fs::create_directories(fs::path(path).parent_path());
-    write_file_atomically(path, text.data(), text.size());
+    const std::string text = kept.store({{"scan", scan.path}, {"fit", scan_files::fit_to_json(model, made)}});
     // What is on disk (as a resumed run reads it), so both learn the same model.
-    return fit_from_json(nlohmann::ordered_json::parse(text).at("fit"), model);
+    return scan_files::fit_from_json(nlohmann::ordered_json::parse(text).at("fit"), model);
 }
 
 }  // namespace ssc::learning

@@ -9,7 +9,7 @@
 //   posture_fits/NAME.json   the fit, and the digests of the model and the scan it was made from
 #pragma once
 
-#include "learning/collection_scan.hpp"
+#include "scan_files/scan_input.hpp"
 #include "registration/register_scan.hpp"
 #include "runtime/runtime_model.hpp"
 
@@ -53,7 +53,7 @@ public:
     // to this scan already made (the registration's, when a round registered with the posture
     // model), written instead of fitting again. Throws ssc::Error: INVALID_ARGUMENT for a scan that
     // cannot be read or fitted, IO.
-    fitting::FitState fit(const ScanInput& scan, const ScanReading& reading, const std::string& path, const fitting::FitState* known = nullptr,
+    fitting::FitState fit(const scan_files::ScanInput& scan, const scan_files::ScanReading& reading, const std::string& path, const fitting::FitState* known = nullptr,
                           ThreadPool* pool = nullptr, bool* reused = nullptr) const;
 
 private:

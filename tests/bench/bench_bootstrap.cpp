@@ -7,7 +7,7 @@
 // true bodies beside a model learned directly from the true rest meshes, and the posture
 // normalizations none, skeleton and laplacian (also from the true posed meshes), with pictures of their first five components at +-3 SD.
 //
-// The collection comes from learning::simulate_collection.
+// The collection comes from testing::simulate_collection.
 //
 // usage: sscape_bootstrap_bench --makehuman DIR [--scans 200] [--heldout 50] [--rounds 3]
 //                               [--components 20] [--points 30000] [--out DIR] [--threads N] [--start weak|template|default]
@@ -27,8 +27,8 @@
 #include "learning/bootstrap.hpp"
 #include "learning/evaluate_learning.hpp"
 #include "learning/posture_fit.hpp"
-#include "learning/registration_record.hpp"
-#include "learning/simulated_collection.hpp"
+#include "scan_files/registration_record.hpp"
+#include "testing/simulated_collection.hpp"
 #include "registration/registration_quality.hpp"
 #include "render/raster.hpp"
 #include "render/text.hpp"
@@ -245,12 +245,12 @@ int main(int argc, char** argv) {
     const uint32_t V = model.vertex_count();
 
     // The people: scanned ones (booth scans and truth), held-out ones and the weak start's 50 (rest only).
-    learning::CollectionSpec cs;
+    testing::CollectionSpec cs;
     cs.scans = scans;
     cs.extra = heldout + 50;
     cs.points = points;
     cs.landmark_noise = landmark_noise;
-    const learning::SimulatedCollection collection = learning::simulate_collection(makehuman, model, cs, out + "/scans");
+    const testing::SimulatedCollection collection = testing::simulate_collection(makehuman, model, cs, out + "/scans");
     const auto& rest = collection.rest;
     const auto& truth = collection.truth;
     const auto& true_pose = collection.poses;
@@ -260,7 +260,7 @@ int main(int argc, char** argv) {
                 now(), scans, points, out.c_str(), heldout);
 
     // The weak start: 5 components learned from 50 other true bodies at rest.
-    std::vector<learning::RegisteredScan> weak_bodies;
+    std::vector<scan_files::RegisteredScan> weak_bodies;
     for (std::size_t p = scans + heldout; p < rest.size(); ++p) weak_bodies.push_back({"weak", rest[p], false, {}});
     learning::LearnSpec weak_spec;
     weak_spec.components = 5;
@@ -297,8 +297,8 @@ int main(int argc, char** argv) {
                              "thigh_l", "thigh_r", "calf_l", "calf_r"})
         if (const int64_t j = model.find_joint(name); j >= 0) moved[std::size_t(j)] = 1;
     std::printf("\nround  accepted  rejected  failed  error all (mm)  accepted (mm)  without hands (mm)  registering s/scan  pose error: limbs, all (deg)\n");
-    std::vector<learning::RegisteredScan> last_accepted, last_true_pose;  // the latter unposed with the pose the truth was given
-    std::vector<learning::RegisteredScan> last_posture_fitted;            // with the posture model's fits (--posture-model builtin)
+    std::vector<scan_files::RegisteredScan> last_accepted, last_true_pose;  // the latter unposed with the pose the truth was given
+    std::vector<scan_files::RegisteredScan> last_posture_fitted;            // with the posture model's fits (--posture-model builtin)
     double posture_limbs = 0, posture_all = 0;
     std::unique_ptr<const learning::PostureModel> posture_fitter;
     if (!spec.posture_model.empty()) posture_fitter = std::make_unique<const learning::PostureModel>(spec.posture_model, spec.registration);
@@ -317,8 +317,8 @@ int main(int argc, char** argv) {
         if (r.round == reports.back().round) last_accepted.clear();
         for (uint32_t s = 0; s < scans; ++s) {
             const std::string mesh = dir + "/registrations/" + spec.scans[s].name + ".ply";
-            if (!fs::exists(learning::record_report_path(mesh))) continue;
-            const learning::RegistrationRecord rec = learning::read_registration_record(mesh, used, true);
+            if (!fs::exists(scan_files::record_report_path(mesh))) continue;
+            const scan_files::RegistrationRecord rec = scan_files::read_registration_record(mesh, used, true);
             double e = 0, eb = 0;
             std::size_t nb = 0;
             for (uint32_t v = 0; v < V; ++v) {
@@ -333,12 +333,12 @@ int main(int argc, char** argv) {
                 acc += e, body += eb / double(nb), ++n_acc;
                 if (r.round == reports.back().round) {
                     last_accepted.push_back(rec.registered);
-                    learning::RegisteredScan known = rec.registered;
+                    scan_files::RegisteredScan known = rec.registered;
                     for (uint32_t j = 0; j < model.joint_count(); ++j)
                         known.fit.pose[j] = joint_rotation(true_pose[s], j);
                     last_true_pose.push_back(known);
                     if (posture_fitter) {  // the posture fit the bootstrap made (found on disk)
-                        learning::RegisteredScan posed_by = rec.registered;
+                        scan_files::RegisteredScan posed_by = rec.registered;
                         posed_by.fit = posture_fitter->fit(spec.scans[s], spec.reading, learning::posture_fit_path(spec.out_dir, spec.scans[s].name));
                         const auto e = pose_error_degrees(moved, posed_by.fit, true_pose[s]);
                         posture_limbs += e.first, posture_all += e.second;
@@ -358,7 +358,7 @@ int main(int argc, char** argv) {
 
     // The learned model against a model learned directly from the true rest meshes, on held-out
     // true bodies; and the posture normalizations.
-    std::vector<learning::RegisteredScan> true_rest;
+    std::vector<scan_files::RegisteredScan> true_rest;
     for (uint32_t s = 0; s < scans; ++s) true_rest.push_back({"true", rest[s], false, {}});
     learning::LearnSpec direct_spec;
     direct_spec.components = std::min<uint32_t>(50, scans - 1);
@@ -382,7 +382,7 @@ int main(int argc, char** argv) {
     const format::ModelData laplacian = learning::learn_model(registered_with, last_accepted, wide);
     // The normalizations alone, without the registrations' error: learned from the true posed
     // meshes (skeleton with the true pose would give the rest meshes exactly: skinning posed them).
-    std::vector<learning::RegisteredScan> true_posed;
+    std::vector<scan_files::RegisteredScan> true_posed;
     for (uint32_t s = 0; s < scans; ++s) true_posed.push_back({"true posed", truth[s], false, {}});
     learning::LearnSpec posed_spec = direct_spec;
     const format::ModelData posed_none = learning::learn_model(default_data, true_posed, posed_spec);

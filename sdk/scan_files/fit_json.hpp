@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace ssc::learning {
+namespace ssc::scan_files {
 
 // The whole body's coefficients ("shape"), then the segments' ("segment_shape") when the fit had
 // them; rotations as x y z w per joint; translation in metres.
@@ -17,4 +17,4 @@ nlohmann::ordered_json fit_to_json(const Model& model, const fitting::FitState& 
 // not finite, nlohmann::json::exception for a malformed object.
 fitting::FitState fit_from_json(const nlohmann::ordered_json& j, const Model& model);
 
-}  // namespace ssc::learning
+}  // namespace ssc::scan_files

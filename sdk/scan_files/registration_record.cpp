@@ -1,4 +1,4 @@
-#include "learning/registration_record.hpp"
+#include "scan_files/registration_record.hpp"
 
 #include "common/error.hpp"
 #include "common/axes.hpp"
@@ -7,7 +7,7 @@
 #include "export/mesh_writers.hpp"
 #include "io/readers.hpp"
 #include "fitting/body_orientation.hpp"
-#include "learning/fit_json.hpp"
+#include "scan_files/fit_json.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -16,7 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 
-namespace ssc::learning {
+namespace ssc::scan_files {
 
 namespace {
 
@@ -206,4 +206,4 @@ RegistrationRecord parse_registration_report(const std::string& text, const std:
     return r;
 }
 
-}  // namespace ssc::learning
+}  // namespace ssc::scan_files

@@ -5,13 +5,22 @@
 // model it was registered with and each vertex's distance to the scan.
 #pragma once
 
-#include "learning/learn_model.hpp"
+#include "fitting/kinematics.hpp"
 #include "registration/registration_quality.hpp"
 #include "synthesis/model.hpp"
 
 #include <string>
 
-namespace ssc::learning {
+namespace ssc::scan_files {
+
+// One registered scan: the template's vertices on the scan (model frame: metres, +Y up) and the
+// model fit that started the registration (needed by Posture::Skeleton).
+struct RegisteredScan {
+    std::string name;
+    std::vector<Eigen::Vector3d> vertices;
+    bool has_fit = false;
+    fitting::FitState fit;
+};
 
 struct RegistrationRecord {
     std::string scan;                 // the scan's file
@@ -47,4 +56,4 @@ RegistrationRecord parse_registration_report(const std::string& text, const std:
 std::string model_digest(const std::vector<unsigned char>& model_file);
 std::string file_digest(const std::string& bytes);
 
-}  // namespace ssc::learning
+}  // namespace ssc::scan_files

@@ -1,4 +1,4 @@
-#include "learning/simulated_collection.hpp"
+#include "testing/simulated_collection.hpp"
 
 #include "export/mesh_writers.hpp"
 #include "io/writers.hpp"
@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <random>
 
-namespace ssc::learning {
+namespace ssc::testing {
 
 SimulatedCollection simulate_collection(const std::string& makehuman, const Model& model, const CollectionSpec& spec, const std::string& folder) {
     const uint32_t V = model.vertex_count();
@@ -63,4 +63,4 @@ SimulatedCollection simulate_collection(const std::string& makehuman, const Mode
     return out;
 }
 
-}  // namespace ssc::learning
+}  // namespace ssc::testing

@@ -6,7 +6,7 @@
 // out). Also the same people's rest meshes, and more people's for held-out checks and weak starts.
 #pragma once
 
-#include "learning/bootstrap.hpp"
+#include "scan_files/scan_input.hpp"
 #include "synthesis/model.hpp"
 
 #include <Eigen/Core>
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace ssc::learning {
+namespace ssc::testing {
 
 struct CollectionSpec {
     uint32_t scans = 200;     // scanned people
@@ -31,7 +31,7 @@ struct CollectionSpec {
 };
 
 struct SimulatedCollection {
-    std::vector<ScanInput> scans;                    // the scan files written, named b000, b001, ...
+    std::vector<scan_files::ScanInput> scans;                    // the scan files written, named b000, b001, ...
     std::vector<std::vector<Eigen::Vector3d>> truth;  // per scan: the true posed mesh (the scan's frame, metres)
     std::vector<std::vector<float>> poses;           // per scan: the pose it was given (xyzw per joint of `model`)
     std::vector<std::vector<Eigen::Vector3d>> rest;  // the scanned people's rest meshes, then the extra people's
@@ -43,4 +43,4 @@ struct SimulatedCollection {
 // or as training::mh::load_assets for a missing or broken asset folder.
 SimulatedCollection simulate_collection(const std::string& makehuman, const Model& model, const CollectionSpec& spec, const std::string& folder);
 
-}  // namespace ssc::learning
+}  // namespace ssc::testing

@@ -1,4 +1,4 @@
-#include "learning/fit_json.hpp"
+#include "scan_files/fit_json.hpp"
 
 #include "common/error.hpp"
 #include "fitting/observations.hpp"
@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace ssc::learning {
+namespace ssc::scan_files {
 
 nlohmann::ordered_json fit_to_json(const Model& model, const fitting::FitState& f) {
     std::vector<double> rotations;
@@ -47,4 +47,4 @@ fitting::FitState fit_from_json(const nlohmann::ordered_json& fit, const Model& 
     return f;
 }
 
-}  // namespace ssc::learning
+}  // namespace ssc::scan_files
