@@ -76,4 +76,11 @@ grep -q "far: a posed body" "$out/posed.txt" || { cat "$out/posed.txt"; fail "th
 "$sscape" measure --mesh "$sim"_scan.ply > "$out/bad.txt" 2>&1 && fail "a scan measured as a mesh"
 grep -q "vertices; the model has" "$out/bad.txt" || { cat "$out/bad.txt"; fail "the vertex count message"; }
 "$sscape" measure --units mm > "$out/bad.txt" 2>&1; [ $? -eq 2 ] || fail "--units without --mesh"
+# A registration's report holds its model fit in the same format as fit --params: synth makes that
+# body from it, the segments' coefficients included (without them, another body).
+"$sscape" synth --params "$sim"_registered.json -o "$out/from_report.obj" > /dev/null || fail "synth --params a registration's report"
+/usr/bin/python3 -c 'import json, sys; j = json.load(open(sys.argv[1])); assert j["fit"]["format"] == "sscape fit parameters 2" and j["fit"]["segment_shape"]; del j["fit"]["segment_shape"]; json.dump(j, open(sys.argv[2], "w"))' \
+    "$sim"_registered.json "$out/whole_only.json" || fail "the report's fit has no segment coefficients"
+"$sscape" synth --params "$out/whole_only.json" -o "$out/whole_only.obj" > /dev/null || fail "synth --params without segments"
+cmp -s "$out/from_report.obj" "$out/whole_only.obj" && fail "the fit's segment coefficients were not applied"
 echo "measure: sliders, a fit's parameters and meshes measured; refusals clear"

@@ -298,7 +298,7 @@ TEST_CASE("a fitter reads scan and landmark files as sscape fit does and writes 
     CHECK(report.point_mean < 0.015f);
     REQUIRE(ssc_fitter_write_params(fitter, &report, params.c_str()) == SSC_OK);
     const std::string json = read_regular_file(params, 1u << 20);
-    CHECK(json.find("\"format\": \"sscape fit parameters 1\"") != std::string::npos);
+    CHECK(json.find("\"format\": \"sscape fit parameters 2\"") != std::string::npos);
     CHECK(json.find("\"upperarm_l\"") != std::string::npos);
     // The model's digest, what a reader checks its model against: the built-in file's bytes'.
     const char* digest = nullptr;

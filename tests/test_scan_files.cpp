@@ -4,11 +4,13 @@
 
 #include "common/files.hpp"
 #include "scan_files/cached_result.hpp"
+#include "scan_files/fit_params.hpp"
 #include "scan_files/scan_input.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <cmath>
 #include <fstream>
 
 using namespace ssc;
@@ -96,4 +98,83 @@ TEST_CASE("a cached result is found while its key is the same and made again whe
     cached.forget();
     CHECK_FALSE(fs::exists(path));
     CHECK_FALSE(cached.find());
+}
+
+TEST_CASE("fit parameters are one format that reads its earlier versions and refuses what no fit is", "[scan_files]") {
+    const Model& model = test::default_cpp_model();
+    const uint32_t J = model.joint_count(), K = model.component_count();
+    fitting::FitState fit;
+    fit.shape.assign(K + model.segment_coefficient_count(), 0.0);
+    for (std::size_t k = 0; k < fit.shape.size(); ++k) fit.shape[k] = 0.37 * std::sin(double(k) + 1);
+    for (uint32_t j = 0; j < J; ++j) fit.pose.push_back(Eigen::Quaterniond(Eigen::AngleAxisd(0.01 * j + 0.1, Eigen::Vector3d(1, 2, 3).normalized())));
+    fit.translation = Eigen::Vector3d(0.1, 0.9, -0.25);
+    fit.scale = 1.0;
+    const std::string digest = "0123456789abcdef";
+    // Version 2, written and read: the same numbers, to the bit, the digest and model named.
+    const nlohmann::ordered_json v2 = scan_files::fit_to_json(model, fit, digest);
+    CHECK(v2.at("format") == scan_files::kFitParamsFormat);
+    CHECK(v2.at("model_digest") == digest);
+    const scan_files::FitParams back = scan_files::fit_params_from_json(nlohmann::ordered_json::parse(v2.dump()), model, digest);
+    REQUIRE(back.frames.size() == 1);
+    CHECK(back.frames[0].shape == fit.shape);
+    CHECK(back.frames[0].translation == fit.translation);
+    for (uint32_t j = 0; j < J; ++j) CHECK(back.frames[0].pose[j].coeffs() == fit.pose[j].coeffs());
+    // Frames of a sequence share the shape.
+    fitting::FitState second = fit;
+    second.translation.x() += 1;
+    CHECK(scan_files::fit_params_from_json(scan_files::fit_params_to_json(model, {fit, second}, digest), model, digest).frames[1].translation.x() == 1.1);
+    // The layout of earlier registration reports and posture fits: one frame, rotations in joint order.
+    nlohmann::ordered_json flat{{"shape", std::vector<double>(fit.shape.begin(), fit.shape.begin() + K)}, {"translation_m", {0.1, 0.9, -0.25}}, {"scale", 1.0},
+                                {"segment_shape", std::vector<double>(fit.shape.begin() + K, fit.shape.end())}};
+    std::vector<double> flat_rotations;
+    for (const auto& q : fit.pose) flat_rotations.insert(flat_rotations.end(), {q.x(), q.y(), q.z(), q.w()});
+    flat["rotations_xyzw"] = flat_rotations;
+    const fitting::FitState old = scan_files::fit_from_json(flat, model);
+    CHECK(old.shape == fit.shape);
+    CHECK(old.pose[5].coeffs() == fit.pose[5].coeffs());
+    // Version 1 (`sscape fit --params` before): floats, joints by name (the others at rest), no segments.
+    const std::string name = model.data().skeleton.joint_names[3];
+    nlohmann::ordered_json v1{{"format", "sscape fit parameters 1"}, {"model", model.data().metadata.name}, {"model_digest", digest}, {"shape", {0.5f, -0.25f}},
+                              {"frames", {{{"rotations_xyzw", {{name, {0.0f, 0.0f, 0.6f, 0.8f}}}}, {"translation_m", {0.f, 1.f, 0.f}}, {"scale", 1.f}}}}};
+    const fitting::FitState one = scan_files::fit_params_from_json(v1, model, digest).frames[0];
+    CHECK(one.shape == std::vector<double>{0.5, -0.25});
+    CHECK(one.pose[3].z() == double(0.6f));
+    CHECK(one.pose[2].w() == 1.0);  // not named: at rest
+    // Refused, naming why: another model, a later version, a joint the model lacks, segments that do
+    // not match, values no fit gives.
+    auto refused = [&](nlohmann::ordered_json j, const std::string& words) {
+        try {
+            scan_files::fit_params_from_json(j, model, digest);
+            FAIL("accepted: " << words);
+        } catch (const Error& e) {
+            CHECK(e.status() == SSC_ERROR_INVALID_ARGUMENT);
+            CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains(words));
+        }
+    };
+    nlohmann::ordered_json j = v1;
+    j["model_digest"] = "ffffffffffffffff";
+    refused(j, "fitted with the model");
+    CHECK(scan_files::other_model(j, model, digest).find("not this one") != std::string::npos);
+    CHECK(scan_files::other_model(v1, model, digest).empty());
+    j = v1;
+    j["format"] = "sscape fit parameters 3";
+    refused(j, "is not one this sscape reads");
+    j = v1;
+    j["frames"][0]["rotations_xyzw"]["tail"] = {0, 0, 0, 1};
+    refused(j, "no joint 'tail'");
+    j = v2;
+    j["segment_shape"] = {1.0};
+    refused(j, "segment_shape needs the model's");
+    j = v2;
+    j["shape"][0] = 21;
+    refused(j, "shape[0] is 21, outside");
+    j = v2;
+    j["frames"][0]["scale"] = 0.01;
+    refused(j, "scale is 0.01");
+    j = v2;
+    j["frames"][0]["translation_m"][1] = 1e7;
+    refused(j, "translation_m[1] is 10000000");
+    j = v2;
+    j["frames"] = nlohmann::ordered_json::array();
+    refused(j, "frames needs 1 to 100000 frames");
 }

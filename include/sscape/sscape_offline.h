@@ -134,10 +134,13 @@ SSC_EXPERIMENTAL ssc_status ssc_fitter_add_landmarks_file(ssc_fitter* fitter, ui
 SSC_EXPERIMENTAL ssc_status ssc_model_get_digest(const ssc_model* model, const char** out);
 
 /**
- * Writes a solved fit's parameters as JSON, atomically: the model's name and digest
- * ("model_digest"), the shape, each frame's per-joint rotations (by joint name), translation and
- * scale, and the report given (as ssc_fitter_solve filled it): what `sscape fit --params` writes
- * and `sscape synth --params` reads (refusing parameters of another model).
+ * Writes a solved fit's parameters as JSON, atomically, in the format "sscape fit parameters 2"
+ * (the one a registration's report holds its model fit in): the model's name and digest
+ * ("model_digest"), the whole-body shape ("shape"), the segment coefficients when the fit had them
+ * ("segment_shape"), each frame's per-joint rotations (by joint name), translation and scale, all
+ * in double precision, and the report given (as ssc_fitter_solve filled it): what
+ * `sscape fit --params` writes and `sscape synth --params` reads (refusing parameters of another
+ * model; files of version 1 still read).
  * @return SSC_ERROR_INVALID_ARGUMENT for NULL or a fitter not solved; SSC_ERROR_IO.
  */
 SSC_EXPERIMENTAL ssc_status ssc_fitter_write_params(ssc_fitter* fitter, const ssc_fit_report* report, const char* path);

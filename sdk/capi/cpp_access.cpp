@@ -14,5 +14,6 @@ const std::string& digest_of(const ssc_model* model) { return model->digest; }
 ThreadPool& pool_of(const ssc_model* model) { return model->context->pool; }
 void log_message(const ssc_model* model, ssc_log_level level, const std::string& text) { model->context->message(level, text); }
 registration::Registrar& registrar_of(ssc_registration* registration) { return registration->registrar; }
+const fitting::Fitter& fitter_of(const ssc_fitter* fitter) { return fitter->fitter; }
 
 }  // namespace ssc

@@ -17,6 +17,9 @@ class ThreadPool;
 namespace measure {
 class Measurer;
 }
+namespace fitting {
+class Fitter;
+}
 namespace registration {
 class Registrar;
 }
@@ -44,5 +47,6 @@ const std::string& digest_of(const ssc_model* model);
 ThreadPool& pool_of(const ssc_model* model);
 void log_message(const ssc_model* model, ssc_log_level level, const std::string& text);
 registration::Registrar& registrar_of(ssc_registration* registration);
+const fitting::Fitter& fitter_of(const ssc_fitter* fitter);
 
 }  // namespace ssc

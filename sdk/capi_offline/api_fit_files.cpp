@@ -1,13 +1,15 @@
 // Fitting to files (sscape_offline.h): scan and landmark files read into a fitter, and a solved
-// fit's parameters written, as `sscape fit` does. Built on the public fitter functions with the
+// fit's parameters written (scan_files/fit_params.hpp's format), as `sscape fit` does. Built on the public fitter functions with the
 // same float arrays the command line gave them, so the command line and callers of these functions
 // (the Python pipeline) fit the same way.
 #include "capi/guard.hpp"
 #include "capi/cpp_access.hpp"
 #include "common/files.hpp"
+#include "fitting/fitter.hpp"
 #include "fitting/solver.hpp"
 #include "io/readers.hpp"
 #include "io/units.hpp"
+#include "scan_files/fit_params.hpp"
 
 #include <sscape/sscape_offline.h>
 
@@ -131,36 +133,23 @@ ssc_status ssc_fitter_write_params(ssc_fitter* fitter, const ssc_fit_report* rep
         need(report, "report");
         need(path, "path");
         SSC_REQUIRE_ARG(report->struct_size >= sizeof(ssc_fit_report), "report->struct_size must be sizeof(ssc_fit_report), as solve filled it");
-        const ssc_model* model = model_of(fitter);
-        const uint32_t K = ssc_model_shape_count(model), J = ssc_model_joint_count(model), F = ssc_fitter_frame_count(fitter);
-        std::vector<float> shape(K), rotations(4ull * J), translation(3);
-        ok(ssc_fitter_get_shape(fitter, shape.data(), K));  // INVALID_ARGUMENT before a solve
-        nlohmann::ordered_json frames = nlohmann::ordered_json::array();
-        for (uint32_t f = 0; f < F; ++f) {
-            float scale = 1;
-            ok(ssc_fitter_get_pose(fitter, f, rotations.data(), J, translation.data(), &scale));
-            nlohmann::ordered_json by_joint = nlohmann::ordered_json::object();
-            for (uint32_t j = 0; j < J; ++j) {
-                const char* name = "";
-                ok(ssc_model_get_joint_name(model, j, &name));
-                by_joint[name] = {rotations[4 * j], rotations[4 * j + 1], rotations[4 * j + 2], rotations[4 * j + 3]};
-            }
-            frames.push_back({{"rotations_xyzw", by_joint}, {"translation_m", translation}, {"scale", scale}});
+        // The solution in double precision, every frame with the shared shape (segments included).
+        const fitting::Fitter& solved = fitter_of(fitter);
+        const fitting::FitSolution& solution = solved.solution();  // INVALID_ARGUMENT before a solve
+        std::vector<fitting::FitState> frames;
+        for (uint32_t f = 0; f < solved.frame_count(); ++f) {
+            fitting::FitState s = solved.frame_state(f);
+            s.shape = solution.shape;
+            for (Eigen::Quaterniond& q : s.pose) q.normalize();
+            frames.push_back(std::move(s));
         }
-        const char* name = "";
-        ok(ssc_model_get_metadata(model, SSC_METADATA_NAME, &name));
-        nlohmann::ordered_json j;
-        j["format"] = "sscape fit parameters 1";
-        j["model"] = name;
-        j["model_digest"] = digest_of(model);  // what a reader of these parameters checks its model against
-        j["shape"] = shape;
-        j["frames"] = frames;
+        nlohmann::ordered_json j = scan_files::fit_params_to_json(model_of(model_of(fitter)), frames, digest_of(model_of(fitter)));
         const ssc_fit_report& r = *report;
         j["report"] = {{"converged", bool(r.converged)},   {"iterations", r.iterations},
                        {"restarts", r.restarts},            {"landmark_rms_m", r.landmark_rms},
                        {"point_mean_m", r.point_mean},      {"inlier_fraction", r.inlier_fraction},
                        {"unexplained_fraction", r.unexplained_fraction}, {"seconds", r.seconds}};
-        const std::string text = j.dump(2) + "\n";
+        const std::string text = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
         write_file_atomically(path, text.data(), text.size());
     });
 }

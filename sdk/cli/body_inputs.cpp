@@ -2,7 +2,10 @@
 
 #include "cli.hpp"
 
+#include "capi/cpp_access.hpp"
 #include "common/files.hpp"
+#include "scan_files/fit_params.hpp"
+#include "synthesis/model.hpp"
 
 #include <sscape/sscape_offline.h>
 
@@ -51,65 +54,45 @@ FitParams read_params(ssc_model* model, const std::string& path) {
     return parse_params(model, read_regular_file(path, 16u << 20, SSC_ERROR_INVALID_ARGUMENT), path);
 }
 
-namespace {
-
-// A number of a parameter file as a float, refused when not finite or beyond `bound` (a float
-// cast of 1e300 is undefined, and a body 1e30 SD out is no body).
-float bounded(const nlohmann::json& value, double bound, const std::string& what) {
-    const double v = value.get<double>();
-    if (!std::isfinite(v) || std::fabs(v) > bound)
-        throw UsageError(what + " is " + value.dump() + ", outside [-" + nlohmann::json(bound).dump() + ", " + nlohmann::json(bound).dump() + "]");
-    return float(v);
-}
-
-}  // namespace
-
 FitParams parse_params(ssc_model* model, const std::string& text, const std::string& path) {
-    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) throw UsageError(path + ": not a JSON object (write one with sscape fit --params)");
-    FitParams p;
+    const nlohmann::ordered_json file = nlohmann::ordered_json::parse(text, nullptr, false);
+    if (file.is_discarded() || !file.is_object()) throw UsageError(path + ": not a JSON object (write one with sscape fit --params)");
+    // A registration's report (sscape register --report) holds its model fit under "fit".
+    const bool report = !file.contains("shape") && file.contains("fit") && file.at("fit").is_object();
+    const nlohmann::ordered_json& j = report ? file.at("fit") : file;
+    const Model& m = model_of(model);
+    const char* digest = "";
+    check(ssc_model_get_digest(model, &digest), "model digest");
+    const std::string other = scan_files::other_model(j, m, digest);
+    if (!other.empty()) throw std::runtime_error(path + " was " + other + ": give that model (sscape synth MODEL --params " + path + ")");
+    scan_files::FitParams read;
     try {
-        // Parameters mean something only in the model they were fitted with: with another one they
-        // once made another body (31 mm RMS away) without a word.
-        const char *digest = "", *name = "";
-        check(ssc_model_get_digest(model, &digest), "model digest");
-        check(ssc_model_get_metadata(model, SSC_METADATA_NAME, &name), "model name");
-        const std::string given_name = j.value("model", std::string()), given_digest = j.value("model_digest", std::string());
-        if ((!given_digest.empty() && given_digest != digest) || (given_digest.empty() && !given_name.empty() && given_name != name))
-            throw std::runtime_error(path + " was fitted with the model '" + given_name + "'" + (given_digest.empty() ? "" : " (digest " + given_digest + ")") +
-                                     ", not this one ('" + name + "', digest " + digest + "): give that model (sscape synth MODEL --params " + path + ")");
-        // The bounds are those of a fit (learning's reader of the same fits has them too): shape
-        // coefficients within 20 SD, a translation within 1000 km, unit quaternions.
-        const auto& shape = j.at("shape");
-        const uint32_t K = ssc_model_shape_count(model);
-        if (!shape.is_array() || shape.size() > K)
-            throw UsageError(path + ": shape needs at most " + std::to_string(K) + " numbers (the model's components)");
-        for (std::size_t i = 0; i < shape.size(); ++i) p.shape.push_back(bounded(shape[i], 20.0, path + ": shape[" + std::to_string(i) + "]"));
-        const auto& frame = j.at("frames").at(0);
-        const auto& translation = frame.at("translation_m");
-        if (!translation.is_array() || translation.size() != 3) throw UsageError(path + ": translation_m needs 3 numbers");
-        for (const auto& t : translation) p.translation.push_back(bounded(t, 1e6, path + ": translation_m"));
-        if (frame.contains("scale") && frame.at("scale").get<double>() != 1.0)
-            throw UsageError(path + ": the fit has a scale other than 1 (--scale), which a body does not have");
-        const uint32_t J = ssc_model_joint_count(model);
-        p.pose.assign(4ull * J, 0.f);
-        for (uint32_t k = 0; k < J; ++k) p.pose[4 * k + 3] = 1.f;
-        for (const auto& [joint, q] : frame.at("rotations_xyzw").items()) {
-            uint32_t k = 0;
-            if (ssc_model_find_joint(model, joint.c_str(), &k) != SSC_OK) throw UsageError(path + ": the model has no joint '" + joint + "'");
-            if (!q.is_array() || q.size() != 4) throw UsageError(path + ": the rotation of " + joint + " needs 4 numbers (x y z w)");
-            double norm = 0;
-            for (int c = 0; c < 4; ++c) {
-                p.pose[4 * k + uint32_t(c)] = bounded(q[std::size_t(c)], 1.0 + 1e-3, path + ": the rotation of " + joint);
-                norm += double(p.pose[4 * k + uint32_t(c)]) * p.pose[4 * k + uint32_t(c)];
-            }
-            if (std::fabs(std::sqrt(norm) - 1.0) > 1e-3)
-                throw UsageError(path + ": the rotation of " + joint + " is not a unit quaternion (length " + std::to_string(std::sqrt(norm)) + ")");
-        }
+        read = scan_files::fit_params_from_json(j, m, digest);
+    } catch (const Error& e) {
+        throw UsageError(path + ": " + e.what() + " (expected sscape fit --params output)");
     } catch (const nlohmann::json::exception& e) {
         throw UsageError(path + ": " + e.what() + " (expected sscape fit --params output)");
     }
+    const fitting::FitState& f = read.frames[0];
+    if (f.scale != 1.0) throw UsageError(path + ": the fit has a scale other than 1 (--scale), which a body does not have");
+    FitParams p;
+    for (std::size_t k = 0; k < f.shape.size(); ++k) (k < m.component_count() ? p.shape : p.segment_shape).push_back(float(f.shape[k]));
+    for (const Eigen::Quaterniond& q : f.pose) p.pose.insert(p.pose.end(), {float(q.x()), float(q.y()), float(q.z()), float(q.w())});
+    for (int a = 0; a < 3; ++a) p.translation.push_back(float(f.translation[a]));
     return p;
+}
+
+void set_fit_segments(ssc_model* model, ssc_body* body, const FitParams& params) {
+    if (params.segment_shape.empty()) return;
+    std::size_t at = 0;
+    for (uint32_t s = 0; s < ssc_model_segment_count(model); ++s) {
+        ssc_segment_info info{};
+        info.struct_size = sizeof info;
+        check(ssc_model_get_segment_info(model, s, &info), "segment");
+        if (at + info.shape_count > params.segment_shape.size()) break;  // the reader checked the count
+        check(ssc_body_set_segment_shape(body, s, params.segment_shape.data() + at, info.shape_count), std::string("the fit's segment ") + info.name);
+        at += info.shape_count;
+    }
 }
 
 }  // namespace ssc::cli

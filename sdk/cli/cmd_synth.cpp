@@ -203,8 +203,9 @@ int run_synth(Options o) {
     std::vector<uint32_t> tris(3ull * T);
     check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
     check(ssc_body_create(model, nullptr, &guard.body), "body");
-    set_segments(model, guard.body, o.segment_texts);
     const FitParams fitted = o.params.empty() ? FitParams{} : read_params(model, o.params);
+    set_fit_segments(model, guard.body, fitted);  // --segment below sets those it names on top
+    set_segments(model, guard.body, o.segment_texts);
     std::vector<float> pose = o.params.empty() ? parse_pose(model, o.pose) : fitted.pose;
     if (!o.hands.empty())
         check(ssc_model_close_hands(model, o.hands.front(), o.hands.back(), pose.data(), J), "--hands");

@@ -4,7 +4,7 @@
 #include "common/files.hpp"
 #include "fitting/solver.hpp"
 #include "scan_files/cached_result.hpp"
-#include "scan_files/fit_json.hpp"
+#include "scan_files/fit_params.hpp"
 #include "scan_files/registration_record.hpp"
 #include "sscape_format/model_io.hpp"
 
@@ -82,7 +82,7 @@ fitting::FitState PostureModel::fit(const scan_files::ScanInput& scan, const sca
         made = solution.frames[0];
     }
     fs::create_directories(fs::path(path).parent_path());
-    const std::string text = kept.store({{"scan", scan.path}, {"fit", scan_files::fit_to_json(model, made)}});
+    const std::string text = kept.store({{"scan", scan.path}, {"fit", scan_files::fit_to_json(model, made, digest_)}});
     // What is on disk (as a resumed run reads it), so both learn the same model.
     return scan_files::fit_from_json(nlohmann::ordered_json::parse(text).at("fit"), model);
 }

@@ -7,7 +7,7 @@
 #include "export/mesh_writers.hpp"
 #include "io/readers.hpp"
 #include "fitting/body_orientation.hpp"
-#include "scan_files/fit_json.hpp"
+#include "scan_files/fit_params.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -115,7 +115,7 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
     ordered_json regions = ordered_json::object();
     for (const auto& q : r.quality.regions) regions[q.region] = quality_json(q.scan_to_registration, q.below);
     j["regions"] = regions;
-    if (r.registered.has_fit) j["fit"] = fit_to_json(model, r.registered.fit);
+    if (r.registered.has_fit) j["fit"] = fit_to_json(model, r.registered.fit, r.model_digest);
     if (!r.quality.vertex_distance.empty()) {
         std::vector<double> mm;  // rounded to 0.01 mm: the report stays small
         for (double d : r.quality.vertex_distance) mm.push_back(d < 0 ? -1.0 : std::round(d * 1e5) / 100);
