@@ -75,6 +75,165 @@ const Scan& bounded(const Scan& given, std::size_t most, Scan& thinned) {
 
 }  // namespace
 
+namespace {
+
+void check_options(const RegistrationOptions& options) {
+    SSC_REQUIRE_ARG(std::isfinite(options.stiffness) && options.stiffness > 0 && std::isfinite(options.landmarks) && options.landmarks >= 0 &&
+                        std::isfinite(options.gamma) && options.gamma > 0 && options.max_iterations >= 1,
+                    "register: stiffness and gamma must be positive, landmarks >= 0, max_iterations >= 1");
+}
+
+// The scan as the deformation sees it: normals where missing (oriented when they could be), the
+// nearest-point index, the rim (holes are filled by the template's shape, not pulled to their edge).
+struct ScanSurface {
+    explicit ScanSurface(const Scan& scan)
+        : points(scan.cloud.points),
+          normals(scan.cloud.normals.empty() ? std::vector<Vector3d>(points.size(), Vector3d::Zero()) : scan.cloud.normals),
+          index(points),
+          oriented(fitting::estimate_missing_normals(points, index, normals)),
+          rim(scan.triangles.empty() ? ScanRim(points, normals, index) : ScanRim(scan.triangles, points.size())) {}
+    const std::vector<Vector3d>& points;
+    std::vector<Vector3d> normals;
+    const fitting::PointIndex index;
+    const bool oriented;
+    const ScanRim rim;
+};
+
+// The model start: the model fitted to the scan (out.fit), posed; refused when the fit failed or
+// the landmarks disagree with it (landmark_off: the few it ignored).
+std::vector<Vector3d> model_start(const fitting::LinearModel& lin, const Scan& scan, const ScanSurface& surface, const RegistrationOptions& options,
+                                  const RegistrationProgress& progress, ThreadPool& workers, Body& body, Registration& out,
+                                  std::vector<uint8_t>& landmark_off) {
+    const format::ModelData& d = lin.model.data();
+    const std::vector<Vector3d>& points = surface.points;
+    const std::vector<Vector3d>& normals = surface.normals;
+    std::vector<Vector3d> start;
+    fitting::Frame frame;
+    frame.landmarks = scan.landmarks;
+    frame.clouds.push_back({points, normals, scan.cloud.confidence});
+    const fitting::FitProgress fit_progress = [&](uint32_t iteration, double) {
+        return !progress || progress("fit", iteration, options.fit.max_iterations);
+    };
+    out.fit = fitting::fit(lin, {frame}, options.fit, nullptr, fit_progress, &workers);
+    if (out.fit.report.cancelled) fail(SSC_ERROR_CANCELLED, "registration cancelled");
+    // A deformation started from a wrong fit ends wrong, and looks registered: refused. A
+    // model without shape components (the template alone, bootstrap's weakest start) can
+    // only place the template: it leaves the person's shape unexplained and bends joints
+    // past their ranges to make up for it (spines 34-38 degrees on simulated MakeHuman
+    // scans). Its fit is a rough start for the deformation, judged after it (acceptance).
+    // Wrong landmarks (moved, exchanged sides) pull the fit or make it fail: fitted to the
+    // points alone, the body says whether they were the cause, and which they are. Only
+    // on these failure paths: it costs a second fit.
+    auto landmarks_against_points_alone = [&](const std::string& prefix) {
+        frame.landmarks.clear();
+        const fitting::FitSolution alone = fitting::fit(lin, {frame}, options.fit, nullptr, fit_progress, &workers);
+        if (alone.report.cancelled) fail(SSC_ERROR_CANCELLED, "registration cancelled");
+        if (alone.report.frames.empty() || alone.report.frames[0].failed) return;
+        std::vector<Vector3d> fitted;
+        fitting::posed_surface(body, alone.frames[0], fitted);
+        const LandmarkAgreement a = landmark_agreement(d, scan.landmarks, fitted);
+        if (a.disagrees()) fail(SSC_ERROR_INVALID_ARGUMENT, prefix + a.describe(d, scan.landmarks));
+    };
+    const fitting::FrameReport* judged = out.fit.report.frames.empty() ? nullptr : &out.fit.report.frames[0];
+    if (judged && judged->failed && lin.K > 0) {
+        const std::string why = "register: the model fit to the scan failed (" + judged->problem_text + ")";
+        if (!scan.landmarks.empty()) landmarks_against_points_alone(why + " with the landmarks given; ");
+        fail(SSC_ERROR_INVALID_ARGUMENT, why + ": a registration started from it would be wrong; landmarks on the scan help a hard pose");
+    }
+    fitting::posed_surface(body, out.fit.frames[0], start);
+    if (!scan.landmarks.empty() && lin.K > 0) {
+        const LandmarkAgreement a = landmark_agreement(d, scan.landmarks, start);
+        if (a.disagrees()) {
+            landmarks_against_points_alone("register: ");
+            fail(SSC_ERROR_INVALID_ARGUMENT, "register: " + a.describe(d, scan.landmarks));
+        }
+        landmark_off = a.off;  // a few: the fit ignored them; the deformation would pull the surface to them
+    }
+    out.report.fit_seconds = out.fit.report.seconds;
+    return start;
+}
+
+// The template at rest aligned to the scan's landmarks (a similarity).
+std::vector<Vector3d> rigid_start(const format::ModelData& d, const Scan& scan, Body& body, const fitting::FitState& rest) {
+    std::vector<Vector3d> start;
+    SSC_REQUIRE_ARG(scan.landmarks.size() >= 3, "register: the rigid initialisation needs at least 3 landmarks");
+    fitting::posed_surface(body, rest, start);
+    Eigen::Matrix3Xd src(3, scan.landmarks.size()), dst(3, scan.landmarks.size());
+    for (std::size_t l = 0; l < scan.landmarks.size(); ++l) {
+        src.col(Eigen::Index(l)) = point_on(start, fitting::landmark_point(d, scan.landmarks[l].landmark));
+        dst.col(Eigen::Index(l)) = scan.landmarks[l].position;
+    }
+    const Similarity T = align_points(src, dst, true);
+    for (Vector3d& v : start) v = T.scale * T.R * v + T.t;
+    return start;
+}
+
+std::vector<Vector3d> rbf_start(const format::ModelData& d, const Scan& scan, const RegistrationOptions& options, Body& body, const fitting::FitState& rest) {
+    std::vector<Vector3d> start;
+    // The template at rest warped through its landmarks onto the scan's.
+    SSC_REQUIRE_ARG(scan.landmarks.size() >= 4, "register: the rbf initialisation needs at least 4 landmarks");
+    fitting::posed_surface(body, rest, start);
+    std::vector<Vector3d> from, to;
+    for (const auto& l : scan.landmarks) {
+        from.push_back(point_on(start, fitting::landmark_point(d, l.landmark)));
+        to.push_back(l.position);
+    }
+    const RbfWarp warp(std::move(from), to, options.rbf_kernel, options.rbf_scale);
+    for (Vector3d& v : start) v = warp(v);
+    return start;
+}
+
+
+// Each vertex's data weight is its share of the surface (a third of its triangles' area, over
+// the mean): the data term then measures the surface, not the mesh. The template's face, hands
+// and feet are meshed several times finer than its body, and equal weights per vertex let
+// their many vertices each chase its own noisy scan point (a crumpled face).
+std::vector<double> surface_shares(const std::vector<Vector3d>& start, const std::vector<uint32_t>& triangles, uint32_t V) {
+    std::vector<double> area(V, 0.0);
+    double total_area = 0;
+    for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+        const double a = 0.5 * (start[triangles[t + 1]] - start[triangles[t]]).cross(start[triangles[t + 2]] - start[triangles[t]]).norm();
+        for (int k = 0; k < 3; ++k) area[triangles[t + std::size_t(k)]] += a / 3;
+        total_area += a;
+    }
+    for (double& a : area) a *= double(V) / std::max(total_area, 1e-12);
+    return area;
+}
+
+// The landmarks the deformation pulls. From the model start, not those within kNearHands of
+// the hands: the fit has placed the hands, and the wrists' landmarks pulled them about 1 mm
+// along the surface (they have little data to hold them); the fit uses every landmark. From
+// the rigid and rbf starts every one: nothing else brings the hands to their place
+// (docs/registration.md).
+void pulled_landmarks(const format::ModelData& d, const Scan& scan, const std::vector<Vector3d>& start, const BodyRegions& regions,
+                      const std::vector<uint8_t>& landmark_off, bool from_model, std::vector<TemplatePoint>& marks, std::vector<LandmarkTarget>& landmarks) {
+    std::vector<Vector3d> hand_vertices;
+    if (from_model)
+        for (uint32_t v = 0; v < uint32_t(start.size()); ++v)
+            if (regions.of_vertex[v] >= 0 && regions.names[std::size_t(regions.of_vertex[v])] == "hands") hand_vertices.push_back(start[v]);
+    for (std::size_t k = 0; k < scan.landmarks.size(); ++k) {
+        const auto& l = scan.landmarks[k];
+        if (landmark_off[k]) continue;
+        const fitting::SurfacePoint p = fitting::landmark_point(d, l.landmark);
+        const Vector3d at = point_on(start, p);
+        bool near_hands = false;
+        for (const Vector3d& h : hand_vertices) near_hands |= (h - at).squaredNorm() < kNearHands * kNearHands;
+        if (near_hands) continue;
+        marks.push_back(p);
+        landmarks.push_back({p, l.position});
+    }
+}
+
+}  // namespace
+
+void check_scan(const fitting::PointCloud& cloud, const std::vector<uint32_t>& triangles) {
+    fitting::validate_cloud(cloud, "register: scan");
+    SSC_REQUIRE_ARG_S(cloud.points.size() >= kMinPoints, "register: the scan has " << cloud.points.size() << " points; a body scan needs at least " << kMinPoints);
+    fitting::validate_spread({&cloud.points}, "register: the scan");
+    SSC_REQUIRE_ARG(triangles.size() % 3 == 0, "register: the scan's triangles need 3 indices each");
+    for (uint32_t i : triangles) SSC_REQUIRE_ARG_S(i < cloud.points.size(), "register: a scan triangle index (" << i << ") is out of range");
+}
+
 Registration register_scan(const fitting::LinearModel& lin, const Scan& given, const RegistrationOptions& options,
                            const RegistrationProgress& progress, ThreadPool* pool) {
     SSC_REQUIRE_ARG(options.max_scan_points >= 1000, "register: max_scan_points must be at least 1000");
@@ -86,24 +245,20 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& given, c
     const Model& model = lin.model;
     const format::ModelData& d = model.data();
     const uint32_t V = model.vertex_count();
-    fitting::validate_cloud(scan.cloud, "register: scan");
-    fitting::validate_spread({&scan.cloud.points}, "register: the scan");
-    SSC_REQUIRE_ARG_S(scan.cloud.points.size() >= kMinPoints,
-                      "register: the scan has " << scan.cloud.points.size() << " points; a body scan needs at least " << kMinPoints);
+    check_scan(scan.cloud, scan.triangles);
     for (std::size_t l = 0; l < scan.landmarks.size(); ++l) fitting::validate_landmark(d, scan.landmarks[l], "register: landmark " + std::to_string(l));
-    SSC_REQUIRE_ARG(std::isfinite(options.stiffness) && options.stiffness > 0 && std::isfinite(options.landmarks) && options.landmarks >= 0 &&
-                        std::isfinite(options.gamma) && options.gamma > 0 && options.max_iterations >= 1,
-                    "register: stiffness and gamma must be positive, landmarks >= 0, max_iterations >= 1");
+    check_options(options);
     auto tick = [&](const char* stage, uint32_t done, uint32_t total) {
         if (progress && !progress(stage, done, total)) fail(SSC_ERROR_CANCELLED, "registration cancelled");
     };
 
     // The scan: normals where missing, its rim.
-    const std::vector<Vector3d>& points = scan.cloud.points;
-    std::vector<Vector3d> normals = scan.cloud.normals.empty() ? std::vector<Vector3d>(points.size(), Vector3d::Zero()) : scan.cloud.normals;
-    const fitting::PointIndex index(points);
-    const bool oriented = fitting::estimate_missing_normals(points, index, normals);
-    const ScanRim rim = scan.triangles.empty() ? ScanRim(points, normals, index) : ScanRim(scan.triangles, points.size());
+    const ScanSurface surface(scan);
+    const std::vector<Vector3d>& points = surface.points;
+    const std::vector<Vector3d>& normals = surface.normals;
+    const fitting::PointIndex& index = surface.index;
+    const bool oriented = surface.oriented;
+    const ScanRim& rim = surface.rim;
 
     if (!scan.landmarks.empty()) require_landmarks_on_scan(d, scan.landmarks, index);
 
@@ -117,76 +272,9 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& given, c
     rest.shape.assign(lin.K, 0.0);
     rest.pose.assign(lin.J, Eigen::Quaterniond::Identity());
     switch (options.initialisation) {
-        case Initialisation::Model: {
-            fitting::Frame frame;
-            frame.landmarks = scan.landmarks;
-            frame.clouds.push_back({points, normals, scan.cloud.confidence});
-            const fitting::FitProgress fit_progress = [&](uint32_t iteration, double) {
-                return !progress || progress("fit", iteration, options.fit.max_iterations);
-            };
-            out.fit = fitting::fit(lin, {frame}, options.fit, nullptr, fit_progress, &workers);
-            if (out.fit.report.cancelled) fail(SSC_ERROR_CANCELLED, "registration cancelled");
-            // A deformation started from a wrong fit ends wrong, and looks registered: refused. A
-            // model without shape components (the template alone, bootstrap's weakest start) can
-            // only place the template: it leaves the person's shape unexplained and bends joints
-            // past their ranges to make up for it (spines 34-38 degrees on simulated MakeHuman
-            // scans). Its fit is a rough start for the deformation, judged after it (acceptance).
-            // Wrong landmarks (moved, exchanged sides) pull the fit or make it fail: fitted to the
-            // points alone, the body says whether they were the cause, and which they are. Only
-            // on these failure paths: it costs a second fit.
-            auto landmarks_against_points_alone = [&](const std::string& prefix) {
-                frame.landmarks.clear();
-                const fitting::FitSolution alone = fitting::fit(lin, {frame}, options.fit, nullptr, fit_progress, &workers);
-                if (alone.report.cancelled) fail(SSC_ERROR_CANCELLED, "registration cancelled");
-                if (alone.report.frames.empty() || alone.report.frames[0].failed) return;
-                std::vector<Vector3d> fitted;
-                fitting::posed_surface(body, alone.frames[0], fitted);
-                const LandmarkAgreement a = landmark_agreement(d, scan.landmarks, fitted);
-                if (a.disagrees()) fail(SSC_ERROR_INVALID_ARGUMENT, prefix + a.describe(d, scan.landmarks));
-            };
-            const fitting::FrameReport* judged = out.fit.report.frames.empty() ? nullptr : &out.fit.report.frames[0];
-            if (judged && judged->failed && lin.K > 0) {
-                const std::string why = "register: the model fit to the scan failed (" + judged->problem_text + ")";
-                if (!scan.landmarks.empty()) landmarks_against_points_alone(why + " with the landmarks given; ");
-                fail(SSC_ERROR_INVALID_ARGUMENT, why + ": a registration started from it would be wrong; landmarks on the scan help a hard pose");
-            }
-            fitting::posed_surface(body, out.fit.frames[0], start);
-            if (!scan.landmarks.empty() && lin.K > 0) {
-                const LandmarkAgreement a = landmark_agreement(d, scan.landmarks, start);
-                if (a.disagrees()) {
-                    landmarks_against_points_alone("register: ");
-                    fail(SSC_ERROR_INVALID_ARGUMENT, "register: " + a.describe(d, scan.landmarks));
-                }
-                landmark_off = a.off;  // a few: the fit ignored them; the deformation would pull the surface to them
-            }
-            out.report.fit_seconds = out.fit.report.seconds;
-            break;
-        }
-        case Initialisation::Rigid: {
-            SSC_REQUIRE_ARG(scan.landmarks.size() >= 3, "register: the rigid initialisation needs at least 3 landmarks");
-            fitting::posed_surface(body, rest, start);
-            Eigen::Matrix3Xd src(3, scan.landmarks.size()), dst(3, scan.landmarks.size());
-            for (std::size_t l = 0; l < scan.landmarks.size(); ++l) {
-                src.col(Eigen::Index(l)) = point_on(start, fitting::landmark_point(d, scan.landmarks[l].landmark));
-                dst.col(Eigen::Index(l)) = scan.landmarks[l].position;
-            }
-            const Similarity T = align_points(src, dst, true);
-            for (Vector3d& v : start) v = T.scale * T.R * v + T.t;
-            break;
-        }
-        case Initialisation::Rbf: {
-            // The template at rest warped through its landmarks onto the scan's.
-            SSC_REQUIRE_ARG(scan.landmarks.size() >= 4, "register: the rbf initialisation needs at least 4 landmarks");
-            fitting::posed_surface(body, rest, start);
-            std::vector<Vector3d> from, to;
-            for (const auto& l : scan.landmarks) {
-                from.push_back(point_on(start, fitting::landmark_point(d, l.landmark)));
-                to.push_back(l.position);
-            }
-            const RbfWarp warp(std::move(from), to, options.rbf_kernel, options.rbf_scale);
-            for (Vector3d& v : start) v = warp(v);
-            break;
-        }
+        case Initialisation::Model: start = model_start(lin, scan, surface, options, progress, workers, body, out, landmark_off); break;
+        case Initialisation::Rigid: start = rigid_start(d, scan, body, rest); break;
+        case Initialisation::Rbf: start = rbf_start(d, scan, options, body, rest); break;
     }
 
     // Regions and their rules, per vertex and per edge.
@@ -201,41 +289,11 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& given, c
     const auto edges = mesh_edges(triangles, V);
     std::vector<double> edge_stiffness;
     for (const auto& e : edges) edge_stiffness.push_back(0.5 * (rule_of(e[0]).stiffness + rule_of(e[1]).stiffness));
-    // The landmarks the deformation pulls. From the model start, not those within kNearHands of
-    // the hands: the fit has placed the hands, and the wrists' landmarks pulled them about 1 mm
-    // along the surface (they have little data to hold them); the fit uses every landmark. From
-    // the rigid and rbf starts every one: nothing else brings the hands to their place
-    // (docs/registration.md).
-    std::vector<Vector3d> hand_vertices;
-    if (options.initialisation == Initialisation::Model)
-        for (uint32_t v = 0; v < V; ++v)
-            if (region[v] >= 0 && region_names[std::size_t(region[v])] == "hands") hand_vertices.push_back(start[v]);
     std::vector<TemplatePoint> marks;
     std::vector<LandmarkTarget> landmarks;
-    for (std::size_t k = 0; k < scan.landmarks.size(); ++k) {
-        const auto& l = scan.landmarks[k];
-        if (landmark_off[k]) continue;
-        const fitting::SurfacePoint p = fitting::landmark_point(d, l.landmark);
-        const Vector3d at = point_on(start, p);
-        bool near_hands = false;
-        for (const Vector3d& h : hand_vertices) near_hands |= (h - at).squaredNorm() < kNearHands * kNearHands;
-        if (near_hands) continue;
-        marks.push_back(p);
-        landmarks.push_back({p, l.position});
-    }
+    pulled_landmarks(d, scan, start, regions, landmark_off, options.initialisation == Initialisation::Model, marks, landmarks);
     NonrigidSystem system(start, edges, edge_stiffness, marks, options.gamma);
-    // Each vertex's data weight is its share of the surface (a third of its triangles' area, over
-    // the mean): the data term then measures the surface, not the mesh. The template's face, hands
-    // and feet are meshed several times finer than its body, and equal weights per vertex let
-    // their many vertices each chase its own noisy scan point (a crumpled face).
-    std::vector<double> area(V, 0.0);
-    double total_area = 0;
-    for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
-        const double a = 0.5 * (start[triangles[t + 1]] - start[triangles[t]]).cross(start[triangles[t + 2]] - start[triangles[t]]).norm();
-        for (int k = 0; k < 3; ++k) area[triangles[t + std::size_t(k)]] += a / 3;
-        total_area += a;
-    }
-    for (double& a : area) a *= double(V) / std::max(total_area, 1e-12);
+    const std::vector<double> area = surface_shares(start, triangles, V);
 
     // Correspondences: each deformed vertex's nearest scan point, when it is compatible and not on
     // the scan's rim (holes are filled by the template's shape). Which vertices have data (the

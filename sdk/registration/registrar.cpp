@@ -29,10 +29,7 @@ Registrar::Registrar(const Model& model, const RegistrationOptions& options, std
     : options_(checked(options)), linear_(model, model.component_count(), std::move(anatomy), options_.segments, options_.segments_left_out) {}
 
 void Registrar::set_scan(fitting::PointCloud cloud, std::vector<uint32_t> triangles) {
-    fitting::validate_cloud(cloud, "registration: scan");
-    SSC_REQUIRE_ARG_S(cloud.points.size() >= 100, "registration: the scan has " << cloud.points.size() << " points; a body scan needs at least 100");
-    SSC_REQUIRE_ARG(triangles.size() % 3 == 0, "registration: the scan's triangles need 3 indices each");
-    for (uint32_t i : triangles) SSC_REQUIRE_ARG_S(i < cloud.points.size(), "registration: a scan triangle index (" << i << ") is out of range");
+    check_scan(cloud, triangles);
     scan_.cloud = std::move(cloud);
     scan_.triangles = std::move(triangles);
     has_scan_ = true;

@@ -18,8 +18,8 @@ public:
     const Model& model() const { return linear_.model; }
     const RegistrationOptions& options() const { return options_; }
 
-    // The scan: checked whole (fitting/observations.hpp; at least 100 points, mesh triangle indices
-    // in range) before it replaces the one before. Forgets the result.
+    // The scan: checked whole (check_scan, register_scan.hpp) before it replaces the one before.
+    // Forgets the result.
     void set_scan(fitting::PointCloud cloud, std::vector<uint32_t> triangles = {});
     // Landmarks on the scan (model landmark indices); replace the ones before. Forgets the result.
     void set_landmarks(std::vector<fitting::LandmarkTarget> landmarks);
