@@ -7,7 +7,7 @@
 #include "common/output_paths.hpp"
 #include "export/body_export.hpp"
 #include "export/mesh_writers.hpp"
-#include "fitting/depth_image.hpp"
+#include "fitting/fitter.hpp"
 #include "io/readers.hpp"
 #include "io/units.hpp"
 #include "render/fit_picture.hpp"
@@ -42,8 +42,9 @@ void finish(Options& o) {
     exporters::format_of(o.out);  // refuses other extensions, naming the formats
 }
 
-int run_fit(Options o) {
-    finish(o);
+// The files written (the bodies, parameters and picture; with --frames frame N's carry _frameN),
+// none of them over an input.
+std::vector<std::string> planned_outputs(const Options& o) {
     std::vector<std::string> inputs = {o.model};
     for (const auto* files : {&o.landmarks, &o.points, &o.depth}) inputs.insert(inputs.end(), files->begin(), files->end());
     std::vector<std::string> outputs = {o.png, o.params};
@@ -52,21 +53,13 @@ int run_fit(Options o) {
             if (!output.empty()) refuse_output_over_input(f == 0 ? output : with_suffix(output, "_frame" + std::to_string(f)), inputs);
         outputs.push_back(f == 0 ? o.out : with_suffix(o.out, "_frame" + std::to_string(f)));
     }
-    // The bodies, the parameters and the picture: an unwritable one refused before the fit, and a
-    // write that fails leaves none of them (an unwritable --params once left the body).
-    OutputFiles written(outputs);
-    ssc_model* model = load_model(o.model);
-    Handles guard(model);
-    ssc_fitter_def def;
-    ssc_fitter_def_init(&def, sizeof def);
-    def.fit_scale = o.scale;
-    def.shape_count = o.components;
-    if (o.iterations) def.max_iterations = o.iterations;
-    check(ssc_fitter_create(model, &def, &guard.fitter), "fitter");
+    return outputs;
+}
 
+// Landmark, point and depth files into the fitter: each file a frame of its own with --frames.
+void add_inputs(const Options& o, ssc_fitter* fitter) {
     // Landmark and scan files are read by the library (ssc_fitter_add_*_file), as the Python
-    // pipeline reads them; the picture reads them again for what it shows.
-    std::vector<Eigen::Vector3d> shown;  // input of frame 0, drawn in the picture
+    // pipeline reads them; the picture shows what the fitter holds.
     // With --frames each file is a frame of its own (the person moved between them); otherwise all
     // observe one pose.
     uint32_t next_frame = 0;
@@ -85,9 +78,7 @@ int run_fit(Options o) {
         const ssc_fit_file_def d = file_def(path);
         ssc_fit_file_info info;
         info.struct_size = sizeof info;
-        check(ssc_fitter_add_landmarks_file(guard.fitter, frame, &d, &info), path);
-        if (frame == 0 && !o.png.empty())
-            for (const auto& r : io::read_lnd(path)) shown.push_back(r.position * (o.units.empty() ? 1.0 : o.units_scale / 1e-3));
+        check(ssc_fitter_add_landmarks_file(fitter, frame, &d, &info), path);
         std::printf("%s: %u landmarks in %s%s, spanning %.2f m (%u hand landmarks left out; --hands uses them)\n", path.c_str(), info.used,
                     o.units.empty() ? "mm" : o.units.c_str(), o.units.empty() ? " (the .lnd convention; --units sets it)" : "", double(info.span),
                     info.left_out);
@@ -97,9 +88,7 @@ int run_fit(Options o) {
         const ssc_fit_file_def d = file_def(path);
         ssc_fit_file_info info;
         info.struct_size = sizeof info;
-        check(ssc_fitter_add_points_file(guard.fitter, frame, &d, &info), path);
-        if (frame == 0 && !o.png.empty())
-            for (const auto& p : io::read_points(path).points) shown.push_back(p * o.units_scale);
+        check(ssc_fitter_add_points_file(fitter, frame, &d, &info), path);
         std::printf("%s: %u points in %s%s, spanning %.2f m; %u normals estimated\n", path.c_str(), info.used,
                     o.units.empty() ? "m" : o.units.c_str(), o.units.empty() ? " (the default; --units sets it)" : "", double(info.span),
                     info.left_out);
@@ -119,57 +108,41 @@ int run_fit(Options o) {
         if (img.has_pose) def.camera_to_world = pose;
         const uint32_t frame = frame_for();
         uint32_t added = 0;
-        check(ssc_fitter_add_depth_image(guard.fitter, frame, &def, &added), path);
+        check(ssc_fitter_add_depth_image(fitter, frame, &def, &added), path);
         std::printf("%s: %u x %u depth image, %u points%s\n", path.c_str(), img.width, img.height, added,
                     img.has_pose ? "" : " (camera at the origin: the file gives no pose)");
-        if (frame == 0 && !o.png.empty()) {
-            // The same back-projection the fitter made, for the picture.
-            fitting::DepthView view;
-            view.width = img.width, view.height = img.height, view.depth = img.depth.data();
-            view.camera.fx = def.fx, view.camera.fy = def.fy, view.camera.cx = def.cx, view.camera.cy = def.cy;
-            view.camera.rotation = img.camera_to_world.topLeftCorner<3, 3>();
-            view.camera.position = img.camera_to_world.topRightCorner<3, 1>();
-            const auto cloud = fitting::depth_to_cloud(view);
-            shown.insert(shown.end(), cloud.points.begin(), cloud.points.end());
-        }
     }
-    ssc_fit_report report;
-    report.struct_size = sizeof report;
-    const uint32_t frame_count = ssc_fitter_frame_count(guard.fitter);
-    {
-        Progress progress("fit");
-        // Several frames: a line per frame as it is fitted.
-        struct FrameLines {
-            Progress* progress;
-            uint32_t count;
-        } lines{&progress, frame_count};
-        const ssc_frame_fn frame_line = [](void* user, uint32_t frame, const ssc_fit_frame_report* r) {
-            const auto* l = static_cast<const FrameLines*>(user);
-            l->progress->clear();
-            if (r->failed) std::printf("frame %u of %u: failed: %s\n", frame + 1, l->count, r->problem_text);
-            else std::printf("frame %u of %u: fitted\n", frame + 1, l->count);
-            std::fflush(stdout);
-            return 0;
-        };
-        if (frame_count > 1) check(ssc_fitter_set_frame_callback(guard.fitter, frame_line, &lines), "fit");
-        const ssc_progress_fn show = [](void* user, uint32_t iteration, float cost) {
-            char text[96];
-            std::snprintf(text, sizeof text, "iteration %u, cost %.4g", iteration, double(cost));
-            return static_cast<Progress*>(user)->update(text) ? 0 : 1;
-        };
-        const ssc_status status = ssc_fitter_solve(guard.fitter, show, &progress, &report);
-        if (status == SSC_ERROR_CANCELLED) {
-            std::fprintf(stderr, "sscape fit: cancelled (Ctrl-C); nothing written\n");
-            return 130;
-        }
-        check(status, "fit");
-    }
-    // Each frame's judgement (the first frame's, for one).
-    std::vector<ssc_fit_frame_report> frame_reports(frame_count);
-    for (uint32_t f = 0; f < frame_count; ++f) {
-        frame_reports[f].struct_size = sizeof(ssc_fit_frame_report);
-        check(ssc_fitter_get_frame_report(guard.fitter, f, &frame_reports[f]), "fit");
-    }
+}
+
+// Solves with a progress line (and a line per frame when there are several). CANCELLED on Ctrl-C.
+ssc_status solve(ssc_fitter* fitter, ssc_fit_report& report) {
+    const uint32_t frame_count = ssc_fitter_frame_count(fitter);
+    Progress progress("fit");
+    // Several frames: a line per frame as it is fitted.
+    struct FrameLines {
+        Progress* progress;
+        uint32_t count;
+    } lines{&progress, frame_count};
+    const ssc_frame_fn frame_line = [](void* user, uint32_t frame, const ssc_fit_frame_report* r) {
+        const auto* l = static_cast<const FrameLines*>(user);
+        l->progress->clear();
+        if (r->failed) std::printf("frame %u of %u: failed: %s\n", frame + 1, l->count, r->problem_text);
+        else std::printf("frame %u of %u: fitted\n", frame + 1, l->count);
+        std::fflush(stdout);
+        return 0;
+    };
+    if (frame_count > 1) check(ssc_fitter_set_frame_callback(fitter, frame_line, &lines), "fit");
+    const ssc_progress_fn show = [](void* user, uint32_t iteration, float cost) {
+        char text[96];
+        std::snprintf(text, sizeof text, "iteration %u, cost %.4g", iteration, double(cost));
+        return static_cast<Progress*>(user)->update(text) ? 0 : 1;
+    };
+    return ssc_fitter_solve(fitter, show, &progress, &report);
+}
+
+// Says how the fit went; 1 when it failed as a whole (nothing is written), else 0.
+int judge(const Options& o, const ssc_fit_report& report, const std::vector<ssc_fit_frame_report>& frame_reports) {
+    const uint32_t frame_count = uint32_t(frame_reports.size());
     const char* outcome = report.converged ? "converged" : report.implausible ? "failed" : "iteration limit";
     std::printf("fit: %u iterations, %s, %.1f ms; cost %.4g -> %.4g\n", report.iterations, outcome,
                 report.seconds * 1e3, report.initial_cost, report.final_cost);
@@ -195,67 +168,109 @@ int run_fit(Options o) {
         std::fprintf(stderr, "sscape fit: failed: no frame found its person (frame 1: %s); nothing written\n", frame_reports[0].problem_text);
         return 1;
     }
+    return 0;
+}
 
-    const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model), J = ssc_model_joint_count(model);
-    const uint32_t K = ssc_model_shape_count(model);
-    std::vector<float> verts(3ull * V), shape(K), rotations(4ull * J), translation(3);
+// The fit's scale, translation and shape on stdout.
+void print_solution(ssc_model* model, ssc_fitter* fitter) {
+    const uint32_t J = ssc_model_joint_count(model), K = ssc_model_shape_count(model);
+    std::vector<float> shape(K), rotations(4ull * J), translation(3);
     float scale = 1;
-    std::vector<uint32_t> tris(3ull * T);
-    check(ssc_fitter_get_vertices(guard.fitter, 0, verts.data(), V, 0), "vertices");
-    check(ssc_fitter_get_shape(guard.fitter, shape.data(), K), "shape");
-    check(ssc_fitter_get_pose(guard.fitter, 0, rotations.data(), J, translation.data(), &scale), "pose");
-    check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
+    check(ssc_fitter_get_shape(fitter, shape.data(), K), "shape");
+    check(ssc_fitter_get_pose(fitter, 0, rotations.data(), J, translation.data(), &scale), "pose");
     std::printf("scale %.4f, translation %.3f %.3f %.3f m\nshape:", scale, translation[0], translation[1], translation[2]);
     for (uint32_t k = 0; k < K; ++k) std::printf("%s%.3f", k ? "," : " ", shape[k]);
     std::printf("\n");
-    // Each frame's result as a body (shape, pose, translation), written by the library: OBJ and PLY
-    // with normals (OBJ with UVs), glTF rigged. A fitted scale is no part of a body: those fits are
-    // written as meshes from the fitter's vertices.
-    const uint32_t F = ssc_fitter_frame_count(guard.fitter);
-    std::vector<float> more(3ull * V), frame_rot(4ull * J), frame_t(3);
+}
+
+// Each frame's result as a body (shape, pose, translation), written by the library: OBJ and PLY
+// with normals (OBJ with UVs), glTF rigged. A fitted scale is no part of a body: those fits are
+// written as meshes from the fitter's vertices. A failed frame is never written: its pose is not
+// to be trusted.
+void write_frames(const Options& o, ssc_model* model, ssc_fitter* fitter, const std::vector<ssc_fit_frame_report>& frame_reports) {
+    const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model), J = ssc_model_joint_count(model);
+    const uint32_t K = ssc_model_shape_count(model), F = ssc_fitter_frame_count(fitter);
+    std::vector<float> shape(K), vertices(3ull * V), rotations(4ull * J), translation(3);
+    std::vector<uint32_t> triangles(3ull * T);
+    check(ssc_fitter_get_shape(fitter, shape.data(), K), "shape");
+    check(ssc_model_get_triangles(model, triangles.data(), T), "triangles");
     for (uint32_t f = 0; f < F; ++f) {
         const std::string path = f == 0 ? o.out : with_suffix(o.out, "_frame" + std::to_string(f));
-        if (frame_reports[f].failed) {  // never written: its pose is not to be trusted
+        if (frame_reports[f].failed) {
             std::printf("frame %u of %u failed (%s): left out of the shared shape, %s not written\n", f + 1, F,
                         frame_reports[f].problem_text, path.c_str());
             continue;
         }
-        float frame_scale = 1;
-        check(ssc_fitter_get_pose(guard.fitter, f, frame_rot.data(), J, frame_t.data(), &frame_scale), "pose");
-        if (frame_scale == 1.0f) {
+        float scale = 1;
+        check(ssc_fitter_get_pose(fitter, f, rotations.data(), J, translation.data(), &scale), "pose");
+        if (scale == 1.0f) {
             Handles out_body(nullptr);
             check(ssc_body_create(model, nullptr, &out_body.body), "body");
             check(ssc_body_set_shape(out_body.body, shape.data(), K), "shape");
-            check(ssc_body_set_pose(out_body.body, frame_rot.data(), J, frame_t.data()), "pose");
+            check(ssc_body_set_pose(out_body.body, rotations.data(), J, translation.data()), "pose");
             check(ssc_body_write_file(out_body.body, path.c_str(), SSC_FILE_FORMAT_BY_EXTENSION), path);
         } else {
             if (exporters::format_of(path) == exporters::BodyFormat::Glb)
                 throw std::runtime_error(path + ": a fit with a fitted scale (--scale) is written as .obj or .ply, not as a rigged body");
-            check(ssc_fitter_get_vertices(guard.fitter, f, more.data(), V, 0), "vertices");
+            check(ssc_fitter_get_vertices(fitter, f, vertices.data(), V, 0), "vertices");
             exporters::MeshView mesh;
             mesh.vertex_count = V;
-            mesh.positions = more.data();
+            mesh.positions = vertices.data();
             mesh.triangle_count = T;
-            mesh.triangles = tris.data();
+            mesh.triangles = triangles.data();
             exporters::write_mesh(path, mesh);
         }
         std::printf("wrote %s\n", path.c_str());
     }
+}
+
+// Frame 0's input as the fitter holds it (landmarks, points, depth images' points), then the fit.
+void write_picture(const std::string& png, ssc_model* model, ssc_fitter* fitter) {
+    const fitting::Fitter& solved = fitter_of(fitter);
+    const fitting::Frame& input = solved.frame(0);
+    std::vector<Eigen::Vector3d> shown;
+    for (const auto& l : input.landmarks) shown.push_back(l.position);
+    for (const auto& cloud : input.clouds) shown.insert(shown.end(), cloud.points.begin(), cloud.points.end());
+    render::write_fit_picture(png, model_of(model), solved.frame_state(0), shown, solved.vertices(0), {});
+    std::printf("wrote %s (input, then the fit; front and side)\n", png.c_str());
+}
+
+int run_fit(Options o) {
+    finish(o);
+    // The bodies, the parameters and the picture: an unwritable one refused before the fit, and a
+    // write that fails leaves none of them (an unwritable --params once left the body).
+    OutputFiles written(planned_outputs(o));
+    ssc_model* model = load_model(o.model);
+    Handles guard(model);
+    ssc_fitter_def def;
+    ssc_fitter_def_init(&def, sizeof def);
+    def.fit_scale = o.scale;
+    def.shape_count = o.components;
+    if (o.iterations) def.max_iterations = o.iterations;
+    check(ssc_fitter_create(model, &def, &guard.fitter), "fitter");
+    add_inputs(o, guard.fitter);
+    ssc_fit_report report;
+    report.struct_size = sizeof report;
+    const ssc_status status = solve(guard.fitter, report);
+    if (status == SSC_ERROR_CANCELLED) {
+        std::fprintf(stderr, "sscape fit: cancelled (Ctrl-C); nothing written\n");
+        return 130;
+    }
+    check(status, "fit");
+    const uint32_t frame_count = ssc_fitter_frame_count(guard.fitter);
+    std::vector<ssc_fit_frame_report> frame_reports(frame_count);
+    for (uint32_t f = 0; f < frame_count; ++f) {
+        frame_reports[f].struct_size = sizeof(ssc_fit_frame_report);
+        check(ssc_fitter_get_frame_report(guard.fitter, f, &frame_reports[f]), "fit");
+    }
+    if (judge(o, report, frame_reports) != 0) return 1;
+    print_solution(model, guard.fitter);
+    write_frames(o, model, guard.fitter, frame_reports);
     if (!o.params.empty()) {  // the fit's parameters, for `sscape synth --params` and for scripts
         check(ssc_fitter_write_params(guard.fitter, &report, o.params.c_str()), o.params);
-        std::printf("wrote %s (shape, per-joint rotations, translation, scale and the report)\n", o.params.c_str());
+        std::printf("wrote %s (shape, segment coefficients, per-joint rotations, translation, scale and the report)\n", o.params.c_str());
     }
-    if (!o.png.empty()) {
-        fitting::FitState s;
-        for (uint32_t j = 0; j < J; ++j)
-            s.pose.emplace_back(rotations[4 * j + 3], rotations[4 * j], rotations[4 * j + 1], rotations[4 * j + 2]);
-        s.translation = Eigen::Vector3d(translation[0], translation[1], translation[2]);
-        s.scale = scale;
-        std::vector<Eigen::Vector3d> fitted(V);
-        for (uint32_t v = 0; v < V; ++v) fitted[v] = Eigen::Vector3d(verts[3 * v], verts[3 * v + 1], verts[3 * v + 2]);
-        render::write_fit_picture(o.png, model_of(model), s, shown, fitted, {});
-        std::printf("wrote %s (input, then the fit; front and side)\n", o.png.c_str());
-    }
+    if (!o.png.empty()) write_picture(o.png, model, guard.fitter);
     written.keep();  // failed frames were never written; the others stay, as said below
     if (report.failed_frames > 0) {
         std::fprintf(stderr, "sscape fit: %u of %u frames failed (listed above) and were not written; the other %u were\n",

@@ -29,6 +29,11 @@ FitOptions checked(const Model& model, FitOptions o) {
 Fitter::Fitter(const Model& model, const FitOptions& options, std::shared_ptr<const anatomy::ModelAnatomy> anatomy)
     : options_(checked(model, options)), linear_(model, options_.components, std::move(anatomy)) {}
 
+const Frame& Fitter::frame(uint32_t frame) const {
+    SSC_REQUIRE_ARG_S(frame < frames_.size(), "frame " << frame << " out of range (" << frames_.size() << " frames)");
+    return frames_[frame];
+}
+
 Frame& Fitter::frame_for_adding(uint32_t frame) {
     SSC_REQUIRE_ARG_S(frame <= frames_.size(), "frame " << frame << " is beyond the next new frame (" << frames_.size() << ")");
     if (frame == frames_.size()) frames_.emplace_back();

@@ -31,6 +31,9 @@ public:
     void add_cloud(uint32_t frame, PointCloud cloud);  // at least 16 points
     uint32_t add_depth_image(uint32_t frame, const DepthView& image);  // returns the points it gave
     uint32_t point_count(uint32_t frame) const;  // 0 for a frame that does not exist
+    // A frame's observations as added (metres; depth images as the points they gave). Error
+    // (INVALID_ARGUMENT) for a frame that does not exist.
+    const Frame& frame(uint32_t frame) const;
     void clear();  // every frame and the solution
 
     // Fits every frame (fit()). A cancelled fit (progress returned false) keeps the best state so
