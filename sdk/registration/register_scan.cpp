@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include <chrono>
+#include <memory>
 #include <cmath>
 
 namespace ssc::registration {
@@ -224,6 +225,115 @@ void pulled_landmarks(const format::ModelData& d, const Scan& scan, const std::v
     }
 }
 
+// The deformation of the started template onto the scan: per-vertex region rules and the edges'
+// stiffness, the landmarks it pulls, each vertex's share of the surface, the correspondences, and
+// the rounds of relaxed stiffness.
+class Deformation {
+public:
+    Deformation(const format::ModelData& d, const Scan& scan, const ScanSurface& surface, const std::vector<Vector3d>& start,
+                const std::vector<uint8_t>& landmark_off, const RegistrationOptions& options, ThreadPool& workers)
+        : surface_(surface), options_(options), workers_(workers), V_(uint32_t(start.size())), regions_(body_regions(d)),
+          triangles_(d.mesh.triangles.begin(), d.mesh.triangles.end()), edges_(mesh_edges(triangles_, V_)) {
+        for (const auto& name : regions_.names) rules_.push_back(region_rule(name));
+        std::vector<double> edge_stiffness;
+        for (const auto& e : edges_) edge_stiffness.push_back(0.5 * (rule_of(e[0]).stiffness + rule_of(e[1]).stiffness));
+        pulled_landmarks(d, scan, start, regions_, landmark_off, options.initialisation == Initialisation::Model, marks_, landmarks_);
+        system_ = std::make_unique<NonrigidSystem>(start, edges_, edge_stiffness, marks_, options.gamma);
+        area_ = surface_shares(start, triangles_, V_);
+        targets_.assign(V_, Vector3d::Zero());
+        weights_.assign(V_, 0.0);
+    }
+
+    // Correspondences: each deformed vertex's nearest scan point, when it is compatible and not on
+    // the scan's rim (holes are filled by the template's shape). Which vertices have data (the
+    // weights) is settled at a round's first iteration, so the round's later iterations reuse its
+    // factorisation (nonrigid.hpp); a vertex whose new nearest point fails the test there keeps its
+    // last target.
+    void correspond(const std::vector<Vector3d>& x, bool settle_weights) {
+        const std::vector<Vector3d> n = vertex_normals(x, triangles_);
+        const std::vector<Vector3d>& points = surface_.points;
+        const std::vector<Vector3d>& normals = surface_.normals;
+        const uint32_t V = V_;
+        constexpr std::size_t kChunks = 32;
+        workers_.parallel_for(kChunks, [&](std::size_t c, unsigned) {
+            for (uint32_t v = uint32_t(c * V / kChunks); v < uint32_t((c + 1) * V / kChunks); ++v) {
+                const RegionRule& r = rule_of(v);
+                double d2;
+                const uint32_t q = surface_.index.nearest(x[v], &d2);
+                const double dot = normals[q].squaredNorm() > 0 ? normals[q].dot(n[v]) : 1.0;
+                const bool ok = d2 <= r.max_distance * r.max_distance && !surface_.rim(q) &&
+                                (surface_.oriented ? dot : std::abs(dot)) >= std::cos(r.max_angle * M_PI / 180);
+                if (settle_weights) weights_[v] = ok ? r.data_weight * area_[v] : 0.0;
+                // The point of the scan's tangent plane at q nearest the vertex: a sparse scan's
+                // nearest sample lies up to half a spacing aside, and would pull the vertex along the
+                // surface towards it.
+                const Vector3d& nq = normals[q];
+                const Vector3d target = nq.squaredNorm() > 0 ? Vector3d(x[v] - (x[v] - points[q]).dot(nq) * nq) : points[q];
+                if (ok || settle_weights) targets_[v] = target;
+            }
+        });
+    }
+
+    // With landmarks, a round without data first brings them into place; then the rounds of
+    // relaxed stiffness, each iterated until no vertex moves (kSettled). Returns the deformed
+    // template; counts the rounds and solves in `report`.
+    template <class Tick>
+    std::vector<Vector3d> run(const Tick& tick, RegistrationReport& report) {
+        NonrigidSystem& system = *system_;
+        Eigen::MatrixX3d X = system.identity();
+        if (!landmarks_.empty() && options_.landmarks > 0) {
+            std::fill(weights_.begin(), weights_.end(), 0.0);
+            system.factorize({0.0, options_.stiffness, options_.landmarks}, weights_, landmarks_, &workers_);
+            X = system.solve(targets_, landmarks_, X, &workers_);
+            ++report.solves;
+        }
+        const std::vector<double> factors = round_factors(options_.schedule);
+        for (std::size_t round = 0; round < factors.size(); ++round) {
+            tick("deform", uint32_t(round), uint32_t(factors.size()));
+            const EnergyWeights k{1.0, options_.stiffness * factors[round], options_.landmarks * factors[round]};
+            std::vector<Vector3d> x = system.deformed(X);
+            for (uint32_t it = 0; it < options_.max_iterations; ++it) {
+                correspond(x, it == 0);
+                if (it == 0) system.factorize(k, weights_, landmarks_, &workers_);
+                X = system.solve(targets_, landmarks_, X, &workers_);
+                ++report.solves;
+                const std::vector<Vector3d> next = system.deformed(X);
+                double moved = 0;
+                for (uint32_t v = 0; v < V_; ++v) moved = std::max(moved, (next[v] - x[v]).squaredNorm());
+                x = next;
+                if (moved < kSettled * kSettled) break;
+            }
+            ++report.rounds;
+        }
+        tick("deform", uint32_t(factors.size()), uint32_t(factors.size()));
+        return system.deformed(X);
+    }
+
+    const std::vector<double>& weights() const { return weights_; }
+    const std::vector<uint32_t>& triangles() const { return triangles_; }
+    const BodyRegions& regions() const { return regions_; }
+    std::size_t pulled() const { return landmarks_.size(); }
+
+private:
+    const RegionRule& rule_of(uint32_t v) const { return regions_.of_vertex[v] < 0 ? other_ : rules_[std::size_t(regions_.of_vertex[v])]; }
+
+    const ScanSurface& surface_;
+    const RegistrationOptions& options_;
+    ThreadPool& workers_;
+    const uint32_t V_;
+    const BodyRegions regions_;
+    std::vector<RegionRule> rules_;
+    const RegionRule other_ = region_rule("");
+    const std::vector<uint32_t> triangles_;
+    const std::vector<std::array<uint32_t, 2>> edges_;
+    std::vector<TemplatePoint> marks_;
+    std::vector<LandmarkTarget> landmarks_;
+    std::unique_ptr<NonrigidSystem> system_;
+    std::vector<double> area_;
+    std::vector<Vector3d> targets_;
+    std::vector<double> weights_;
+};
+
 }  // namespace
 
 void check_scan(const fitting::PointCloud& cloud, const std::vector<uint32_t>& triangles) {
@@ -258,7 +368,6 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& given, c
     const std::vector<Vector3d>& normals = surface.normals;
     const fitting::PointIndex& index = surface.index;
     const bool oriented = surface.oriented;
-    const ScanRim& rim = surface.rim;
 
     if (!scan.landmarks.empty()) require_landmarks_on_scan(d, scan.landmarks, index);
 
@@ -277,86 +386,16 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& given, c
         case Initialisation::Rbf: start = rbf_start(d, scan, options, body, rest); break;
     }
 
-    // Regions and their rules, per vertex and per edge.
-    const BodyRegions regions = body_regions(d);
-    const std::vector<std::string>& region_names = regions.names;
-    const std::vector<int>& region = regions.of_vertex;
-    std::vector<RegionRule> rules;
-    for (const auto& name : region_names) rules.push_back(region_rule(name));
-    const RegionRule other = region_rule("");
-    auto rule_of = [&](uint32_t v) -> const RegionRule& { return region[v] < 0 ? other : rules[std::size_t(region[v])]; };
-    const std::vector<uint32_t> triangles(d.mesh.triangles.begin(), d.mesh.triangles.end());
-    const auto edges = mesh_edges(triangles, V);
-    std::vector<double> edge_stiffness;
-    for (const auto& e : edges) edge_stiffness.push_back(0.5 * (rule_of(e[0]).stiffness + rule_of(e[1]).stiffness));
-    std::vector<TemplatePoint> marks;
-    std::vector<LandmarkTarget> landmarks;
-    pulled_landmarks(d, scan, start, regions, landmark_off, options.initialisation == Initialisation::Model, marks, landmarks);
-    NonrigidSystem system(start, edges, edge_stiffness, marks, options.gamma);
-    const std::vector<double> area = surface_shares(start, triangles, V);
-
-    // Correspondences: each deformed vertex's nearest scan point, when it is compatible and not on
-    // the scan's rim (holes are filled by the template's shape). Which vertices have data (the
-    // weights) is settled at a round's first iteration, so the round's later iterations reuse its
-    // factorisation (nonrigid.hpp); a vertex whose new nearest point fails the test there keeps its
-    // last target.
-    std::vector<Vector3d> targets(V, Vector3d::Zero());
-    std::vector<double> weights(V, 0.0);
-    auto correspond = [&](const std::vector<Vector3d>& x, bool settle_weights) {
-        const std::vector<Vector3d> n = vertex_normals(x, triangles);
-        constexpr std::size_t kChunks = 32;
-        workers.parallel_for(kChunks, [&](std::size_t c, unsigned) {
-            for (uint32_t v = uint32_t(c * V / kChunks); v < uint32_t((c + 1) * V / kChunks); ++v) {
-                const RegionRule& r = rule_of(v);
-                double d2;
-                const uint32_t q = index.nearest(x[v], &d2);
-                const double dot = normals[q].squaredNorm() > 0 ? normals[q].dot(n[v]) : 1.0;
-                const bool ok = d2 <= r.max_distance * r.max_distance && !rim(q) &&
-                                (oriented ? dot : std::abs(dot)) >= std::cos(r.max_angle * M_PI / 180);
-                if (settle_weights) weights[v] = ok ? r.data_weight * area[v] : 0.0;
-                // The point of the scan's tangent plane at q nearest the vertex: a sparse scan's
-                // nearest sample lies up to half a spacing aside, and would pull the vertex along the
-                // surface towards it.
-                const Vector3d& nq = normals[q];
-                const Vector3d target = nq.squaredNorm() > 0 ? Vector3d(x[v] - (x[v] - points[q]).dot(nq) * nq) : points[q];
-                if (ok || settle_weights) targets[v] = target;
-            }
-        });
-    };
-
-    Eigen::MatrixX3d X = system.identity();
-    // With landmarks, a round without data first brings them into place.
-    if (!landmarks.empty() && options.landmarks > 0) {
-        std::fill(weights.begin(), weights.end(), 0.0);
-        system.factorize({0.0, options.stiffness, options.landmarks}, weights, landmarks, &workers);
-        X = system.solve(targets, landmarks, X, &workers);
-        ++out.report.solves;
-    }
-    const std::vector<double> factors = round_factors(options.schedule);
-    for (std::size_t round = 0; round < factors.size(); ++round) {
-        tick("deform", uint32_t(round), uint32_t(factors.size()));
-        const EnergyWeights k{1.0, options.stiffness * factors[round], options.landmarks * factors[round]};
-        std::vector<Vector3d> x = system.deformed(X);
-        for (uint32_t it = 0; it < options.max_iterations; ++it) {
-            correspond(x, it == 0);
-            if (it == 0) system.factorize(k, weights, landmarks, &workers);
-            X = system.solve(targets, landmarks, X, &workers);
-            ++out.report.solves;
-            const std::vector<Vector3d> next = system.deformed(X);
-            double moved = 0;
-            for (uint32_t v = 0; v < V; ++v) moved = std::max(moved, (next[v] - x[v]).squaredNorm());
-            x = next;
-            if (moved < kSettled * kSettled) break;
-        }
-        ++out.report.rounds;
-    }
-    tick("deform", uint32_t(factors.size()), uint32_t(factors.size()));
-    out.vertices = system.deformed(X);
-    correspond(out.vertices, true);
+    // The deformation, round by round, then where every vertex ended.
+    Deformation deformation(d, scan, surface, start, landmark_off, options, workers);
+    out.vertices = deformation.run(tick, out.report);
+    deformation.correspond(out.vertices, true);
     out.valid.resize(V);
-    for (uint32_t v = 0; v < V; ++v) out.valid[v] = weights[v] > 0, out.report.valid += out.valid[v];
-    out.report.quality = registration_quality(out.vertices, triangles, vertex_normals(out.vertices, triangles), region,
-                                              region_names, points, normals, oriented, index, workers);
+    for (uint32_t v = 0; v < V; ++v) out.valid[v] = deformation.weights()[v] > 0, out.report.valid += out.valid[v];
+    const std::vector<uint32_t>& triangles = deformation.triangles();
+    const BodyRegions& regions = deformation.regions();
+    out.report.quality = registration_quality(out.vertices, triangles, vertex_normals(out.vertices, triangles), regions.of_vertex,
+                                              regions.names, points, normals, oriented, index, workers);
     // A registration that lies mostly off its scan found no person there (two clusters of points
     // once "registered" with 3 % of the template within 20 mm; a front view alone gives 45 %).
     const double on_scan = out.report.quality.below[3];
@@ -367,7 +406,7 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& given, c
     out.report.scan_points = scan.cloud.points.size();
     out.report.scan_points_given = given.cloud.points.size();
     out.report.landmarks = scan.landmarks.size();
-    out.report.deformation_landmarks = landmarks.size();
+    out.report.deformation_landmarks = deformation.pulled();
     out.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }
