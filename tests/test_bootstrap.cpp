@@ -209,8 +209,16 @@ TEST_CASE("a registration record reads back as written, in the scan's units and 
     s.record.scan_up = "z";
     s.record.model_digest = "0123456789abcdef";
     const std::string mesh = "record_test.ply";
-    scan_files::write_registration_record(mesh, m, s.record);
+    const scan_files::RecordBytes written = scan_files::write_registration_record(mesh, m, s.record);
     const scan_files::RegistrationRecord back = scan_files::read_registration_record(mesh, m, true);
+    // The bytes written are the files' bytes, and the record made from them is the one read back
+    // (what register_scan_file returns without reading its output again).
+    CHECK(written.mesh == read_regular_file(mesh, 1u << 30));
+    CHECK(written.report == read_regular_file(scan_files::record_report_path(mesh), 1u << 30));
+    const scan_files::RegistrationRecord from_bytes = scan_files::registration_record_from_bytes(mesh, written, m, true);
+    CHECK(from_bytes.registered.vertices == back.registered.vertices);
+    CHECK(from_bytes.registered.fit.shape == back.registered.fit.shape);
+    CHECK(from_bytes.quality.vertex_distance == back.quality.vertex_distance);
     CHECK(back.scan == "scans/b9.ply");
     CHECK(back.scan_up == "z");
     CHECK(back.model_digest == "0123456789abcdef");

@@ -17,7 +17,7 @@ void commit(const std::string& path, const std::string& bytes) { write_file_atom
 
 }  // namespace
 
-void write_obj(const std::string& path, const MeshView& m) {
+std::string obj_bytes(const MeshView& m) {
     std::string s;
     s.reserve(std::size_t(m.vertex_count) * 80 + std::size_t(m.triangle_count) * 40);
     char line[160];
@@ -49,10 +49,12 @@ void write_obj(const std::string& path, const MeshView& m) {
         }
         s += '\n';
     }
-    commit(path, s);
+    return s;
 }
 
-void write_ply(const std::string& path, const MeshView& m) {
+void write_obj(const std::string& path, const MeshView& m) { commit(path, obj_bytes(m)); }
+
+std::string ply_bytes(const MeshView& m) {
     std::ostringstream h;
     h << "ply\nformat binary_little_endian 1.0\ncomment sscape body: metres, Y up, facing +Z\n"
       << "element vertex " << m.vertex_count << "\nproperty float x\nproperty float y\nproperty float z\n";
@@ -69,8 +71,10 @@ void write_ply(const std::string& path, const MeshView& m) {
         put(&three, 1);
         put(m.triangles + 3 * t, 12);
     }
-    commit(path, s);
+    return s;
 }
+
+void write_ply(const std::string& path, const MeshView& m) { commit(path, ply_bytes(m)); }
 
 namespace {
 std::string extension(const std::string& path) {
@@ -86,10 +90,11 @@ void check_mesh_path(const std::string& path) {
 
 }  // namespace
 
-void write_mesh(const std::string& path, const MeshView& mesh) {
+std::string mesh_bytes(const std::string& path, const MeshView& mesh) {
     check_mesh_path(path);
-    if (extension(path) == ".obj") write_obj(path, mesh);
-    else write_ply(path, mesh);
+    return extension(path) == ".obj" ? obj_bytes(mesh) : ply_bytes(mesh);
 }
+
+void write_mesh(const std::string& path, const MeshView& mesh) { commit(path, mesh_bytes(path, mesh)); }
 
 }  // namespace ssc::exporters

@@ -25,4 +25,9 @@ void write_ply(const std::string& path, const MeshView& mesh);
 // By extension (.obj or .ply, case-insensitive); SSC_ERROR_INVALID_ARGUMENT for anything else.
 void write_mesh(const std::string& path, const MeshView& mesh);
 
+// The bytes those write: OBJ text, binary PLY, or either by path's extension (as write_mesh).
+std::string obj_bytes(const MeshView& mesh);
+std::string ply_bytes(const MeshView& mesh);
+std::string mesh_bytes(const std::string& path, const MeshView& mesh);
+
 }  // namespace ssc::exporters

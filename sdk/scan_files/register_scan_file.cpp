@@ -108,14 +108,15 @@ ScanFileResult register_scan_file(registration::Registrar& registrar, const std:
     rec.quality = r.report.quality;
     rec.model_digest = model_digest;
     rec.scan_digest = digest;
-    write_registration_record(job.mesh_path, model, rec, job.write_report);
+    const RecordBytes written = write_registration_record(job.mesh_path, model, rec, job.write_report);
     if (!job.picture_path.empty()) {
         const render::PictureFrame frame = rec.registered.has_fit ? render::fit_picture_frame(model, rec.registered.fit) : render::PictureFrame();
         render::write_registration_picture(job.picture_path, model, frame, points, rec.registered.vertices, rec.quality.vertex_distance);
     }
-    // What is on disk from here on (floats in the scan's frame, distances to 0.01 mm): a run that
-    // goes on from this record and one that resumes from the files then learn the same model.
-    if (job.write_report) out.record = read_registration_record(job.mesh_path, model, false);
+    // What is on disk from here on (floats in the scan's frame, distances to 0.01 mm), parsed from
+    // the bytes written: a run that goes on from this record and one that resumes from the files
+    // then learn the same model.
+    if (job.write_report) out.record = registration_record_from_bytes(job.mesh_path, written, model, false);
     outputs.keep();
     return out;
 }

@@ -75,7 +75,7 @@ std::string record_report_path(const std::string& mesh_path) { return std::files
 std::string model_digest(const std::vector<unsigned char>& model_file) { return content_digest(model_file.data(), model_file.size()); }
 std::string file_digest(const std::string& bytes) { return content_digest(bytes.data(), bytes.size()); }
 
-void write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& r, bool with_report) {
+RecordBytes write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& r, bool with_report) {
     const uint32_t V = model.vertex_count();
     SSC_REQUIRE_ARG(r.registered.vertices.size() == V, "registration record: vertex count differs from the model's");
     SSC_REQUIRE_ARG(std::find(kAxes.begin(), kAxes.end(), r.scan_up) != kAxes.end(), "registration record: scan_up is no axis");
@@ -91,8 +91,10 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
     mesh.positions = xyz.data();
     mesh.triangle_count = uint32_t(model.data().mesh.triangles.size() / 3);
     mesh.triangles = model.data().mesh.triangles.data();
-    exporters::write_mesh(mesh_path, mesh);
-    if (!with_report) return;
+    RecordBytes written;
+    written.mesh = exporters::mesh_bytes(mesh_path, mesh);
+    write_file_atomically(mesh_path, written.mesh.data(), written.mesh.size());
+    if (!with_report) return written;
 
     ordered_json j;
     j["scan"] = r.scan;
@@ -124,18 +126,27 @@ void write_registration_record(const std::string& mesh_path, const Model& model,
     if (!r.valid.empty()) j["valid"] = r.valid;
     // A scan's file name need not be UTF-8, which JSON must be: such bytes are written as U+FFFD
     // (the path is for people; reuse goes by the files' digests).
-    const std::string text = j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-    write_file_atomically(record_report_path(mesh_path), text.data(), text.size());
+    written.report = j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+    write_file_atomically(record_report_path(mesh_path), written.report.data(), written.report.size());
+    return written;
 }
 
 RegistrationRecord read_registration_record(const std::string& mesh_path, const Model& model, bool need_fit) {
     const std::string path = record_report_path(mesh_path);
     if (!std::filesystem::exists(path))
         throw Error(SSC_ERROR_IO, mesh_path + ": no registration report " + path + " (sscape register --report writes it)");
-    RegistrationRecord r = parse_registration_report(read_regular_file(path, kMaxReport), path, model, need_fit);
+    RecordBytes bytes;
+    bytes.report = read_regular_file(path, kMaxReport);
+    bytes.mesh = read_regular_file(mesh_path, io::kMaxInputBytes);
+    return registration_record_from_bytes(mesh_path, bytes, model, need_fit);
+}
+
+RegistrationRecord registration_record_from_bytes(const std::string& mesh_path, const RecordBytes& bytes, const Model& model, bool need_fit) {
+    const std::string path = record_report_path(mesh_path);
+    RegistrationRecord r = parse_registration_report(bytes.report, path, model, need_fit);
     r.registered.name = mesh_path;
     const Eigen::Matrix3d R = up_axis_rotation(r.scan_up);
-    for (const auto& p : io::read_points(mesh_path).points) r.registered.vertices.push_back(R * (p * r.scan_units_to_metres));
+    for (const auto& p : io::parse_points(bytes.mesh, mesh_path).points) r.registered.vertices.push_back(R * (p * r.scan_units_to_metres));
     if (r.registered.vertices.size() != model.vertex_count())
         throw Error(SSC_ERROR_INVALID_ARGUMENT, mesh_path + ": " + std::to_string(r.registered.vertices.size()) + " vertices; the model has " +
                                                     std::to_string(model.vertex_count()) + " (was it registered with this model?)");

@@ -39,14 +39,23 @@ struct RegistrationRecord {
 // The report's path for a registered mesh.
 std::string record_report_path(const std::string& mesh_path);
 
+// What a record's files hold, byte for byte: the mesh and the report's text (empty without one).
+struct RecordBytes {
+    std::string mesh, report;
+};
+
 // Writes the mesh (.ply or .obj, by extension) then (with_report) the report, each atomically: a
-// report on disk means its mesh is complete. Throws ssc::Error (IO).
-void write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& record, bool with_report = true);
+// report on disk means its mesh is complete. Returns the bytes written. Throws ssc::Error (IO).
+RecordBytes write_registration_record(const std::string& mesh_path, const Model& model, const RegistrationRecord& record, bool with_report = true);
 
 // Reads a mesh and its report. Throws ssc::Error (IO for a missing or unreadable file;
 // INVALID_ARGUMENT for a malformed report, a mesh of another vertex count, or a report without
 // the model fit when need_fit).
 RegistrationRecord read_registration_record(const std::string& mesh_path, const Model& model, bool need_fit);
+
+// A record from its files' bytes (mesh_path names the mesh and says its format): what
+// read_registration_record gives for those files, without reading them. Throws as it.
+RegistrationRecord registration_record_from_bytes(const std::string& mesh_path, const RecordBytes& bytes, const Model& model, bool need_fit);
 
 // The report alone, from its text (`path` names it in messages): every value range-checked, the
 // mesh's vertices not read (what the fuzz target feeds). Throws as read_registration_record.
