@@ -78,11 +78,6 @@ const Scan& bounded(const Scan& given, std::size_t most, Scan& thinned) {
 
 namespace {
 
-void check_options(const RegistrationOptions& options) {
-    SSC_REQUIRE_ARG(std::isfinite(options.stiffness) && options.stiffness > 0 && std::isfinite(options.landmarks) && options.landmarks >= 0 &&
-                        std::isfinite(options.gamma) && options.gamma > 0 && options.max_iterations >= 1,
-                    "register: stiffness and gamma must be positive, landmarks >= 0, max_iterations >= 1");
-}
 
 // The scan as the deformation sees it: normals where missing (oriented when they could be), the
 // nearest-point index, the rim (holes are filled by the template's shape, not pulled to their edge).
@@ -336,6 +331,20 @@ private:
 
 }  // namespace
 
+void check_options(const RegistrationOptions& o) {
+    SSC_REQUIRE_ARG(std::isfinite(o.stiffness) && o.stiffness > 0 && o.stiffness <= 1e6, "register: stiffness must be in (0, 1e6]");
+    SSC_REQUIRE_ARG(std::isfinite(o.landmarks) && o.landmarks >= 0 && o.landmarks <= 1e6, "register: landmark weight must be in [0, 1e6]");
+    SSC_REQUIRE_ARG(std::isfinite(o.gamma) && o.gamma > 0 && o.gamma <= 1e3, "register: gamma must be in (0, 1e3]");
+    SSC_REQUIRE_ARG(o.max_iterations >= 1 && o.max_iterations <= 100, "register: max_iterations must be 1 to 100");
+    SSC_REQUIRE_ARG(o.max_scan_points >= 1000, "register: max_scan_points must be at least 1000");
+    SSC_REQUIRE_ARG(o.initialisation == Initialisation::Model || o.initialisation == Initialisation::Rigid || o.initialisation == Initialisation::Rbf,
+                    "register: unknown initialisation");
+    SSC_REQUIRE_ARG(std::isfinite(o.rbf_scale) && o.rbf_scale > 0 && o.rbf_scale <= 10, "register: rbf_scale must be in (0, 10] metres");
+    SSC_REQUIRE_ARG(o.rbf_kernel == RbfKernel::ThinPlate || o.rbf_kernel == RbfKernel::Multiquadric || o.rbf_kernel == RbfKernel::Gaussian,
+                    "register: unknown rbf kernel");
+    SSC_REQUIRE_ARG(o.schedule == Schedule::Relaxed || o.schedule == Schedule::Constant, "register: unknown schedule");
+}
+
 void check_scan(const fitting::PointCloud& cloud, const std::vector<uint32_t>& triangles) {
     fitting::validate_cloud(cloud, "register: scan");
     SSC_REQUIRE_ARG_S(cloud.points.size() >= kMinPoints, "register: the scan has " << cloud.points.size() << " points; a body scan needs at least " << kMinPoints);
@@ -344,8 +353,17 @@ void check_scan(const fitting::PointCloud& cloud, const std::vector<uint32_t>& t
     for (uint32_t i : triangles) SSC_REQUIRE_ARG_S(i < cloud.points.size(), "register: a scan triangle index (" << i << ") is out of range");
 }
 
-Registration register_scan(const fitting::LinearModel& lin, const Scan& given, const RegistrationOptions& options,
+Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, const RegistrationOptions& options,
                            const RegistrationProgress& progress, ThreadPool* pool) {
+    check_scan(scan.cloud, scan.triangles);
+    for (std::size_t l = 0; l < scan.landmarks.size(); ++l)
+        fitting::validate_landmark(lin.model.data(), scan.landmarks[l], "register: landmark " + std::to_string(l));
+    check_options(options);
+    return register_checked_scan(lin, scan, options, progress, pool);
+}
+
+Registration register_checked_scan(const fitting::LinearModel& lin, const Scan& given, const RegistrationOptions& options,
+                                   const RegistrationProgress& progress, ThreadPool* pool) {
     SSC_REQUIRE_ARG(options.max_scan_points >= 1000, "register: max_scan_points must be at least 1000");
     Scan thinned;
     const Scan& scan = bounded(given, options.max_scan_points, thinned);
@@ -355,9 +373,6 @@ Registration register_scan(const fitting::LinearModel& lin, const Scan& given, c
     const Model& model = lin.model;
     const format::ModelData& d = model.data();
     const uint32_t V = model.vertex_count();
-    check_scan(scan.cloud, scan.triangles);
-    for (std::size_t l = 0; l < scan.landmarks.size(); ++l) fitting::validate_landmark(d, scan.landmarks[l], "register: landmark " + std::to_string(l));
-    check_options(options);
     auto tick = [&](const char* stage, uint32_t done, uint32_t total) {
         if (progress && !progress(stage, done, total)) fail(SSC_ERROR_CANCELLED, "registration cancelled");
     };

@@ -124,15 +124,22 @@ constexpr std::size_t kMaxScanPoints = 2000000;  // RegistrationOptions::max_sca
 using RegistrationProgress = std::function<bool(const char* stage, uint32_t done, uint32_t total)>;
 
 // The checks of a scan before any work, in one place for every way in (the Registrar checks its scan
-// as it is set, register_scan again for direct callers): finite points and normals, at least 100,
+// as it is set, register_scan for direct callers): finite points and normals, at least 100,
 // spread like a body, triangle indices in range. ssc::Error
 // INVALID_ARGUMENT, the message prefixed "register:".
 void check_scan(const fitting::PointCloud& cloud, const std::vector<uint32_t>& triangles);
+// The options' checks, in one place likewise (the Registrar's as it is made): INVALID_ARGUMENT.
+void check_options(const RegistrationOptions& options);
 
 // Throws ssc::Error: INVALID_ARGUMENT for a scan check_scan refuses or bad options, an
 // initialisation the input cannot serve (rigid without 3 landmarks, rbf without 4 that span
 // space), or a scan the model cannot be fitted to; CANCELLED.
 Registration register_scan(const fitting::LinearModel& lin, const Scan& scan, const RegistrationOptions& options,
                            const RegistrationProgress& progress = {}, ThreadPool* pool = nullptr);
+
+// register_scan without check_scan and the landmark and option checks, for a caller that made them
+// as its input was set (the Registrar): the scan is checked once.
+Registration register_checked_scan(const fitting::LinearModel& lin, const Scan& scan, const RegistrationOptions& options,
+                                   const RegistrationProgress& progress = {}, ThreadPool* pool = nullptr);
 
 }  // namespace ssc::registration

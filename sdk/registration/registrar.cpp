@@ -6,20 +6,11 @@
 
 namespace ssc::registration {
 
+
 namespace {
 
 const RegistrationOptions& checked(const RegistrationOptions& o) {
-    SSC_REQUIRE_ARG(std::isfinite(o.stiffness) && o.stiffness > 0 && o.stiffness <= 1e6, "registration: stiffness must be in (0, 1e6]");
-    SSC_REQUIRE_ARG(std::isfinite(o.landmarks) && o.landmarks >= 0 && o.landmarks <= 1e6, "registration: landmark weight must be in [0, 1e6]");
-    SSC_REQUIRE_ARG(std::isfinite(o.gamma) && o.gamma > 0 && o.gamma <= 1e3, "registration: gamma must be in (0, 1e3]");
-    SSC_REQUIRE_ARG(o.max_iterations >= 1 && o.max_iterations <= 100, "registration: max_iterations must be 1 to 100");
-    SSC_REQUIRE_ARG(o.initialisation == Initialisation::Model || o.initialisation == Initialisation::Rigid ||
-                        o.initialisation == Initialisation::Rbf,
-                    "registration: unknown initialisation");
-    SSC_REQUIRE_ARG(std::isfinite(o.rbf_scale) && o.rbf_scale > 0 && o.rbf_scale <= 10, "registration: rbf_scale must be in (0, 10] metres");
-    SSC_REQUIRE_ARG(o.rbf_kernel == RbfKernel::ThinPlate || o.rbf_kernel == RbfKernel::Multiquadric || o.rbf_kernel == RbfKernel::Gaussian,
-                    "registration: unknown rbf kernel");
-    SSC_REQUIRE_ARG(o.schedule == Schedule::Relaxed || o.schedule == Schedule::Constant, "registration: unknown schedule");
+    check_options(o);
     return o;
 }
 
@@ -51,7 +42,7 @@ void Registrar::set_landmarks(std::vector<fitting::LandmarkTarget> landmarks) {
 const Registration& Registrar::run(const RegistrationProgress& progress, ThreadPool* pool) {
     SSC_REQUIRE_ARG(has_scan_, "registration: no scan (set one first)");
     result_.reset();
-    result_ = register_scan(linear_, scan_, options_, progress, pool);
+    result_ = register_checked_scan(linear_, scan_, options_, progress, pool);  // checked as it was set
     return *result_;
 }
 
