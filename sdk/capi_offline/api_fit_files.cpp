@@ -10,12 +10,13 @@
 #include "io/readers.hpp"
 #include "io/units.hpp"
 #include "scan_files/fit_params.hpp"
+#include "scan_files/scan_input.hpp"
+#include "synthesis/model.hpp"
 
 #include <sscape/sscape_offline.h>
 
 #include <nlohmann/json.hpp>
 
-#include <unordered_map>
 
 using namespace ssc;
 using namespace ssc::capi;
@@ -83,29 +84,21 @@ ssc_status ssc_fitter_add_landmarks_file(ssc_fitter* fitter, uint32_t frame, con
         const ssc_fit_file_def d = read_file_def(def);
         const double to_metres = d.units ? io::units_to_metres(d.units) : 1e-3;  // the .lnd format's millimetres
         const ssc_model* model = model_of(fitter);
-        std::unordered_map<std::string, uint32_t> by_name;
-        for (uint32_t l = 0; l < ssc_model_landmark_count(model); ++l) {
-            const char* name = "";
-            ok(ssc_model_get_landmark_name(model, l, &name));
-            by_name[io::normalized_landmark_name(name)] = l;
-        }
         std::vector<uint32_t> indices;
         std::vector<float> positions;
-        uint32_t hands = 0, unknown = 0;
-        for (const auto& r : io::read_lnd(d.path)) {  // positions: the file's numbers / 1000
-            const auto it = by_name.find(io::normalized_landmark_name(r.name));
-            if (it == by_name.end()) {
-                ++unknown;
-                log_message(model, SSC_LOG_WARNING, std::string(d.path) + ": landmark '" + r.name + "' is not one of the model's; ignored");
-                continue;
-            }
+        std::vector<std::string> unknown_names;
+        uint32_t hands = 0;
+        for (const auto& [index, r] : scan_files::match_landmarks(io::read_lnd(d.path), model_of(model).data(), &unknown_names)) {  // the file's numbers / 1000
             if (!d.use_hands && fitting::is_hand_landmark(r.name)) {
                 ++hands;
                 continue;
             }
-            indices.push_back(it->second);
+            indices.push_back(index);
             for (int a = 0; a < 3; ++a) positions.push_back(float(r.position[a]));
         }
+        for (const std::string& name : unknown_names)
+            log_message(model, SSC_LOG_WARNING, std::string(d.path) + ": landmark '" + name + "' is not one of the model's; ignored");
+        const uint32_t unknown = uint32_t(unknown_names.size());
         SSC_REQUIRE_ARG(indices.size() >= 3, std::string(d.path) + ": fewer than 3 usable landmarks");
         const double to_given = to_metres / 1e-3;
         std::vector<Eigen::Vector3d> metres;

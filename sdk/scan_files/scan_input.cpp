@@ -93,22 +93,27 @@ registration::Scan parse_scan(const ScanBytes& bytes, const ScanInput& in, const
     for (const auto& n : pf.normals) scan.cloud.normals.push_back(R * n);
     io::checked_body_span(in.path, scan.cloud.points, reading.scan_units_to_metres, reading.units_given);
     if (!in.landmarks.empty()) {
-        std::unordered_map<std::string, uint32_t> by_name;
-        const auto& marks = model.data().landmarks;
-        for (uint32_t l = 0; l < marks.size(); ++l) by_name[io::normalized_landmark_name(marks[l].name)] = l;
         std::vector<Eigen::Vector3d> positions;
-        for (const auto& r : io::parse_lnd(bytes.landmarks, in.landmarks)) {  // the file's numbers / 1000
-            const auto it = by_name.find(io::normalized_landmark_name(r.name));
-            if (it == by_name.end()) {
-                if (ignored) ignored->push_back(r.name);
-                continue;
-            }
+        for (const auto& [index, r] : match_landmarks(io::parse_lnd(bytes.landmarks, in.landmarks), model.data(), ignored)) {  // the file's numbers / 1000
             positions.push_back(R * (r.position * (reading.lnd_units_to_metres * 1e3)));
-            scan.landmarks.push_back({it->second, positions.back(), 1.0});
+            scan.landmarks.push_back({index, positions.back(), 1.0});
         }
         io::checked_body_span(in.landmarks, positions, reading.lnd_units_to_metres, reading.units_given);
     }
     return scan;
+}
+
+std::vector<std::pair<uint32_t, io::LandmarkRecord>> match_landmarks(const std::vector<io::LandmarkRecord>& records, const format::ModelData& model,
+                                                                      std::vector<std::string>* unknown) {
+    std::unordered_map<std::string, uint32_t> by_name;
+    for (uint32_t l = 0; l < model.landmarks.size(); ++l) by_name[io::normalized_landmark_name(model.landmarks[l].name)] = l;
+    std::vector<std::pair<uint32_t, io::LandmarkRecord>> matched;
+    for (const io::LandmarkRecord& r : records) {
+        const auto it = by_name.find(io::normalized_landmark_name(r.name));
+        if (it != by_name.end()) matched.emplace_back(it->second, r);
+        else if (unknown) unknown->push_back(r.name);
+    }
+    return matched;
 }
 
 registration::Scan load_scan(const ScanInput& in, const Model& model, const ScanReading& reading, std::vector<std::string>* ignored) {

@@ -3,6 +3,7 @@
 // (what reuse goes by) and the scan parsed from those same bytes in the model's frame.
 #pragma once
 
+#include "io/readers.hpp"
 #include "registration/register_scan.hpp"
 #include "synthesis/model.hpp"
 
@@ -56,6 +57,13 @@ std::string scan_digest(const ScanBytes& bytes);
 // units fit).
 registration::Scan parse_scan(const ScanBytes& bytes, const ScanInput& in, const Model& model, const ScanReading& reading,
                               std::vector<std::string>* ignored = nullptr);
+
+// A landmark file's records matched to the model's landmarks by name (io::normalized_landmark_name:
+// case, spaces and punctuation ignored), in file order: the model's landmark index and the record.
+// The names the model lacks are added to `unknown`. parse_scan and the fitter's landmark files
+// (ssc_fitter_add_landmarks_file) match through here.
+std::vector<std::pair<uint32_t, io::LandmarkRecord>> match_landmarks(const std::vector<io::LandmarkRecord>& records, const format::ModelData& model,
+                                                                      std::vector<std::string>* unknown = nullptr);
 
 // read_scan_bytes then parse_scan, for a caller that needs no digest.
 registration::Scan load_scan(const ScanInput& in, const Model& model, const ScanReading& reading,
