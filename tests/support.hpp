@@ -34,6 +34,14 @@ inline std::string makehuman_root() {
     return env && std::filesystem::is_directory(std::string(env) + "/makehuman") ? env : "";
 }
 
+// A fresh, empty folder AREA/NAME under the test's working directory.
+inline std::string fresh_folder(const std::string& area, const std::string& name) {
+    const std::filesystem::path p = std::filesystem::current_path() / area / name;
+    std::filesystem::remove_all(p);
+    std::filesystem::create_directories(p);
+    return p.string();
+}
+
 // The shipped default model's file (tests/paths.hpp).
 inline std::string default_model_file() { return sscape_paths::default_model_file(); }
 

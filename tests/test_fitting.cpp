@@ -644,6 +644,16 @@ std::pair<fitting::FitSolution, double> fit_benchmark_scan(const Model& m, const
     return fit_scan(m, lin, truth, angle, Eigen::Vector3d(0.1, 0.2, 1.5), rng, 20000);
 }
 
+// The fit benchmark's scan trial whose draws start after `draws` of seed 200's (sscape_fit_bench
+// --scenario scan), fitted with the default model.
+std::pair<fitting::FitSolution, double> fit_benchmark_trial(unsigned long long draws) {
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    std::mt19937 rng(200);
+    rng.discard(draws);
+    return fit_benchmark_scan(m, lin, rng);
+}
+
 }  // namespace
 
 TEST_CASE("a fit that cannot explain its scan is reported as failed, through the C API", "[fitting][capi]") {
@@ -679,11 +689,7 @@ TEST_CASE("a scan fit that ends implausible is redone from the next start candid
     // limits (545 mm mean vertex error before restarts). Should a change to the simulator or the
     // start search make this fit succeed at once, restarts is 0: pick another such trial
     // (SSCAPE_BENCH_VERBOSE=1 sscape_fit_bench --trials 140 --scenario scan lists restarts).
-    const Model& m = default_model().model();
-    const fitting::LinearModel lin(m, m.component_count());
-    std::mt19937 rng(200);
-    rng.discard(34112100);
-    const auto [sol, err] = fit_benchmark_scan(m, lin, rng);
+    const auto [sol, err] = fit_benchmark_trial(34112100);
     INFO("mean vertex error " << err * 1e3 << " mm, " << sol.report.restarts << " restarts");
     CHECK(sol.report.restarts >= 1);
     CHECK(err < 0.01);
@@ -696,11 +702,7 @@ TEST_CASE("a scan fit that leaves its scan loosely explained is redone from the 
     // 4.34 mm off before loose fits were redone. Should a change make this fit right at once,
     // restarts is 0: pick another trial (SSCAPE_BENCH_VERBOSE=1 sscape_fit_bench --trials 30
     // --scenario scan lists restarts).
-    const Model& m = default_model().model();
-    const fitting::LinearModel lin(m, m.component_count());
-    std::mt19937 rng(200);
-    rng.discard(7194160);
-    const auto [sol, err] = fit_benchmark_scan(m, lin, rng);
+    const auto [sol, err] = fit_benchmark_trial(7194160);
     INFO("mean vertex error " << err * 1e3 << " mm, " << sol.report.restarts << " restarts");
     CHECK(sol.report.restarts >= 1);
     CHECK(err < 0.002);

@@ -24,14 +24,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh folder under the test's working directory.
-std::string fresh_folder(const std::string& name) {
-    const fs::path p = fs::current_path() / "offline_api" / name;
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p.string();
-}
-
 // An ASCII PLY of points (x y z), scaled: the scanner's file.
 void write_points(const std::string& path, const std::vector<Eigen::Vector3d>& points, double scale) {
     std::ofstream f(path);
@@ -58,7 +50,7 @@ std::string last_error() { return ssc_last_error(); }
 }  // namespace
 
 TEST_CASE("a folder's scans are listed by name with their landmark files", "[capi][offline]") {
-    const std::string dir = fresh_folder("list");
+    const std::string dir = test::fresh_folder("offline_api", "list");
     for (const char* name : {"b.ply", "a.OBJ", "a.lnd", "c_scan.ply", "c.lnd", "notes.txt"}) std::ofstream(dir + "/" + name) << "x";
     fs::create_directories(dir + "/sub.ply");  // a folder, not a scan
     ssc_scan_list* list = nullptr;
@@ -85,7 +77,7 @@ TEST_CASE("a folder's scans are listed by name with their landmark files", "[cap
 TEST_CASE("a loop of links or a link to nothing in a scans folder is left out and said, not an internal error", "[capi][offline]") {
     // One stale link once stopped a whole collection with SSC_ERROR_INTERNAL ("Too many levels of
     // symbolic links"); it is left out of the list, with the reason, and bootstrapping goes on.
-    const std::string dir = fresh_folder("links"), scans = dir + "/scans";
+    const std::string dir = test::fresh_folder("offline_api", "links"), scans = dir + "/scans";
     fs::create_directories(scans);
     for (int i = 1; i <= 3; ++i) write_points(scans + "/p" + std::to_string(i) + ".ply", scan_points(uint32_t(i)), 1.0);
     fs::create_symlink("loop_b.ply", scans + "/loop_a.ply");
@@ -121,7 +113,7 @@ TEST_CASE("a loop of links or a link to nothing in a scans folder is left out an
 }
 
 TEST_CASE("a scan file is registered into its record, reused while current, and refused when it is no body", "[capi][offline]") {
-    const std::string dir = fresh_folder("run_file");
+    const std::string dir = test::fresh_folder("offline_api", "run_file");
     write_points(dir + "/scan.ply", scan_points(5), 1000.0);  // millimetres
     ssc_model* model = nullptr;
     REQUIRE(ssc_model_load_default(nullptr, &model) == SSC_OK);
@@ -258,7 +250,7 @@ TEST_CASE("a scan file is registered into its record, reused while current, and 
 }
 
 TEST_CASE("a fitter reads scan and landmark files as sscape fit does and writes its parameters", "[capi][offline]") {
-    const std::string dir = fresh_folder("fit_files");
+    const std::string dir = test::fresh_folder("offline_api", "fit_files");
     write_points(dir + "/scan.ply", scan_points(7), 100.0);  // centimetres
     std::ofstream(dir + "/few.lnd") << "AUX =\n1 0 1 0.00 10 20 30 Sellion\nEND =\n";  // one landmark
     ssc_model* model = nullptr;
@@ -313,7 +305,7 @@ TEST_CASE("a fitter reads scan and landmark files as sscape fit does and writes 
 }
 
 TEST_CASE("bootstrapping refuses bad settings before writing, and gives each round's registration jobs", "[capi][offline]") {
-    const std::string dir = fresh_folder("bootstrap"), scans = dir + "/scans", out = dir + "/out";
+    const std::string dir = test::fresh_folder("offline_api", "bootstrap"), scans = dir + "/scans", out = dir + "/out";
     fs::create_directories(scans);
     write_points(scans + "/p1.ply", scan_points(1), 1.0);
     write_points(scans + "/p2.ply", scan_points(2), 1.0);

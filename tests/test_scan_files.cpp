@@ -18,13 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string fresh_folder(const std::string& name) {
-    const fs::path p = fs::current_path() / "scan_files" / name;
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p.string();
-}
-
 // An ASCII PLY of n points on a 1.7 m tall column, shifted by dx: a body's extent.
 void write_column(const std::string& path, int n, double dx) {
     std::ofstream f(path);
@@ -35,7 +28,7 @@ void write_column(const std::string& path, int n, double dx) {
 }  // namespace
 
 TEST_CASE("a scan is parsed from the bytes its digest was taken of", "[scan_files]") {
-    const std::string dir = fresh_folder("read_once");
+    const std::string dir = test::fresh_folder("scan_files", "read_once");
     scan_files::ScanInput in;
     in.name = "s";
     in.path = dir + "/s.ply";
@@ -66,7 +59,7 @@ TEST_CASE("a scan is parsed from the bytes its digest was taken of", "[scan_file
 }
 
 TEST_CASE("a cached result is found while its key is the same and made again when it changes", "[scan_files]") {
-    const std::string dir = fresh_folder("cached");
+    const std::string dir = test::fresh_folder("scan_files", "cached");
     const std::string path = dir + "/result.json";
     const nlohmann::ordered_json key{{"model_digest", "abc"}, {"scan_digest", "def"}, {"scan_units_to_metres", 0.001}};
     const scan_files::CachedResult cached(path, key);
