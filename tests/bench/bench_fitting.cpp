@@ -42,8 +42,10 @@
 
 #include "anatomy/hand_closure.hpp"
 #include "anatomy/named_poses.hpp"
+#include "common/rigid.hpp"
 #include "fitting/fitter.hpp"
 #include "fitting/interpenetration.hpp"
+#include "fitting/nearest.hpp"
 #include "registration/registration_quality.hpp"
 #include "render/body_sheet.hpp"
 #include "render/fit_picture.hpp"
@@ -141,6 +143,52 @@ void print_joint_errors(const Model& model, const std::vector<Eigen::Vector3d>& 
     for (uint32_t j = 0; j < model.joint_count(); ++j)
         if (count[j] && sum[j] / count[j] > 0.01)
             std::printf("    %s %.1f mm\n", model.data().skeleton.joint_names[j].c_str(), 1e3 * sum[j] / count[j]);
+}
+
+// Mean vertex error per body region (registration::body_regions: head, torso, arms, hands, legs,
+// feet), metres. The head holds a third of the mesh's vertices (face, mouth, eyes) and the hands a
+// quarter (fingers): a head turned or a hand placed otherwise than the truth's weighs as much in
+// the mean vertex error as a limb astray.
+std::vector<double> region_errors(const registration::BodyRegions& regions, const std::vector<Eigen::Vector3d>& fit,
+                                  const std::vector<Eigen::Vector3d>& truth) {
+    std::vector<double> sum(regions.names.size(), 0.0), count(regions.names.size(), 0.0);
+    for (std::size_t v = 0; v < fit.size(); ++v)
+        if (regions.of_vertex[v] >= 0) sum[std::size_t(regions.of_vertex[v])] += (fit[v] - truth[v]).norm(), count[std::size_t(regions.of_vertex[v])] += 1;
+    for (std::size_t r = 0; r < sum.size(); ++r) sum[r] /= std::max(1.0, count[r]);
+    return sum;
+}
+
+std::string region_list(const registration::BodyRegions& regions, const std::vector<double>& errors) {
+    std::string s;
+    char buf[64];
+    for (std::size_t r = 0; r < errors.size(); ++r) {
+        std::snprintf(buf, sizeof buf, "%s%s %.1f", r ? ", " : "", regions.names[r].c_str(), errors[r] * 1e3);
+        s += buf;
+    }
+    return s;
+}
+
+// Mean distance from the truth's vertices (every third) to the fitted surface, metres: what a scan
+// can show of a fit. Low beside a high vertex error, the surface is right and the vertices lie
+// elsewhere on it (a forearm twisted, a hand resting on the body in another place).
+double surface_distance(const std::vector<Eigen::Vector3d>& fit, const std::vector<uint32_t>& triangles,
+                        const std::vector<Eigen::Vector3d>& truth) {
+    std::vector<std::vector<uint32_t>> ring(fit.size());
+    for (uint32_t t = 0; 3 * std::size_t(t) < triangles.size(); ++t)
+        for (int c = 0; c < 3; ++c) ring[triangles[3 * std::size_t(t) + std::size_t(c)]].push_back(t);
+    const fitting::PointIndex index(fit);
+    double sum = 0;
+    std::size_t n = 0;
+    for (std::size_t v = 0; v < truth.size(); v += 3, ++n) {
+        double d2 = 0;
+        const uint32_t k = index.nearest(truth[v], &d2);
+        double d = std::sqrt(d2);
+        for (uint32_t t : ring[k])
+            d = std::min(d, registration::point_triangle_distance(truth[v], fit[triangles[3 * std::size_t(t)]], fit[triangles[3 * std::size_t(t) + 1]],
+                                                                  fit[triangles[3 * std::size_t(t) + 2]]));
+        sum += d;
+    }
+    return n ? sum / double(n) : 0;
 }
 
 // A pose varied by another: each joint's rotation followed by the variation's (x y z w per joint).
@@ -594,7 +642,23 @@ int main(int argc, char** argv) {
         // How close the model's shape space comes to each person at rest (aligned): no fit gets much below it.
         std::vector<double> floors;
         double floor = 0;
-        for (const auto& rest : people) floors.push_back(simulation::best_approximation_error(model, rest, true)), floor += floors.back() / double(people.size());
+        const registration::BodyRegions regions = registration::body_regions(model.data());
+        for (const auto& rest : people) {
+            floors.push_back(simulation::best_approximation_error(model, rest, true)), floor += floors.back() / double(people.size());
+            if (verbose) {
+                std::vector<Eigen::Vector3d> approximation, aligned = rest;
+                {  // onto the model's mean, as best_approximation_error aligns it
+                    const float* mean = model.data().shape.mean.data();
+                    Eigen::Matrix3Xd src(3, Eigen::Index(rest.size())), dst(3, Eigen::Index(rest.size()));
+                    for (std::size_t v = 0; v < rest.size(); ++v)
+                        src.col(Eigen::Index(v)) = rest[v], dst.col(Eigen::Index(v)) = Eigen::Vector3d(mean[3 * v], mean[3 * v + 1], mean[3 * v + 2]);
+                    const Similarity T = align_points(src, dst, false);
+                    for (auto& x : aligned) x = T.R * x + T.t;
+                }
+                simulation::best_approximation_error(model, aligned, false, &approximation);
+                std::printf("  person %zu: floor %.2f mm (%s)\n", floors.size() - 1, floors.back() * 1e3, region_list(regions, region_errors(regions, approximation, aligned)).c_str());
+            }
+        }
         std::printf("the model's best approximation of these people at rest: %.2f mm mean vertex error (a fit's floor)\n", floor * 1e3);
         std::printf("scans: %s; %s\n",
                     one_depth_camera ? "one depth camera in front (640 x 480, 2 mm noise), the person facing it within 25 degrees"
@@ -623,7 +687,6 @@ int main(int argc, char** argv) {
         };
         Tally all;
         const fitting::InterpenetrationTest inside_test(lin);
-        const registration::BodyRegions regions = registration::body_regions(model.data());
         const std::vector<uint32_t> triangles(model.data().mesh.triangles.begin(), model.data().mesh.triangles.end());
         std::vector<std::vector<float>> sheet;
         std::vector<std::string> captions;
@@ -700,19 +763,10 @@ int main(int argc, char** argv) {
                         return in.limb < 0 ? std::string() : std::string(" (") + fitting::region_name(fitting::BodyRegion(in.limb)) + " in " +
                                                                  fitting::region_name(fitting::BodyRegion(in.part)) + ")";
                     };
-                    // The head holds a third of the mesh's vertices (face, mouth, eyes): a head turned
-                    // otherwise than the truth's weighs as much as a limb astray.
-                    double head_error = 0, rest_error = 0;
-                    std::size_t head_count = 0;
-                    for (std::size_t v = 0; v < fv.size(); ++v) {
-                        const bool in_head = regions.of_vertex[v] >= 0 && regions.names[std::size_t(regions.of_vertex[v])] == "head";
-                        (in_head ? head_error : rest_error) += (fv[v] - truth.vertices[v]).norm();
-                        head_count += in_head;
-                    }
-                    head_error /= double(std::max<std::size_t>(head_count, 1)), rest_error /= double(std::max<std::size_t>(fv.size() - head_count, 1));
-                    std::printf("  %s trial %d: %u points, error %.2f mm (floor %.2f; head %.1f, the rest %.1f), %u restarts, unexplained %.3f, joint %.0f deg past, off scan %.2f, "
+                    std::printf("  %s trial %d: %u points, error %.2f mm (floor %.2f; %s; surface %.2f), %u restarts, unexplained %.3f, joint %.0f deg past, off scan %.2f, "
                                 "loose %.3f, coverage %.2f, inside truth %.2f%s fit %.2f%s, converged %d%s%s\n",
-                                lp.name.c_str(), t, cloud_points, error * 1e3, floor_t * 1e3, head_error * 1e3, rest_error * 1e3, sol.report.restarts, sol.report.unexplained,
+                                lp.name.c_str(), t, cloud_points, error * 1e3, floor_t * 1e3, region_list(regions, region_errors(regions, fv, truth.vertices)).c_str(),
+                                surface_distance(fv, triangles, truth.vertices) * 1e3, sol.report.restarts, sol.report.unexplained,
                                 sol.report.frames[0].joint_excess * 57.29578, sol.report.frames[0].off_scan, sol.report.frames[0].loose, sol.report.frames[0].coverage,
                                 truth_inside.worst, where(truth_inside).c_str(), fit_inside.worst, where(fit_inside).c_str(), int(converged), sol.report.problem_text.empty() ? "" : ": ", sol.report.problem_text.c_str());
                 }
