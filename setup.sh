@@ -33,7 +33,7 @@ trap print_stages EXIT
 
 stage "Debian packages"
 packages=(cmake ninja-build ccache g++ pkg-config libeigen3-dev libnanoflann-dev libflatbuffers-dev flatbuffers-compiler
-          libzstd-dev libxxhash-dev libpng-dev nlohmann-json3-dev libcli11-dev)
+          libzstd-dev libxxhash-dev libpng-dev nlohmann-json3-dev libcli11-dev libmeshoptimizer-dev)
 # The test suite also builds the tests (Catch2) and benchmarks (Google Benchmark), fuzzes with clang's
 # libFuzzer, and tests the Python package (Debian's python3) and the C#, Rust and JavaScript bindings.
 if [ "$mode" = test ]; then packages+=(catch2 libbenchmark-dev clang libclang-rt-14-dev python3-numpy python3-pytest python3-venv

@@ -30,6 +30,12 @@ expect 2 "sscape fit: --units: furlong not in {m,cm,mm}" fit --landmarks "$out/e
 expect 2 "sscape synth: --random: Value 0 not in range 1 to 10000" synth --random 0 -o "$out/x.obj"
 expect 2 "sscape synth: --shape excludes --random" synth --random 2 --shape 1 -o "$out/x.obj"
 expect 2 "sscape synth: --output is required" synth
+expect 2 "sscape synth: --lod: the model has no level 'proxy9' (its levels: 0 full (13380 vertices), 1 simplified" synth --lod proxy9 -o "$out/x.obj"
+expect 2 "sscape synth: --lod: the model has no level '4'" synth --lod 4 -o "$out/x.obj"
+expect 2 "sscape synth: --landmarks-png draws the full mesh: leave --lod out" synth --lod 3 --landmarks-png "$out/l.png" -o "$out/x.obj"
+expect 0 "wrote 1 body of 741 vertices, 1460 triangles (level of detail 3, proxy741)" synth --lod proxy741 -o "$out/lod.glb"
+expect 0 "wrote 1 body of 741 vertices" synth --lod 3 -o "$out/lod.obj"
+expect 0 "  3 proxy741        741 vertices" info
 expect 2 "sscape register: -o: the registered mesh is written as .obj or .ply" register "$out/exit.txt" -o "$out/x.glb"
 expect 2 "sscape simulate: --noise: nan is outside\|sscape simulate: --noise: 'nan' is not a finite number" simulate --noise nan -o "$out/x"
 expect 2 "sscape synth: --shape: 'abc' is not a finite number" synth --shape 1,abc -o "$out/x.obj"

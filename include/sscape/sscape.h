@@ -708,6 +708,100 @@ SSC_EXPERIMENTAL ssc_status ssc_body_set_slider(ssc_body* body, uint32_t index, 
 SSC_EXPERIMENTAL ssc_status ssc_body_set_sliders(ssc_body* body, const float* values, uint32_t count);
 
 /* ---------------------------------------------------------------------------------------------- */
+/* Levels of detail (SSC_EXPERIMENTAL: may change in a minor version)                              */
+
+/**
+ * Levels of detail: coarser meshes of the same body for engines (a simplified template, MakeHuman's
+ * proxy meshes). Level 0 is the full mesh; levels 1 .. count-1 the model's, finest first. Every
+ * vertex of a level is a fixed affine combination of at most 4 body vertices (the same for every
+ * body), so a level follows every shape exactly; it is posed by its own skin of at most 4
+ * influences, as an engine poses it, and costs in proportion to its vertices. The functions below
+ * all accept level 0 and then give what the full mesh's functions give.
+ */
+typedef struct ssc_level_info {
+    uint32_t struct_size;     /**< Set by the caller: sizeof(ssc_level_info). */
+    const char* name;         /**< "full" for level 0, else the level's ("simplified", "proxy741"; owned by the model). */
+    uint32_t vertex_count;    /**< Vertices of the level. */
+    uint32_t triangle_count;  /**< Triangles of the level. */
+    uint32_t uv_count;        /**< Texture coordinates (face-varying), 0 if none. */
+} ssc_level_info;
+
+/** Number of levels, the full mesh included (so at least 1). 0 for NULL. Threads: any. */
+SSC_EXPERIMENTAL uint32_t ssc_model_level_count(const ssc_model* model);
+
+/**
+ * Describes a level.
+ * @param level  below ssc_model_level_count.
+ * @param out    out: out->struct_size must be set; only that many bytes are written.
+ * Threads: any.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_model_get_level_info(const ssc_model* model, uint32_t level, ssc_level_info* out);
+
+/** A level's triangles, 3 vertex indices each (counter-clockwise from outside); capacity in
+ *  triangles. As ssc_model_get_triangles. Threads: any. */
+SSC_EXPERIMENTAL ssc_status ssc_model_get_level_triangles(const ssc_model* model, uint32_t level, uint32_t* out, uint32_t capacity);
+
+/** A level's texture coordinates, 2 floats each; capacity in coordinates. SSC_ERROR_NOT_FOUND if
+ *  the level has none. Threads: any. */
+SSC_EXPERIMENTAL ssc_status ssc_model_get_level_uvs(const ssc_model* model, uint32_t level, float* out, uint32_t capacity);
+
+/** A level's 3 UV indices per triangle; capacity in triangles. SSC_ERROR_NOT_FOUND if the level has
+ *  no UVs. Threads: any. */
+SSC_EXPERIMENTAL ssc_status ssc_model_get_level_triangle_uvs(const ssc_model* model, uint32_t level, uint32_t* out, uint32_t capacity);
+
+/**
+ * A level's skin: 4 joint indices and 4 weights (summing to 1) per level vertex.
+ * @param joints  4 * capacity values; may be NULL. @param weights 4 * capacity values; may be NULL.
+ * @param capacity  level vertices the arrays can hold.
+ * Threads: any.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_model_get_level_skin(const ssc_model* model, uint32_t level, uint16_t* joints, float* weights,
+                                                     uint32_t capacity);
+
+/**
+ * How a level is made of the body: 4 body vertex indices and 4 weights (summing to 1; unused slots
+ * 0) per level vertex; level vertex = sum of weight x body vertex. Level 0 gives each vertex itself.
+ * What tools need to carry data between levels.
+ * @param vertices  4 * capacity values; may be NULL. @param weights 4 * capacity values; may be NULL.
+ * Threads: any.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_model_get_level_sources(const ssc_model* model, uint32_t level, uint32_t* vertices, float* weights,
+                                                        uint32_t capacity);
+
+/**
+ * Where each of the model's landmarks lies on a level: the level's triangle and 3 barycentric
+ * weights (summing to 1) per landmark, in the model's landmark order. Level 0 gives each landmark's
+ * place on the full mesh (a vertex landmark as a corner of one of its triangles).
+ * @param triangles    capacity values; may be NULL. @param barycentric 3 * capacity values; may be NULL.
+ * @param capacity     landmarks the arrays hold, at least ssc_model_landmark_count.
+ * Threads: any.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_model_get_level_landmarks(const ssc_model* model, uint32_t level, uint32_t* triangles, float* barycentric,
+                                                          uint32_t capacity);
+
+/** The posed vertices of a level (metres), 3 floats each; capacity in the level's vertices; as
+ *  ssc_body_get_vertices. Threads: the body's thread. */
+SSC_EXPERIMENTAL ssc_status ssc_body_get_level_vertices(ssc_body* body, uint32_t level, float* out, uint32_t capacity, size_t stride);
+
+/** Unit normals of a level's posed mesh (area-weighted); as ssc_body_get_level_vertices. */
+SSC_EXPERIMENTAL ssc_status ssc_body_get_level_normals(ssc_body* body, uint32_t level, float* out, uint32_t capacity, size_t stride);
+
+/** The shaped, unposed vertices of a level; as ssc_body_get_level_vertices. */
+SSC_EXPERIMENTAL ssc_status ssc_body_get_level_rest_vertices(ssc_body* body, uint32_t level, float* out, uint32_t capacity,
+                                                             size_t stride);
+
+/** ssc_body_write_level_file's level for every level in one GLB file. */
+#define SSC_LEVEL_ALL 0xFFFFFFFFu
+
+/**
+ * Writes a level of the body as ssc_body_write_file writes the full mesh (its triangles, UVs and,
+ * in GLB, its skin). level SSC_LEVEL_ALL writes every level into one GLB file, one node per level
+ * on the one skeleton, named NAME_LOD0 (the full mesh), NAME_LOD1, ... as engines' importers expect;
+ * SSC_ERROR_INVALID_ARGUMENT for OBJ or PLY. Ownership: none kept. Threads: the body's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_body_write_level_file(ssc_body* body, uint32_t level, const char* path, ssc_file_format format);
+
+/* ---------------------------------------------------------------------------------------------- */
 /* Segment shape spaces (SSC_EXPERIMENTAL: may change in a minor version)                          */
 
 /**

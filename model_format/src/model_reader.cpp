@@ -198,6 +198,29 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
         }
     }
 
+    if (const auto* levels = root->levels()) {
+        for (const auto* lv : *levels) {
+            DetailLevel out;
+            out.name = text(lv->name());
+            out.vertex_count = lv->vertex_count();
+            const std::string what = "level '" + out.name + "'";
+            auto take = [&](const auto* v, auto& into, const char* field) {
+                SSC_REQUIRE_MODEL(v != nullptr, what + ": " + field + " is missing");
+                into.assign(v->begin(), v->end());
+            };
+            take(lv->sources(), out.sources, "sources");
+            take(lv->source_weights(), out.source_weights, "source_weights");
+            take(lv->triangles(), out.triangles, "triangles");
+            if (lv->uvs()) take(lv->uvs(), out.uvs, "uvs");
+            if (lv->triangle_uvs()) take(lv->triangle_uvs(), out.triangle_uvs, "triangle_uvs");
+            take(lv->skin_joints(), out.skin_joints, "skin_joints");
+            take(lv->skin_weights(), out.skin_weights, "skin_weights");
+            take(lv->landmark_triangles(), out.landmark_triangles, "landmark_triangles");
+            take(lv->landmark_barycentric(), out.landmark_barycentric, "landmark_barycentric");
+            m.levels.push_back(std::move(out));
+        }
+    }
+
     validate_model(m);
     return m;
 }

@@ -103,10 +103,18 @@ std::vector<unsigned char> write_model(const ModelData& m, const WriteOptions& o
     std::vector<flatbuffers::Offset<fb::ShapeSegment>> segments;
     for (const auto& s : m.segments) segments.push_back(write_segment(fbb, s, me));
 
+    std::vector<flatbuffers::Offset<fb::DetailLevel>> levels;
+    for (const auto& l : m.levels)
+        levels.push_back(fb::CreateDetailLevel(fbb, str(l.name), l.vertex_count, fbb.CreateVector(l.sources), fbb.CreateVector(l.source_weights),
+                                               fbb.CreateVector(l.triangles), l.uvs.empty() ? 0 : fbb.CreateVector(l.uvs),
+                                               l.uvs.empty() ? 0 : fbb.CreateVector(l.triangle_uvs), fbb.CreateVector(l.skin_joints),
+                                               fbb.CreateVector(l.skin_weights), fbb.CreateVector(l.landmark_triangles),
+                                               fbb.CreateVector(l.landmark_barycentric)));
+
     auto root = fb::CreateModel(fbb, meta, mesh, shape, skeleton, skin, fbb.CreateVector(landmarks),
                                 fbb.CreateVector(sets), m.joint_limits.empty() ? 0 : fbb.CreateVector(limits), attributes,
                                 m.joint_roles.empty() ? 0 : fbb.CreateVector(roles),
-                                m.segments.empty() ? 0 : fbb.CreateVector(segments));
+                                m.segments.empty() ? 0 : fbb.CreateVector(segments), m.levels.empty() ? 0 : fbb.CreateVector(levels));
     fb::FinishModelBuffer(fbb, root);
     return pack_container(fbb.GetBufferPointer(), fbb.GetSize(), options.zstd_level);
 }

@@ -249,6 +249,52 @@ void validate_model(const ModelData& m) {
     for (uint32_t v = 0; v < weight_sum.size(); ++v)
         SSC_REQUIRE_MODEL(weight_sum[v] <= 1.001f, "segments: the blend weights of vertex " + std::to_string(v) + " sum to over 1");
 
+    // Levels of detail: each vertex an affine combination of body vertices (weights summing to 1,
+    // bounded: a level vertex lies near the body vertices it is made of), its own mesh, skin and
+    // landmarks.
+    names.clear();
+    for (const auto& lv : m.levels) {
+        names.push_back(lv.name);
+        const std::string what = "level '" + lv.name + "'";
+        const uint64_t N = lv.vertex_count;
+        SSC_REQUIRE_MODEL(!lv.name.empty(), "levels: a level has no name");
+        SSC_REQUIRE_MODEL(N >= 3, what + " has fewer than 3 vertices");
+        require_size(lv.sources, 4 * N, (what + ".sources").c_str());
+        require_size(lv.source_weights, 4 * N, (what + ".source_weights").c_str());
+        require_below(lv.sources, V, (what + ".sources").c_str());
+        SSC_REQUIRE_MODEL(!lv.triangles.empty() && lv.triangles.size() % 3 == 0, what + ".triangles must hold 3 indices per triangle");
+        require_below(lv.triangles, N, (what + ".triangles").c_str());
+        if (!lv.uvs.empty() || !lv.triangle_uvs.empty()) {
+            SSC_REQUIRE_MODEL(lv.uvs.size() % 2 == 0, what + ".uvs must hold 2 floats per coordinate");
+            require_finite(lv.uvs, (what + ".uvs").c_str());
+            require_size(lv.triangle_uvs, lv.triangles.size(), (what + ".triangle_uvs").c_str());
+            require_below(lv.triangle_uvs, lv.uvs.size() / 2, (what + ".triangle_uvs").c_str());
+        }
+        require_size(lv.skin_joints, 4 * N, (what + ".skin_joints").c_str());
+        require_size(lv.skin_weights, 4 * N, (what + ".skin_weights").c_str());
+        require_below(lv.skin_joints, J, (what + ".skin_joints").c_str());
+        for (uint64_t v = 0; v < N; ++v) {
+            double source_sum = 0, skin_sum = 0;
+            for (uint64_t i = 0; i < 4; ++i) {
+                const float w = lv.source_weights[4 * v + i], s = lv.skin_weights[4 * v + i];
+                SSC_REQUIRE_MODEL(std::isfinite(w) && std::abs(w) <= 8, what + ": source weights of vertex " + std::to_string(v) + " must be finite and within 8");
+                SSC_REQUIRE_MODEL(std::isfinite(s) && s >= 0, what + ": skin weights of vertex " + std::to_string(v) + " must be finite and >= 0");
+                source_sum += w, skin_sum += s;
+            }
+            SSC_REQUIRE_MODEL(std::abs(source_sum - 1.0) < 1e-3, what + ": source weights of vertex " + std::to_string(v) + " do not sum to 1");
+            SSC_REQUIRE_MODEL(std::abs(skin_sum - 1.0) < 1e-3, what + ": skin weights of vertex " + std::to_string(v) + " do not sum to 1");
+        }
+        require_size(lv.landmark_triangles, m.landmarks.size(), (what + ".landmark_triangles").c_str());
+        require_size(lv.landmark_barycentric, 3 * m.landmarks.size(), (what + ".landmark_barycentric").c_str());
+        require_below(lv.landmark_triangles, lv.triangles.size() / 3, (what + ".landmark_triangles").c_str());
+        for (std::size_t l = 0; l < m.landmarks.size(); ++l) {
+            const float* b = &lv.landmark_barycentric[3 * l];
+            SSC_REQUIRE_MODEL(std::isfinite(b[0]) && std::isfinite(b[1]) && std::isfinite(b[2]) && std::abs(b[0] + b[1] + b[2] - 1.0) < 1e-3,
+                              what + ": landmark " + std::to_string(l) + "'s barycentric weights must be finite and sum to 1");
+        }
+    }
+    require_unique_names(names, "levels");
+
     SSC_REQUIRE_MODEL(!m.metadata.units.empty() && m.metadata.units == "m", "metadata.units must be \"m\"");
 }
 

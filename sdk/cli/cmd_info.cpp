@@ -116,6 +116,13 @@ int run_info(const std::string& path, bool json, const std::string& segments_png
         check(ssc_model_get_segment_info(model, i, &info), "segment");
         segments.push_back({{"name", info.name}, {"components", info.shape_count}, {"vertices", info.vertex_count}});
     }
+    nlohmann::ordered_json levels = nlohmann::ordered_json::array();
+    for (uint32_t i = 0; i < ssc_model_level_count(model); ++i) {
+        ssc_level_info info{};
+        info.struct_size = sizeof info;
+        check(ssc_model_get_level_info(model, i, &info), "level");
+        levels.push_back({{"level", i}, {"name", info.name}, {"vertices", info.vertex_count}, {"triangles", info.triangle_count}, {"uvs", info.uv_count}});
+    }
     const uint32_t K = ssc_model_shape_count(model);
     std::vector<float> sd(K);
     if (K) check(ssc_model_get_shape_stddevs(model, sd.data(), K), "stddevs");
@@ -125,6 +132,7 @@ int run_info(const std::string& path, bool json, const std::string& segments_png
     j["vertex_sets"] = sets;
     j["sliders"] = sliders;
     j["segments"] = segments;
+    j["levels"] = levels;
     j["components"] = K;
     j["stddev_m"] = sd;
     if (!segments_png.empty()) {
@@ -167,6 +175,10 @@ int run_info(const std::string& path, bool json, const std::string& segments_png
     for (const auto& s : segments)
         std::printf("\n  %-12s %u components over %u vertices", s["name"].get<std::string>().c_str(), s["components"].get<uint32_t>(),
                     s["vertices"].get<uint32_t>());
+    std::printf("\nlevels of detail: %zu (synth --lod)", levels.size());
+    for (const auto& l : levels)
+        std::printf("\n  %u %-12s %6u vertices %6u triangles", l["level"].get<uint32_t>(), l["name"].get<std::string>().c_str(),
+                    l["vertices"].get<uint32_t>(), l["triangles"].get<uint32_t>());
     std::printf("\ncomponents:  %u\nstddev (m):", K);
     for (uint32_t k = 0; k < K; ++k) std::printf("%s%.4g", k % 10 == 0 ? "\n  " : " ", sd[k]);
     std::printf("\n");

@@ -33,7 +33,23 @@ struct Options {
     bool normals = false;
     std::vector<float> hands;  // --hands: left and right closure, or one for both
     std::vector<std::string> segment_texts;  // --segment NAME=C1,C2,...
+    std::string lod = "0";                   // --lod: a level of detail, by number or name
 };
+
+// --lod: the level's number (0 the full mesh) or name, checked against the model's.
+uint32_t find_level(ssc_model* model, const std::string& text) {
+    if (text == "all") return SSC_LEVEL_ALL;
+    const uint32_t count = ssc_model_level_count(model);
+    std::string names;
+    for (uint32_t l = 0; l < count; ++l) {
+        ssc_level_info info{};
+        info.struct_size = sizeof info;
+        check(ssc_model_get_level_info(model, l, &info), "level");
+        if (text == info.name || text == std::to_string(l)) return l;
+        names += std::string(names.empty() ? "" : ", ") + std::to_string(l) + " " + info.name + " (" + std::to_string(info.vertex_count) + " vertices)";
+    }
+    throw UsageError("--lod: the model has no level '" + text + "' (its levels: " + names + ")");
+}
 
 // --segment: each segment's coefficients, set on the body on top of its whole-body shape.
 void set_segments(ssc_model* model, ssc_body* body, const std::vector<std::string>& texts) {
@@ -197,11 +213,19 @@ int run_synth(Options o) {
     ssc_model* model = load_model(o.model);
     Handles guard(model);
 
-    const uint32_t V = ssc_model_vertex_count(model), T = ssc_model_triangle_count(model);
+    const uint32_t written = find_level(model, o.lod);
+    if (written != 0 && !o.landmarks_png.empty()) throw UsageError("--landmarks-png draws the full mesh: leave --lod out");
+    if (written == SSC_LEVEL_ALL && exporters::format_of(o.out) != exporters::BodyFormat::Glb)
+        throw UsageError("--lod all writes every level into one glTF file: the output must be .glb");
+    const uint32_t level = written == SSC_LEVEL_ALL ? 0 : written;  // what the table and --png show
+    ssc_level_info info{};
+    info.struct_size = sizeof info;
+    check(ssc_model_get_level_info(model, level, &info), "level");
+    const uint32_t V = info.vertex_count, T = info.triangle_count;
     const uint32_t K = ssc_model_shape_count(model), J = ssc_model_joint_count(model);
     if (o.shape.size() > K) throw UsageError("--shape has " + std::to_string(o.shape.size()) + " values; the model has " + std::to_string(K) + " components");
     std::vector<uint32_t> tris(3ull * T);
-    check(ssc_model_get_triangles(model, tris.data(), T), "triangles");
+    check(ssc_model_get_level_triangles(model, level, tris.data(), T), "triangles");
     check(ssc_body_create(model, nullptr, &guard.body), "body");
     const FitParams fitted = o.params.empty() ? FitParams{} : read_params(model, o.params);
     set_fit_segments(model, guard.body, fitted);  // --segment below sets those it names on top
@@ -244,10 +268,10 @@ int run_synth(Options o) {
             shape.resize(K);
             check(ssc_body_get_shape(guard.body, shape.data(), K), "shape");
         }
-        check(ssc_body_get_vertices(guard.body, verts.data(), V, 0), "vertices");
+        check(ssc_body_get_level_vertices(guard.body, level, verts.data(), V, 0), "vertices");
         // The library writes the file: OBJ with normals and UVs, binary PLY, or rigged glTF.
         const std::string path = numbered(o.out, i, n);
-        check(ssc_body_write_file(guard.body, staging.path(path).c_str(), SSC_FILE_FORMAT_BY_EXTENSION), path);
+        check(ssc_body_write_level_file(guard.body, written, staging.path(path).c_str(), SSC_FILE_FORMAT_BY_EXTENSION), path);
         if (!o.png.empty() && rendered.size() < 20) rendered.push_back(verts);
         if (!o.landmarks_png.empty() && i == 0) {  // drawn once every body is written
             const uint32_t L = ssc_model_landmark_count(model);
@@ -274,7 +298,12 @@ int run_synth(Options o) {
         std::printf("drew the %zu landmarks of %s (front, back, side; head and trunk close up) to %s\n", first_landmarks.size() / 3,
                     first_path.c_str(), o.landmarks_png.c_str());
     }
-    std::printf("wrote %u bod%s of %u vertices, %u triangles\n", n, n == 1 ? "y" : "ies", V, T);
+    if (written == SSC_LEVEL_ALL)
+        std::printf("wrote %u bod%s, each with its %u levels of detail (nodes _LOD0 to _LOD%u)\n", n, n == 1 ? "y" : "ies",
+                    ssc_model_level_count(model), ssc_model_level_count(model) - 1);
+    else
+        std::printf("wrote %u bod%s of %u vertices, %u triangles%s\n", n, n == 1 ? "y" : "ies", V, T,
+                    level ? (std::string(" (level of detail ") + std::to_string(level) + ", " + info.name + ")").c_str() : "");
     if (!o.png.empty()) {
         render::write_body_sheet(o.png, rendered, tris);
         std::printf("rendered %zu bod%s (front and side views) to %s\n", rendered.size(), rendered.size() == 1 ? "y" : "ies",
@@ -327,6 +356,8 @@ Run add_synth(CLI::App& app) {
     c->add_option("--segment", o->segment_texts, "segment shape coefficients (standard deviations) on top of the whole-body shape, "
                   "for models with segment shape spaces (sscape info lists them)")
         ->type_name("NAME=C1,C2,...");
+    c->add_option("--lod", o->lod, "the level of detail to write, by number or name (0 or full: the whole mesh; sscape info lists "
+                                   "the model's); all: every level in one .glb, a node each")->type_name("LEVEL")->capture_default_str();
     c->add_flag("--normals", o->normals, "kept for old scripts: normals are always written");
     random->excludes(shape)->excludes(sliders)->excludes(measure);
     return [o] { return run_synth(*o); };

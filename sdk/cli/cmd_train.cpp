@@ -59,6 +59,9 @@ int run_train(const training::TrainSpec& spec, const std::string& out) {
         std::printf("%10u %11.3f%% %18.2f %16.2f\n", q.components, 100 * q.compactness, q.generalization * 1e3, q.specificity * 1e3);
     for (const auto& png : report.plots) std::printf("plot: %s\n", png.c_str());
     print_segment_compactness(report.segments);
+    for (const auto& l : report.levels)
+        std::printf("level of detail %s: %u vertices, %u triangles; its vertices lie %.2f mm (mean) and %.2f mm (max) off the template's surface\n",
+                    l.name.c_str(), l.vertices, l.triangles, l.offset_mean * 1e3, l.offset_max * 1e3);
     if (const auto& mtm = report.made_to_measure; mtm.bodies > 0) {
         std::printf("made to measure, %u held-out bodies (stature, chest, waist, hip requested with sex and age): "
                     "%u converged, %.2f s per body\n", mtm.bodies, mtm.converged, mtm.mean_seconds);

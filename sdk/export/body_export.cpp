@@ -10,7 +10,7 @@
 namespace ssc::exporters {
 namespace {
 
-// Body::posed() and rest_planar() are planar (x block, y block, z block): interleaved xyz here.
+// Body::posed(), rest_planar() and the levels' are planar (x block, y block, z block): interleaved xyz here.
 std::vector<float> interleaved(const float* planar, uint32_t n) {
     std::vector<float> out(3 * std::size_t(n));
     for (uint32_t v = 0; v < n; ++v)
@@ -18,15 +18,20 @@ std::vector<float> interleaved(const float* planar, uint32_t n) {
     return out;
 }
 
-// The model's triangles and UVs into a MeshView or a RiggedBody (the same fields in both).
+// A level's triangles and UVs (level 0: the model's mesh; l > 0: Model::level(l - 1)) into a
+// MeshView or a RiggedMesh (the same fields in both).
 template <class View>
-void set_surface(View& view, const format::ModelData& d) {
-    view.triangle_count = uint32_t(d.mesh.triangles.size() / 3);
-    view.triangles = d.mesh.triangles.data();
-    if (d.mesh.uvs.empty()) return;
-    view.uv_count = uint32_t(d.mesh.uvs.size() / 2);
-    view.uvs = d.mesh.uvs.data();
-    view.triangle_uvs = d.mesh.triangle_uvs.data();
+void set_surface(View& view, const Model& model, uint32_t level) {
+    const auto& d = model.data();
+    const bool full = level == 0;
+    const format::DetailLevel* l = full ? nullptr : &model.level(level - 1);
+    view.triangle_count = full ? uint32_t(d.mesh.triangles.size() / 3) : l->triangle_count();
+    view.triangles = full ? d.mesh.triangles.data() : l->triangles.data();
+    const std::size_t uv_floats = full ? d.mesh.uvs.size() : l->uvs.size();
+    if (uv_floats == 0) return;
+    view.uv_count = uint32_t(uv_floats / 2);
+    view.uvs = full ? d.mesh.uvs.data() : l->uvs.data();
+    view.triangle_uvs = full ? d.mesh.triangle_uvs.data() : l->triangle_uvs.data();
 }
 
 }  // namespace
@@ -40,38 +45,48 @@ BodyFormat format_of(const std::string& path) {
     fail(SSC_ERROR_INVALID_ARGUMENT, "'" + path + "': the formats are .obj (Wavefront), .ply (Stanford) and .glb (binary glTF, rigged)");
 }
 
-void write_body(Body& body, const std::string& path, BodyFormat format) {
+void write_body(Body& body, const std::string& path, BodyFormat format, uint32_t level) {
     const Model& model = body.model();
     const auto& d = model.data();
-    const uint32_t V = model.vertex_count(), J = model.joint_count();
+    const bool all = level == kAllLevels;
+    SSC_REQUIRE_ARG_S(all || level <= model.level_count(), "level " << level << " of a model with " << model.level_count() + 1 << " levels (0 the full mesh)");
+    SSC_REQUIRE_ARG(!all || format == BodyFormat::Glb, "every level in one file: glTF (.glb) only, one node per level");
+    const uint32_t V = all ? 0 : level ? model.level(level - 1).vertex_count : model.vertex_count(), J = model.joint_count();
     if (format != BodyFormat::Glb) {
-        const std::vector<float> positions = interleaved(body.posed(), V);
+        const std::vector<float> positions = interleaved(level ? body.level_posed(level - 1) : body.posed(), V);
         MeshView mesh;
         mesh.vertex_count = V;
         mesh.positions = positions.data();
-        mesh.normals = body.normals();
-        set_surface(mesh, d);
+        mesh.normals = level ? body.level_normals(level - 1) : body.normals();
+        set_surface(mesh, model, level);
         return format == BodyFormat::Obj ? write_obj(path, mesh) : write_ply(path, mesh);
     }
     // glTF: the bind pose is the body's shape at rest; its normals come from a rest-posed twin.
+    // Every level (kAllLevels) or the one asked for, on the one skeleton.
     Body rest(model, nullptr);
     rest.set_shape(body.shape(), model.component_count());
     for (uint32_t s = 0; s < model.segments().size(); ++s)
         rest.set_segment_shape(s, body.segment_shape(s), model.segments()[s].components);
-    const std::vector<float> rest_positions = interleaved(body.rest_planar(), V);
+    std::vector<std::vector<float>> rest_positions;
     RiggedBody rb;
-    rb.vertex_count = V;
-    rb.rest_positions = rest_positions.data();
-    rb.rest_normals = rest.normals();
-    set_surface(rb, d);
+    const std::string name = d.metadata.name.empty() ? "body" : d.metadata.name;
+    for (uint32_t l = all ? 0 : level; l <= (all ? model.level_count() : level); ++l) {
+        RiggedMesh mesh;
+        mesh.name = name;
+        mesh.vertex_count = l ? model.level(l - 1).vertex_count : model.vertex_count();
+        rest_positions.push_back(interleaved(l ? body.level_rest(l - 1) : body.rest_planar(), mesh.vertex_count));
+        mesh.rest_positions = rest_positions.back().data();
+        mesh.rest_normals = l ? rest.level_normals(l - 1) : rest.normals();
+        set_surface(mesh, model, l);
+        mesh.skin_joints = l ? model.level(l - 1).skin_joints.data() : d.skin.joints.data();
+        mesh.skin_weights = l ? model.level(l - 1).skin_weights.data() : d.skin.weights.data();
+        rb.meshes.push_back(mesh);
+    }
     rb.joint_count = J;
     rb.parents = d.skeleton.parents.data();
     rb.joint_names = d.skeleton.joint_names;
     rb.joint_world = body.world();
     rb.inverse_bind = body.inverse_bind();
-    rb.skin_joints = d.skin.joints.data();
-    rb.skin_weights = d.skin.weights.data();
-    rb.name = d.metadata.name.empty() ? "body" : d.metadata.name;
     write_glb(path, rb);
 }
 

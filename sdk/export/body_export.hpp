@@ -15,8 +15,13 @@ enum class BodyFormat { Obj, Ply, Glb };
 // SSC_ERROR_INVALID_ARGUMENT naming the formats for anything else.
 BodyFormat format_of(const std::string& path);
 
+// level for every level of detail in one glTF file (one node each, NAME_LOD0, NAME_LOD1, ...).
+inline constexpr uint32_t kAllLevels = 0xFFFFFFFFu;
+
 // Writes the body (its current shape and pose) to path; the file appears whole or not at all.
-// Throws ssc::Error: SSC_ERROR_IO when the file cannot be written.
-void write_body(Body& body, const std::string& path, BodyFormat format);
+// level: 0 the full mesh, l > 0 the model's level of detail l - 1 (Model::level), with its own
+// triangles, UVs and skin; kAllLevels: all of them (glTF only). Throws ssc::Error: SSC_ERROR_IO when the file cannot be written,
+// SSC_ERROR_INVALID_ARGUMENT for a level the model does not have.
+void write_body(Body& body, const std::string& path, BodyFormat format, uint32_t level = 0);
 
 }  // namespace ssc::exporters

@@ -36,18 +36,21 @@ struct Bin {
 };
 
 constexpr int kFloat = 5126, kUShort = 5123, kUInt = 5125;
+
+// The skin material's base colour texture: one white pixel (PNG), so the colour is the factor's and
+// the UVs are there for an engine's own skin texture to replace it.
+constexpr unsigned char kWhitePixelPng[] = {
+    0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00,
+    0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xDE, 0x00, 0x00, 0x00, 0x0C, 0x49, 0x44, 0x41, 0x54, 0x08, 0xD7, 0x63, 0xF8, 0xFF,
+    0xFF, 0x3F, 0x00, 0x05, 0xFE, 0x02, 0xFE, 0xDC, 0xCC, 0x59, 0xE7, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE, 0x42, 0x60, 0x82};
 constexpr int kArrayBuffer = 34962, kElementBuffer = 34963;
 
-}  // namespace
-
-void write_glb(const std::string& path, const RiggedBody& b) {
+// One mesh's primitive: its attributes and indices in the binary chunk, one output vertex per
+// distinct (vertex, uv) pair (glTF attributes are per vertex). Returns the primitive (material 0).
+json add_primitive(Bin& bin, const RiggedMesh& b, uint32_t joint_count) {
     SSC_REQUIRE_ARG(b.vertex_count > 0 && b.rest_positions && b.triangles && b.triangle_count > 0, "glTF export: no mesh");
-    SSC_REQUIRE_ARG(b.joint_count > 0 && b.parents && b.joint_world && b.inverse_bind && b.skin_joints && b.skin_weights &&
-                        b.joint_names.size() == b.joint_count,
-                    "glTF export: incomplete skeleton or skin");
+    SSC_REQUIRE_ARG(b.skin_joints && b.skin_weights, "glTF export: a mesh without a skin");
     const bool has_uv = b.uvs && b.triangle_uvs && b.uv_count > 0;
-
-    // glTF attributes are per vertex: one output vertex per distinct (vertex, uv) pair.
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> remap;
     std::vector<uint32_t> source, indices(3ull * b.triangle_count);
     std::vector<uint32_t> uv_of;
@@ -78,13 +81,12 @@ void write_glb(const std::string& path, const RiggedBody& b) {
             uv[2 * i + 1] = 1.f - b.uvs[2 * uv_of[i] + 1];  // glTF's v points down
         }
         for (int k = 0; k < 4; ++k) {
+            SSC_REQUIRE_ARG(b.skin_joints[4 * v + k] < joint_count, "glTF export: a skin joint out of range");
             // glTF wants unused influences as joint 0 with weight 0.
             joints[4 * i + k] = b.skin_weights[4 * v + k] > 0 ? b.skin_joints[4 * v + k] : 0;
             weights[4 * i + k] = b.skin_weights[4 * v + k];
         }
     }
-
-    Bin bin;
     json attributes;
     attributes["POSITION"] = bin.add(pos.data(), pos.size() * 4, kFloat, n, "VEC3", kArrayBuffer,
                                      {{"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}});
@@ -93,6 +95,18 @@ void write_glb(const std::string& path, const RiggedBody& b) {
     attributes["JOINTS_0"] = bin.add(joints.data(), joints.size() * 2, kUShort, n, "VEC4", kArrayBuffer);
     attributes["WEIGHTS_0"] = bin.add(weights.data(), weights.size() * 4, kFloat, n, "VEC4", kArrayBuffer);
     const int index_acc = bin.add(indices.data(), indices.size() * 4, kUInt, indices.size(), "SCALAR", kElementBuffer);
+    return {{"attributes", attributes}, {"indices", index_acc}, {"mode", 4}, {"material", 0}};
+}
+
+}  // namespace
+
+void write_glb(const std::string& path, const RiggedBody& b) {
+    SSC_REQUIRE_ARG(!b.meshes.empty(), "glTF export: no mesh");
+    SSC_REQUIRE_ARG(b.joint_count > 0 && b.parents && b.joint_world && b.inverse_bind && b.joint_names.size() == b.joint_count,
+                    "glTF export: incomplete skeleton");
+    Bin bin;
+    json meshes = json::array();
+    for (const RiggedMesh& m : b.meshes) meshes.push_back({{"name", m.name}, {"primitives", {add_primitive(bin, m, b.joint_count)}}});
     const int ibm_acc = bin.add(b.inverse_bind, 64ull * b.joint_count, kFloat, b.joint_count, "MAT4", 0);
 
     // Joint nodes carry the posed local transforms: local = world_parent^-1 * world.
@@ -117,20 +131,43 @@ void write_glb(const std::string& path, const RiggedBody& b) {
         if (!children[j].empty()) nodes[j]["children"] = children[j];
     std::vector<uint32_t> joint_list(b.joint_count);
     for (uint32_t j = 0; j < b.joint_count; ++j) joint_list[j] = j;
-    nodes.push_back({{"name", b.name}, {"mesh", 0}, {"skin", 0}});
-    json scene_nodes = json::array({b.joint_count});
+    // One node per mesh; with several (levels of detail) named NAME_LOD0, NAME_LOD1, ...
+    json scene_nodes = json::array();
+    for (std::size_t i = 0; i < b.meshes.size(); ++i) {
+        const std::string name = b.meshes.size() == 1 ? b.meshes[i].name : b.meshes[i].name + "_LOD" + std::to_string(i);
+        scene_nodes.push_back(nodes.size());
+        nodes.push_back({{"name", name}, {"mesh", i}, {"skin", 0}});
+    }
     for (uint32_t j = 0; j < b.joint_count; ++j)
         if (b.parents[j] < 0) scene_nodes.push_back(j);
 
+    // A skin material: PBR, a neutral albedo, not metallic, fairly rough; its base colour texture
+    // (one white pixel) uses the UVs where the mesh has them.
+    bool any_uv = false;
+    for (const RiggedMesh& m : b.meshes) any_uv |= m.uvs && m.uv_count > 0;
+    json pbr = {{"baseColorFactor", {0.80, 0.62, 0.52, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}};
+    json images = json::array(), textures = json::array(), samplers = json::array();
+    if (any_uv) {
+        while (bin.bytes.size() % 4) bin.bytes.push_back(0);
+        bin.views.push_back({{"buffer", 0}, {"byteOffset", bin.bytes.size()}, {"byteLength", sizeof kWhitePixelPng}});
+        bin.bytes.insert(bin.bytes.end(), kWhitePixelPng, kWhitePixelPng + sizeof kWhitePixelPng);
+        images.push_back({{"bufferView", bin.views.size() - 1}, {"mimeType", "image/png"}});
+        samplers.push_back({{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}});
+        textures.push_back({{"source", 0}, {"sampler", 0}});
+        pbr["baseColorTexture"] = {{"index", 0}};
+    }
+    const json material = {{"name", "skin"}, {"pbrMetallicRoughness", pbr}, {"doubleSided", false}};
     json doc = {{"asset", {{"version", "2.0"}, {"generator", "sscape"}}},
                 {"scene", 0},
                 {"scenes", {{{"nodes", scene_nodes}}}},
                 {"nodes", nodes},
-                {"meshes", {{{"name", b.name}, {"primitives", {{{"attributes", attributes}, {"indices", index_acc}, {"mode", 4}}}}}}},
+                {"meshes", meshes},
+                {"materials", {material}},
                 {"skins", {{{"joints", joint_list}, {"inverseBindMatrices", ibm_acc}, {"skeleton", 0}}}},
                 {"buffers", {{{"byteLength", 0}}}},
                 {"bufferViews", bin.views},
                 {"accessors", bin.accessors}};
+    if (any_uv) doc["images"] = images, doc["samplers"] = samplers, doc["textures"] = textures;
     while (bin.bytes.size() % 4) bin.bytes.push_back(0);
     doc["buffers"][0]["byteLength"] = bin.bytes.size();
     std::string text = doc.dump();

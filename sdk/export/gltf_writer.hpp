@@ -1,7 +1,8 @@
 // glTF 2.0 binary (.glb) export of a rigged body: the shaped mesh in its bind pose with normals and
 // UVs (vertices split where UVs have seams), the skeleton as a node hierarchy posed by the body's
-// local joint transforms, and a skin (joints, inverse bind matrices, 4 influences per vertex).
-// Engines and Blender import it as a rigged, posed character.
+// local joint transforms, and a skin (joints, inverse bind matrices, 4 influences per vertex);
+// levels of detail as more meshes on the same skeleton, one node each, named NAME_LOD0, _LOD1, ...
+// (the suffix engines' importers look for). Engines and Blender import it as a rigged, posed character.
 #pragma once
 
 #include <cstdint>
@@ -10,7 +11,9 @@
 
 namespace ssc::exporters {
 
-struct RiggedBody {
+// One mesh bound to the skeleton: the full body or a level of detail.
+struct RiggedMesh {
+    std::string name = "body";
     uint32_t vertex_count = 0;
     const float* rest_positions = nullptr;   // 3 per vertex: the shaped body in the bind pose
     const float* rest_normals = nullptr;     // 3 per vertex, optional
@@ -19,14 +22,19 @@ struct RiggedBody {
     uint32_t uv_count = 0;
     const float* uvs = nullptr;              // 2 per coordinate (OBJ convention, v up), optional
     const uint32_t* triangle_uvs = nullptr;  // 3 per triangle, with uvs
+    const uint16_t* skin_joints = nullptr;   // 4 per vertex
+    const float* skin_weights = nullptr;     // 4 per vertex
+};
+
+struct RiggedBody {
+    // One node each, every one skinned by the one skeleton (levels of detail: finest first), all
+    // with one skin material (PBR, a neutral albedo).
+    std::vector<RiggedMesh> meshes;
     uint32_t joint_count = 0;
     const int32_t* parents = nullptr;        // -1 for the root; parents precede children
     std::vector<std::string> joint_names;
     const float* joint_world = nullptr;      // 16 per joint, column-major: posed world transforms
     const float* inverse_bind = nullptr;     // 16 per joint, column-major
-    const uint16_t* skin_joints = nullptr;   // 4 per vertex
-    const float* skin_weights = nullptr;     // 4 per vertex
-    std::string name = "body";
 };
 
 // Writes a .glb file (temporary file + rename). Throws ssc::Error on bad input or I/O failure.

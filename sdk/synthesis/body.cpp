@@ -18,7 +18,9 @@ Body::Body(const Model& model, const Allocator* a)
       normals_(3ull * model.vertex_count(), 0.f, CAlloc<float>(a)),
       scratch_(kernels::kSkeletonScratch * model.joint_count(), 0.f, CAlloc<float>(a)),
       face_normals_(3ull * model.triangle_count(), 0.f, CAlloc<float>(a)),
-      skinning_(model.joint_count(), kernels::SkinMatrix{}, CAlloc<kernels::SkinMatrix>(a)) {
+      skinning_(model.joint_count(), kernels::SkinMatrix{}, CAlloc<kernels::SkinMatrix>(a)),
+      alloc_(a),
+      levels_(model.level_count()) {
     for (uint32_t j = 0; j < model.joint_count(); ++j) quats_[4 * j + 3] = 1.f;
 }
 
@@ -26,6 +28,7 @@ void Body::set_shape(const float* coeffs, uint32_t count) {
     std::copy(coeffs, coeffs + count, coeffs_.begin());
     std::fill(coeffs_.begin() + count, coeffs_.end(), 0.f);
     rest_ok_ = skeleton_ok_ = posed_ok_ = normals_ok_ = false;
+    for (LevelState& l : levels_) l.rest_ok = l.posed_ok = l.normals_ok = false;
 }
 
 void Body::set_segment_shape(uint32_t segment, const float* coeffs, uint32_t count) {
@@ -35,12 +38,14 @@ void Body::set_segment_shape(uint32_t segment, const float* coeffs, uint32_t cou
     std::fill(c + count, c + s.components, 0.f);
     any_segment_ = std::any_of(segment_coeffs_.begin(), segment_coeffs_.end(), [](float x) { return x != 0.f; });
     rest_ok_ = skeleton_ok_ = posed_ok_ = normals_ok_ = false;
+    for (LevelState& l : levels_) l.rest_ok = l.posed_ok = l.normals_ok = false;
 }
 
 void Body::set_pose(const float* unit_quats, const float* translation) {
     std::copy(unit_quats, unit_quats + quats_.size(), quats_.begin());
     for (int a = 0; a < 3; ++a) translation_[a] = translation ? translation[a] : 0.f;
     skeleton_ok_ = posed_ok_ = normals_ok_ = false;
+    for (LevelState& l : levels_) l.posed_ok = l.normals_ok = false;
 }
 
 template <class Fn>
@@ -124,6 +129,47 @@ const float* Body::inverse_bind() {
 const kernels::SkinMatrix* Body::skinning() {
     update_skeleton();
     return skinning_.data();
+}
+
+Body::LevelState& Body::level_state(uint32_t l) {
+    LevelState& s = levels_[l];
+    if (s.rest.empty()) {
+        const std::size_t n = 3ull * model_.level(l).vertex_count;
+        s.rest = Vec<float>(n, 0.f, CAlloc<float>(alloc_));
+        s.posed = Vec<float>(n, 0.f, CAlloc<float>(alloc_));
+        s.normals = Vec<float>(n, 0.f, CAlloc<float>(alloc_));
+        s.faces = Vec<float>(3ull * model_.level(l).triangle_count(), 0.f, CAlloc<float>(alloc_));
+    }
+    return s;
+}
+
+const float* Body::level_rest(uint32_t l) {
+    LevelState& s = level_state(l);
+    if (!s.rest_ok) {
+        levels::from_body(model_.level(l), rest_planar(), model_.vertex_count(), s.rest.data());
+        s.rest_ok = true;
+    }
+    return s.rest.data();
+}
+
+const float* Body::level_posed(uint32_t l) {
+    LevelState& s = level_state(l);
+    if (!s.posed_ok) {
+        const float* rest = level_rest(l);
+        kernels::skin_slots(model_.level_skin(l), rest, skinning(), s.posed.data(), 0, model_.level_skin(l).slot_count(), kernels::active_isa());
+        s.posed_ok = true;
+    }
+    return s.posed.data();
+}
+
+const float* Body::level_normals(uint32_t l) {
+    LevelState& s = level_state(l);
+    if (!s.normals_ok) {
+        const float* posed = level_posed(l);
+        levels::normals(model_.level(l), model_.level_topology(l), posed, s.faces.data(), s.normals.data());
+        s.normals_ok = true;
+    }
+    return s.normals.data();
 }
 
 }  // namespace ssc

@@ -34,9 +34,21 @@ public:
     const float* inverse_bind();    // 16J column-major
     const kernels::SkinMatrix* skinning();
 
+    // Level of detail l of the model (Model::level; not the full mesh): its rest vertices (the
+    // level's map of rest_planar()) and posed by the level's skin, planar (x block, y block, z
+    // block of the level's N), and unit normals, xyz. Buffers are allocated on a level's first use.
+    const float* level_rest(uint32_t l);
+    const float* level_posed(uint32_t l);
+    const float* level_normals(uint32_t l);
+
 private:
     void update_rest();
     void update_skeleton();
+    struct LevelState {
+        Vec<float> rest, posed, normals, faces;
+        bool rest_ok = false, posed_ok = false, normals_ok = false;
+    };
+    LevelState& level_state(uint32_t l);
 
     // Runs fn(first, end) over [0, n) in chunks of multiples of `align`, on the pool when set.
     template <class Fn>
@@ -46,6 +58,8 @@ private:
     ThreadPool* pool_ = nullptr;
     Vec<float> coeffs_, segment_coeffs_, scaled_, rest_, joints_, quats_, world_, inverse_bind_, posed_, normals_, scratch_, face_normals_;
     Vec<kernels::SkinMatrix> skinning_;
+    const Allocator* alloc_;
+    std::vector<LevelState> levels_;  // per model level, buffers empty until used
     float translation_[3] = {0, 0, 0};
     bool any_segment_ = false, rest_ok_ = false, skeleton_ok_ = false, posed_ok_ = false, normals_ok_ = false;
 };

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "cpu.hpp"
+#include "skin_layout.hpp"
 #include "sscape_format/model_data.hpp"
 
 #include <cstddef>
@@ -61,6 +62,9 @@ uint32_t skin_slot_count(const Model& m);
 void skin_slots(const Model& m, const float* rest_planar, const SkinMatrix* skinning, float* out_planar, uint32_t first, uint32_t end);
 void skin_slots(const Model& m, const float* rest_planar, const SkinMatrix* skinning, float* out_planar, uint32_t first, uint32_t end,
                 Isa isa);  // as shape_rows with an Isa
+// The same for any mesh's layout (a level of detail's: Model::level_skin), planar over its vertices.
+void skin_slots(const SkinLayout& layout, const float* rest_planar, const SkinMatrix* skinning, float* out_planar, uint32_t first,
+                uint32_t end, Isa isa);
 
 // Area-weighted unit normals of the mesh with planar vertices into out (packed xyz).
 // scratch: 3 floats per triangle. Allocates nothing.

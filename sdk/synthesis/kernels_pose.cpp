@@ -99,22 +99,22 @@ struct RunArrays {
 };
 
 template <int N>
-RunArrays<N> arrays(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
-    const uint32_t V = m.vertex_count();
+RunArrays<N> arrays(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
+    const uint32_t V = m.vertex_count;
     RunArrays<N> a{rest, rest + V, rest + 2 * std::size_t(V), out, out + V, out + 2 * std::size_t(V), {}, {}};
     for (int i = 0; i < N; ++i) {
         a.M[i] = mats + run.offsets[i];
-        a.W[i] = m.skin_weights(i);
+        a.W[i] = m.weights[i].data();
     }
     return a;
 }
 
 template <int N>
-void skin_run_scalar(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
+void skin_run_scalar(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
     const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
     const float* const* M = a.M;
     const float* const* W = a.W;
-    const uint32_t* vid = m.skin_vertices();
+    const uint32_t* vid = m.vertices.data();
     for (uint32_t s = run.begin; s < run.end; ++s) {
         const uint32_t v = vid[s];
         auto blend = [&](int e) {
@@ -134,15 +134,15 @@ void skin_run_scalar(const Model& m, const Model::SkinRun& run, const float* mat
 #ifdef SSC_SKIN_AVX2
 SSC_TARGET_AVX2_BEGIN
 template <int N>
-void skin_run_avx2(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out) {
+void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
     const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
     const float *xs = a.xs, *ys = a.ys, *zs = a.zs;
     float *ox = a.ox, *oy = a.oy, *oz = a.oz;
     const float* const* M = a.M;
     const float* const* W = a.W;
-    const uint32_t* vid = m.skin_vertices();
-    for (uint32_t b = run.begin; b < run.end; b += Model::kSkinBlock) {
-        const bool contiguous = m.skin_block_contiguous()[b / Model::kSkinBlock];
+    const uint32_t* vid = m.vertices.data();
+    for (uint32_t b = run.begin; b < run.end; b += SkinLayout::kBlock) {
+        const bool contiguous = m.contiguous[b / SkinLayout::kBlock];
         const uint32_t v0 = vid[b];
         __m256 x, y, z;
         __m256i idx = _mm256_setzero_si256();
@@ -192,7 +192,7 @@ SSC_TARGET_END
 #endif
 
 template <int N>
-void skin_run(const Model& m, const Model::SkinRun& run, const float* mats, const float* rest, float* out, Isa isa) {
+void skin_run(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, Isa isa) {
 #ifdef SSC_SKIN_AVX2
     if (isa != Isa::Baseline) return skin_run_avx2<N>(m, run, mats, rest, out);
 #endif
@@ -203,28 +203,32 @@ void skin_run(const Model& m, const Model::SkinRun& run, const float* mats, cons
 }  // namespace
 
 void skin(const Model& m, const float* rest, const SkinMatrix* skinning, float* out) {
-    skin_slots(m, rest, skinning, out, 0, skin_slot_count(m));
+    skin_slots(m.skin_layout(), rest, skinning, out, 0, m.skin_layout().slot_count(), active_isa());
 }
 
-uint32_t skin_slot_count(const Model& m) { return m.skin_runs().empty() ? 0 : m.skin_runs().back().end; }
+uint32_t skin_slot_count(const Model& m) { return m.skin_layout().slot_count(); }
 
 void skin_slots(const Model& m, const float* rest, const SkinMatrix* skinning, float* out, uint32_t first, uint32_t end) {
-    skin_slots(m, rest, skinning, out, first, end, active_isa());
+    skin_slots(m.skin_layout(), rest, skinning, out, first, end, active_isa());
 }
 
 void skin_slots(const Model& m, const float* rest, const SkinMatrix* skinning, float* out, uint32_t first, uint32_t end, Isa isa) {
+    skin_slots(m.skin_layout(), rest, skinning, out, first, end, isa);
+}
+
+void skin_slots(const SkinLayout& layout, const float* rest, const SkinMatrix* skinning, float* out, uint32_t first, uint32_t end, Isa isa) {
     if (int(isa) > int(supported_isa())) isa = supported_isa();
     const float* mats = skinning[0].m;
-    for (const auto& full : m.skin_runs()) {
+    for (const auto& full : layout.runs) {
         if (full.end <= first || full.begin >= end) continue;
-        Model::SkinRun run = full;
+        SkinLayout::Run run = full;
         run.begin = std::max(run.begin, first);
         run.end = std::min(run.end, end);
         switch (run.influences) {
-            case 1: skin_run<1>(m, run, mats, rest, out, isa); break;
-            case 2: skin_run<2>(m, run, mats, rest, out, isa); break;
-            case 3: skin_run<3>(m, run, mats, rest, out, isa); break;
-            default: skin_run<4>(m, run, mats, rest, out, isa); break;
+            case 1: skin_run<1>(layout, run, mats, rest, out, isa); break;
+            case 2: skin_run<2>(layout, run, mats, rest, out, isa); break;
+            case 3: skin_run<3>(layout, run, mats, rest, out, isa); break;
+            default: skin_run<4>(layout, run, mats, rest, out, isa); break;
         }
     }
 }

@@ -50,7 +50,7 @@ Model::Model(format::ModelData data, const Allocator* alloc)
         }
     }
 
-    build_skin_runs(alloc);
+    skin_layout_ = build_skin_layout(V_, data_.skin.joints.data(), data_.skin.weights.data(), alloc);
 
     const auto& tris = data_.mesh.triangles;
     vt_offsets_ = Vec<uint32_t>(V_ + 1, 0u, CAlloc<uint32_t>(alloc));
@@ -64,70 +64,15 @@ Model::Model(format::ModelData data, const Allocator* alloc)
 
     segments_ = build_segment_spaces(data_, alloc);
     for (const auto& sg : segments_) segment_coefficients_ += sg.components;
+    for (const auto& level : data_.levels) {
+        level_topology_.emplace_back(level);
+        level_skin_.push_back(build_skin_layout(level.vertex_count, level.skin_joints.data(), level.skin_weights.data(), alloc));
+    }
 
     for (uint32_t j = 0; j < J_; ++j) joint_index_.emplace(sk.joint_names[j], j);
     for (uint32_t l = 0; l < data_.landmarks.size(); ++l) landmark_index_.emplace(data_.landmarks[l].name, l);
     landmark_rest_.resize(3 * data_.landmarks.size());
     kernels::landmarks(data_, mean_planar_.data(), landmark_rest_.data(), 12);
-}
-
-void Model::build_skin_runs(const Allocator* alloc) {
-    // Per vertex: its influences with weight > 0, sorted by joint (the run key).
-    struct Entry {
-        uint32_t vertex, n;
-        uint16_t joints[4];
-        float weights[4];
-    };
-    std::vector<Entry> entries(V_);
-    for (uint32_t v = 0; v < V_; ++v) {
-        Entry& e = entries[v];
-        e = Entry{v, 0, {0, 0, 0, 0}, {0, 0, 0, 0}};
-        for (int i = 0; i < 4; ++i) {
-            const float w = data_.skin.weights[4 * v + i];
-            if (w <= 0.f) continue;
-            uint32_t at = e.n++;
-            while (at > 0 && e.joints[at - 1] > data_.skin.joints[4 * v + i]) {  // insertion sort
-                e.joints[at] = e.joints[at - 1];
-                e.weights[at] = e.weights[at - 1];
-                --at;
-            }
-            e.joints[at] = data_.skin.joints[4 * v + i];
-            e.weights[at] = w;
-        }
-    }
-    auto key_less = [](const Entry& a, const Entry& b) {
-        if (a.n != b.n) return a.n < b.n;
-        for (uint32_t i = 0; i < a.n; ++i)
-            if (a.joints[i] != b.joints[i]) return a.joints[i] < b.joints[i];
-        return false;
-    };
-    std::stable_sort(entries.begin(), entries.end(), key_less);
-
-    skin_vertices_ = Vec<uint32_t>(CAlloc<uint32_t>(alloc));
-    for (auto& w : skin_weights_) w = Vec<float>(CAlloc<float>(alloc));
-    skin_contiguous_ = Vec<uint8_t>(CAlloc<uint8_t>(alloc));
-    for (std::size_t first = 0; first < entries.size();) {
-        std::size_t last = first + 1;
-        while (last < entries.size() && !key_less(entries[first], entries[last])) ++last;
-        SkinRun run{};
-        run.begin = static_cast<uint32_t>(skin_vertices_.size());
-        run.influences = entries[first].n;
-        for (uint32_t i = 0; i < run.influences; ++i) run.offsets[i] = 16u * entries[first].joints[i];
-        const std::size_t padded = (last - first + kSkinBlock - 1) / kSkinBlock * kSkinBlock;
-        for (std::size_t k = 0; k < padded; ++k) {
-            const Entry& e = entries[std::min(first + k, last - 1)];
-            skin_vertices_.push_back(e.vertex);
-            for (int i = 0; i < 4; ++i) skin_weights_[i].push_back(e.weights[i]);
-        }
-        run.end = static_cast<uint32_t>(skin_vertices_.size());
-        skin_runs_.push_back(run);
-        first = last;
-    }
-    for (std::size_t b = 0; b < skin_vertices_.size(); b += kSkinBlock) {
-        bool contiguous = true;
-        for (uint32_t i = 1; i < kSkinBlock; ++i) contiguous &= skin_vertices_[b + i] == skin_vertices_[b] + i;
-        skin_contiguous_.push_back(contiguous);
-    }
 }
 
 int64_t Model::find_joint(const std::string& name) const {

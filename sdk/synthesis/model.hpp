@@ -4,7 +4,9 @@
 #pragma once
 
 #include "common/alloc.hpp"
+#include "levels.hpp"
 #include "segments.hpp"
+#include "skin_layout.hpp"
 #include "sscape_format/model_data.hpp"
 
 #include <string>
@@ -37,21 +39,14 @@ public:
     const float* joint_basis() const { return joint_basis_.data(); }           // [k][j][axis], per quantization unit
     const float* landmark_rest() const { return landmark_rest_.data(); }       // mean shape, [l][axis]
 
-    // Skinning layout. Vertices are sorted by the set of joints that influence them, and each run of
-    // vertices sharing a set is padded to whole blocks of 8 (repeating its last vertex, which
-    // rewrites the same value). Within a run the joints' matrices are constants, so 8 vertices are
-    // skinned at once from structure-of-arrays weights; a block of 8 consecutive vertex indices
-    // loads and stores positions directly, any other block gathers and scatters.
-    static constexpr uint32_t kSkinBlock = 8;
-    struct SkinRun {
-        uint32_t begin, end;     // slots in the arrays below, multiples of kSkinBlock
-        uint32_t influences;     // 1..4
-        uint32_t offsets[4];     // joint * 16: where each joint's skinning matrix starts
-    };
-    const std::vector<SkinRun>& skin_runs() const { return skin_runs_; }
-    const uint32_t* skin_vertices() const { return skin_vertices_.data(); }    // per slot
-    const float* skin_weights(int i) const { return skin_weights_[i].data(); }  // per slot, influence i
-    const uint8_t* skin_block_contiguous() const { return skin_contiguous_.data(); }  // per block
+    // The skinning layout (skin_layout.hpp): the mesh's, and each level of detail's.
+    static constexpr uint32_t kSkinBlock = SkinLayout::kBlock;
+    using SkinRun = SkinLayout::Run;
+    const SkinLayout& skin_layout() const { return skin_layout_; }
+    const std::vector<SkinRun>& skin_runs() const { return skin_layout_.runs; }
+    const uint32_t* skin_vertices() const { return skin_layout_.vertices.data(); }    // per slot
+    const float* skin_weights(int i) const { return skin_layout_.weights[i].data(); }  // per slot, influence i
+    const uint8_t* skin_block_contiguous() const { return skin_layout_.contiguous.data(); }  // per block
 
     // Triangles around each vertex (CSR): normals gather face normals per vertex instead of
     // scattering into shared vertices, which stalls on store forwarding.
@@ -62,26 +57,29 @@ public:
     const std::vector<SegmentSpace>& segments() const { return segments_; }
     uint32_t segment_coefficient_count() const { return segment_coefficients_; }
 
+    // Levels of detail (may be none): the file's (data().levels) and what synthesis derives from each.
+    uint32_t level_count() const { return static_cast<uint32_t>(data_.levels.size()); }
+    const format::DetailLevel& level(uint32_t l) const { return data_.levels[l]; }
+    const LevelTopology& level_topology(uint32_t l) const { return level_topology_[l]; }
+    const SkinLayout& level_skin(uint32_t l) const { return level_skin_[l]; }
+
     // -1 when absent.
     int64_t find_joint(const std::string& name) const;
     int64_t find_landmark(const std::string& name) const;
     int64_t find_segment(const std::string& name) const;
 
 private:
-    void build_skin_runs(const Allocator* alloc);
-
     format::ModelData data_;
     uint32_t V_, K_, J_;
     std::size_t padded_rows_;
     Vec<int16_t> basis_panels_;
     Vec<float> mean_planar_, joint_mean_, joint_basis_, landmark_rest_;
-    std::vector<SkinRun> skin_runs_;
-    Vec<uint32_t> skin_vertices_;
-    Vec<float> skin_weights_[4];
-    Vec<uint8_t> skin_contiguous_;
+    SkinLayout skin_layout_;
     Vec<uint32_t> vt_offsets_, vt_triangles_;
     std::vector<SegmentSpace> segments_;
     uint32_t segment_coefficients_ = 0;
+    std::vector<LevelTopology> level_topology_;
+    std::vector<SkinLayout> level_skin_;
     std::unordered_map<std::string, uint32_t> joint_index_, landmark_index_;
 };
 

@@ -174,6 +174,10 @@ format::ModelData train_model(const TrainSpec& spec, TrainReport& report, const 
     say("placing the 73 CAESAR landmarks");
     const LandmarkTemplate lt = landmark_template(m, p.mean.data());
     m.landmarks = place_caesar_landmarks(lt);
+    if (!spec.levels.proxies.empty() || spec.levels.simplified_vertices > 0) {
+        say("levels of detail: the template simplified, the proxy meshes bound");
+        m.levels = make_detail_levels(a, m, mean_body, spec.levels, &report.levels);
+    }
     format::validate_model(m);
 
     say("measuring every training body for the attribute model (sliders, made to measure)");

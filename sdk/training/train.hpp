@@ -3,6 +3,7 @@
 #pragma once
 
 #include "attributes.hpp"
+#include "detail_levels.hpp"
 #include "evaluate.hpp"
 #include "population.hpp"
 #include "segment_shapes.hpp"
@@ -30,6 +31,7 @@ struct TrainSpec {
     // 0 for none; band: metres on each side of a segment border (see segment_layout).
     uint32_t segment_components = 0;
     double segment_band = 0.08;
+    LevelSpec levels;               // levels of detail (none: no proxies and simplified_vertices 0)
 };
 
 struct TrainReport {
@@ -50,6 +52,7 @@ struct TrainReport {
     std::vector<std::string> plots;             // PNG files written
     MadeToMeasureAccuracy made_to_measure;      // on held-out bodies
     std::vector<SegmentCompactness> segments;   // when learned: each segment's own components beside the whole body's
+    std::vector<LevelReport> levels;            // the levels of detail made
 };
 
 // Called at the start of each stage (done = total = 0) and, within the long per-body stages, after

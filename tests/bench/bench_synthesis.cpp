@@ -91,6 +91,44 @@ void BM_PoseOnly(benchmark::State& state) {
     }
 }
 
+// Pose-only synthesis of one level of detail of the shipped default model (0: the full mesh), its
+// vertices copied out: what an engine pays per frame for a far body.
+void BM_PoseOnlyLevel(benchmark::State& state) {
+    OneBody f(true);
+    const uint32_t level = uint32_t(state.range(0));
+    if (level >= ssc_model_level_count(f.m)) {
+        state.SkipWithError("the default model has no such level");
+        return;
+    }
+    ssc_level_info info{};
+    info.struct_size = sizeof info;
+    ssc_model_get_level_info(f.m, level, &info);
+    ssc_body_set_shape(f.b, f.p.shapes[0].data(), f.K);
+    ssc_body_get_level_vertices(f.b, level, f.out.data(), info.vertex_count, 0);  // shape stage done once
+    std::size_t i = 0;
+    for (auto _ : state) {
+        ssc_body_set_pose_axis_angle(f.b, f.p.poses[i++ % f.p.poses.size()].data(), f.J, nullptr);
+        ssc_body_get_level_vertices(f.b, level, f.out.data(), info.vertex_count, 0);
+        benchmark::ClobberMemory();
+    }
+    state.SetLabel(std::string(info.name) + ", " + std::to_string(info.vertex_count) + " vertices");
+}
+
+// The part of pose-only synthesis no level saves: the pose set and the skeleton (53 joints' world
+// and skinning matrices), no vertex.
+void BM_PoseOnlySkeleton(benchmark::State& state) {
+    OneBody f(true);
+    ssc_body_set_shape(f.b, f.p.shapes[0].data(), f.K);
+    ssc_body_get_vertices(f.b, f.out.data(), f.V, 0);
+    std::vector<float> matrices(16ull * f.J);
+    std::size_t i = 0;
+    for (auto _ : state) {
+        ssc_body_set_pose_axis_angle(f.b, f.p.poses[i++ % f.p.poses.size()].data(), f.J, nullptr);
+        ssc_body_get_skinning_matrices(f.b, matrices.data(), f.J);
+        benchmark::ClobberMemory();
+    }
+}
+
 void BM_ShapeAndPose(benchmark::State& state) {
     OneBody f(state.range(0) != 0);
     std::size_t i = 0;
@@ -173,6 +211,8 @@ BENCHMARK(BM_Load)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LoadDefaultModel)->Unit(benchmark::kMillisecond);
 // Arg 0: the procedural benchmark model; arg 1: the shipped default model (real skin weights).
 BENCHMARK(BM_PoseOnly)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PoseOnlyLevel)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PoseOnlySkeleton)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShapeAndPose)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Normals)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Batch)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -32,6 +32,12 @@ int main(void) {
     printf("ssc_slider_info.mean offset %zu\n", offsetof(ssc_slider_info, mean));
     printf("ssc_slider_info.minimum offset %zu\n", offsetof(ssc_slider_info, minimum));
     printf("ssc_slider_info.maximum offset %zu\n", offsetof(ssc_slider_info, maximum));
+    printf("ssc_level_info size %zu\n", sizeof(ssc_level_info));
+    printf("ssc_level_info.struct_size offset %zu\n", offsetof(ssc_level_info, struct_size));
+    printf("ssc_level_info.name offset %zu\n", offsetof(ssc_level_info, name));
+    printf("ssc_level_info.vertex_count offset %zu\n", offsetof(ssc_level_info, vertex_count));
+    printf("ssc_level_info.triangle_count offset %zu\n", offsetof(ssc_level_info, triangle_count));
+    printf("ssc_level_info.uv_count offset %zu\n", offsetof(ssc_level_info, uv_count));
     printf("ssc_segment_info size %zu\n", sizeof(ssc_segment_info));
     printf("ssc_segment_info.struct_size offset %zu\n", offsetof(ssc_segment_info, struct_size));
     printf("ssc_segment_info.name offset %zu\n", offsetof(ssc_segment_info, name));

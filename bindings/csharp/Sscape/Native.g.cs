@@ -209,6 +209,16 @@ namespace Sscape.Native
     }
 
     [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct ssc_level_info
+    {
+        public uint @struct_size;
+        public byte* @name;
+        public uint @vertex_count;
+        public uint @triangle_count;
+        public uint @uv_count;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
     public unsafe struct ssc_segment_info
     {
         public uint @struct_size;
@@ -565,6 +575,42 @@ namespace Sscape.Native
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern ssc_status ssc_body_set_sliders(IntPtr @body, float* @values, uint @count);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern uint ssc_model_level_count(IntPtr @model);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_model_get_level_info(IntPtr @model, uint @level, ssc_level_info* @out);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_model_get_level_triangles(IntPtr @model, uint @level, uint* @out, uint @capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_model_get_level_uvs(IntPtr @model, uint @level, float* @out, uint @capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_model_get_level_triangle_uvs(IntPtr @model, uint @level, uint* @out, uint @capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_model_get_level_skin(IntPtr @model, uint @level, ushort* @joints, float* @weights, uint @capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_model_get_level_sources(IntPtr @model, uint @level, uint* @vertices, float* @weights, uint @capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_model_get_level_landmarks(IntPtr @model, uint @level, uint* @triangles, float* @barycentric, uint @capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_body_get_level_vertices(IntPtr @body, uint @level, float* @out, uint @capacity, UIntPtr @stride);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_body_get_level_normals(IntPtr @body, uint @level, float* @out, uint @capacity, UIntPtr @stride);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_body_get_level_rest_vertices(IntPtr @body, uint @level, float* @out, uint @capacity, UIntPtr @stride);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_body_write_level_file(IntPtr @body, uint @level, byte* @path, ssc_file_format @format);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern uint ssc_model_segment_count(IntPtr @model);

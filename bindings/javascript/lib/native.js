@@ -65,6 +65,13 @@ function declareTypes(koffi) {
     minimum: 'float',
     maximum: 'float',
   });
+  types.ssc_level_info = koffi.struct('ssc_level_info', {
+    struct_size: 'uint32_t',
+    name: 'const char*',
+    vertex_count: 'uint32_t',
+    triangle_count: 'uint32_t',
+    uv_count: 'uint32_t',
+  });
   types.ssc_segment_info = koffi.struct('ssc_segment_info', {
     struct_size: 'uint32_t',
     name: 'const char*',
@@ -256,6 +263,18 @@ const prototypes = [
   'int32_t ssc_body_get_sliders(const ssc_body* body, float* out, uint32_t capacity)',
   'int32_t ssc_body_set_slider(ssc_body* body, uint32_t index, float value)',
   'int32_t ssc_body_set_sliders(ssc_body* body, const float* values, uint32_t count)',
+  'uint32_t ssc_model_level_count(const ssc_model* model)',
+  'int32_t ssc_model_get_level_info(const ssc_model* model, uint32_t level, _Inout_ ssc_level_info* out)',
+  'int32_t ssc_model_get_level_triangles(const ssc_model* model, uint32_t level, uint32_t* out, uint32_t capacity)',
+  'int32_t ssc_model_get_level_uvs(const ssc_model* model, uint32_t level, float* out, uint32_t capacity)',
+  'int32_t ssc_model_get_level_triangle_uvs(const ssc_model* model, uint32_t level, uint32_t* out, uint32_t capacity)',
+  'int32_t ssc_model_get_level_skin(const ssc_model* model, uint32_t level, uint16_t* joints, float* weights, uint32_t capacity)',
+  'int32_t ssc_model_get_level_sources(const ssc_model* model, uint32_t level, uint32_t* vertices, float* weights, uint32_t capacity)',
+  'int32_t ssc_model_get_level_landmarks(const ssc_model* model, uint32_t level, uint32_t* triangles, float* barycentric, uint32_t capacity)',
+  'int32_t ssc_body_get_level_vertices(ssc_body* body, uint32_t level, float* out, uint32_t capacity, size_t stride)',
+  'int32_t ssc_body_get_level_normals(ssc_body* body, uint32_t level, float* out, uint32_t capacity, size_t stride)',
+  'int32_t ssc_body_get_level_rest_vertices(ssc_body* body, uint32_t level, float* out, uint32_t capacity, size_t stride)',
+  'int32_t ssc_body_write_level_file(ssc_body* body, uint32_t level, const char* path, int32_t format)',
   'uint32_t ssc_model_segment_count(const ssc_model* model)',
   'int32_t ssc_model_get_segment_info(const ssc_model* model, uint32_t index, _Inout_ ssc_segment_info* out)',
   'int32_t ssc_model_find_segment(const ssc_model* model, const char* name, uint32_t* out_index)',

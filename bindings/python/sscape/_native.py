@@ -22,6 +22,11 @@ class SegmentInfo(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("name", c_char_p), ("shape_count", c_uint32), ("vertex_count", c_uint32)]
 
 
+class LevelInfo(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("name", c_char_p), ("vertex_count", c_uint32), ("triangle_count", c_uint32),
+                ("uv_count", c_uint32)]
+
+
 class SliderInfo(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("name", c_char_p), ("unit", c_char_p), ("description", c_char_p),
                 ("mean", c_float), ("minimum", c_float), ("maximum", c_float)]
@@ -227,6 +232,18 @@ _DECLARATIONS = {
     "ssc_body_set_pose_axis_angle": (_STATUS, [_BODY, c_float_p, c_uint32, c_float_p]),
     "ssc_rotation_from_axis_angle": (_STATUS, [c_float_p, c_float_p]),
     "ssc_body_set_sliders": (_STATUS, [_BODY, c_float_p, c_uint32]),
+    "ssc_model_level_count": (c_uint32, [_MODEL]),
+    "ssc_model_get_level_info": (_STATUS, [_MODEL, c_uint32, POINTER(LevelInfo)]),
+    "ssc_model_get_level_triangles": (_STATUS, [_MODEL, c_uint32, c_uint32_p, c_uint32]),
+    "ssc_model_get_level_uvs": (_STATUS, [_MODEL, c_uint32, c_float_p, c_uint32]),
+    "ssc_model_get_level_triangle_uvs": (_STATUS, [_MODEL, c_uint32, c_uint32_p, c_uint32]),
+    "ssc_model_get_level_skin": (_STATUS, [_MODEL, c_uint32, POINTER(ctypes.c_uint16), c_float_p, c_uint32]),
+    "ssc_model_get_level_sources": (_STATUS, [_MODEL, c_uint32, c_uint32_p, c_float_p, c_uint32]),
+    "ssc_model_get_level_landmarks": (_STATUS, [_MODEL, c_uint32, c_uint32_p, c_float_p, c_uint32]),
+    "ssc_body_get_level_vertices": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32, c_size_t]),
+    "ssc_body_get_level_normals": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32, c_size_t]),
+    "ssc_body_get_level_rest_vertices": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32, c_size_t]),
+    "ssc_body_write_level_file": (_STATUS, [_BODY, c_uint32, c_char_p, c_int32]),
 }
 
 # The offline tools (sscape_offline.h): in libsscape_offline.so only.

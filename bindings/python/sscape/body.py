@@ -264,8 +264,28 @@ class Body(Handle):
         check(lib.ssc_body_measure_by_name(self.handle, name.encode(), ctypes.byref(out)))
         return out.value
 
-    def write(self, path: Union[str, os.PathLike], format: Optional[str] = None) -> None:
-        """Writes the body as OBJ, PLY or rigged glTF (.glb); format None: from the extension."""
+    def write(self, path: Union[str, os.PathLike], format: Optional[str] = None, level: Union[int, str] = 0) -> None:
+        """Writes the body as OBJ, PLY or rigged glTF (.glb); format None: from the extension; level: a level of
+        detail (Model.levels) by index or name, 0 the full mesh."""
         if format not in _FORMATS:
             raise ValueError(f"format must be one of obj, ply, glb or None, not {format!r}")
-        check(lib.ssc_body_write_file(self.handle, os.fsencode(path), _FORMATS[format]))
+        index = self.model.level(level).index
+        if index == 0:
+            check(lib.ssc_body_write_file(self.handle, os.fsencode(path), _FORMATS[format]))
+        else:
+            check(lib.ssc_body_write_level_file(self.handle, index, os.fsencode(path), _FORMATS[format]))
+
+    def level_vertices(self, level: Union[int, str], out: Optional[np.ndarray] = None) -> np.ndarray:
+        """(N, 3) float32 posed vertices of a level of detail (Model.levels; by index or name), metres."""
+        lv = self.model.level(level)
+        return self._vertices(lambda h, p, n, s: lib.ssc_body_get_level_vertices(h, lv.index, p, n, s), lv.vertex_count, out)
+
+    def level_normals(self, level: Union[int, str], out: Optional[np.ndarray] = None) -> np.ndarray:
+        """(N, 3) float32 unit normals of a level of detail's posed mesh."""
+        lv = self.model.level(level)
+        return self._vertices(lambda h, p, n, s: lib.ssc_body_get_level_normals(h, lv.index, p, n, s), lv.vertex_count, out)
+
+    def level_rest_vertices(self, level: Union[int, str], out: Optional[np.ndarray] = None) -> np.ndarray:
+        """(N, 3) float32 shaped, unposed vertices of a level of detail."""
+        lv = self.model.level(level)
+        return self._vertices(lambda h, p, n, s: lib.ssc_body_get_level_rest_vertices(h, lv.index, p, n, s), lv.vertex_count, out)

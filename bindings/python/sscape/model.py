@@ -8,7 +8,7 @@ from typing import Dict, List, NamedTuple, Union
 
 import numpy as np
 
-from ._native import LOG_FN, BatchDesc, ContextDef, JointLimit, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib, need_offline
+from ._native import LOG_FN, BatchDesc, ContextDef, JointLimit, LevelInfo, SegmentInfo, SliderInfo, c_float_p, c_uint32_p, lib, need_offline
 from ._handle import Handle
 from .errors import check
 
@@ -29,6 +29,15 @@ class Segment(NamedTuple):
     name: str
     shape_count: int
     vertex_count: int
+
+
+class Level(NamedTuple):
+    """A level of detail: 0 the full mesh, then the model's coarser meshes, finest first."""
+    index: int
+    name: str
+    vertex_count: int
+    triangle_count: int
+    uv_count: int
 
 
 #: The library's log messages (an unknown landmark name ignored, a scan subsampled, ...) go to this
@@ -312,6 +321,69 @@ class Model(Handle):
             check(lib.ssc_model_get_segment_info(self.handle, i, ctypes.byref(info)))
             out.append(Segment(info.name.decode(), info.shape_count, info.vertex_count))
         return out
+
+    @property
+    def levels(self) -> List[Level]:
+        """Levels of detail: 0 the full mesh ("full"), then the model's ("simplified", "proxy741", ...)."""
+        out = []
+        for i in range(lib.ssc_model_level_count(self.handle)):
+            info = LevelInfo(struct_size=ctypes.sizeof(LevelInfo))
+            check(lib.ssc_model_get_level_info(self.handle, i, ctypes.byref(info)))
+            out.append(Level(i, info.name.decode(), info.vertex_count, info.triangle_count, info.uv_count))
+        return out
+
+    def level(self, level: Union[int, str]) -> Level:
+        """One level of detail, by index or name."""
+        levels = self.levels
+        if isinstance(level, str):
+            for lv in levels:
+                if lv.name == level:
+                    return lv
+            raise KeyError(f"the model has no level {level!r}; its levels: {', '.join(lv.name for lv in levels)}")
+        if not 0 <= int(level) < len(levels):
+            raise IndexError(f"level {level} of a model with {len(levels)} levels (0 the full mesh)")
+        return levels[int(level)]
+
+    def level_triangles(self, level: Union[int, str]) -> np.ndarray:
+        """(T, 3) uint32 vertex indices of a level's triangles."""
+        lv = self.level(level)
+        out = np.empty((lv.triangle_count, 3), np.uint32)
+        check(lib.ssc_model_get_level_triangles(self.handle, lv.index, out.ctypes.data_as(c_uint32_p), out.shape[0]))
+        return out
+
+    def level_uvs(self, level: Union[int, str]):
+        """(coordinates (U, 2) float32, triangle_uvs (T, 3) uint32) of a level, or None without UVs."""
+        lv = self.level(level)
+        if lv.uv_count == 0:
+            return None
+        uv, tri = np.empty((lv.uv_count, 2), np.float32), np.empty((lv.triangle_count, 3), np.uint32)
+        check(lib.ssc_model_get_level_uvs(self.handle, lv.index, uv.ctypes.data_as(c_float_p), lv.uv_count))
+        check(lib.ssc_model_get_level_triangle_uvs(self.handle, lv.index, tri.ctypes.data_as(c_uint32_p), lv.triangle_count))
+        return uv, tri
+
+    def level_skin(self, level: Union[int, str]):
+        """(joints (N, 4) uint16, weights (N, 4) float32): a level's own skin, at most 4 influences."""
+        lv = self.level(level)
+        joints, weights = np.empty((lv.vertex_count, 4), np.uint16), np.empty((lv.vertex_count, 4), np.float32)
+        check(lib.ssc_model_get_level_skin(self.handle, lv.index, joints.ctypes.data_as(ctypes.POINTER(ctypes.c_uint16)),
+                                           weights.ctypes.data_as(c_float_p), lv.vertex_count))
+        return joints, weights
+
+    def level_sources(self, level: Union[int, str]):
+        """(vertices (N, 4) uint32, weights (N, 4) float32): each level vertex as a weighted sum of body vertices."""
+        lv = self.level(level)
+        vertices, weights = np.empty((lv.vertex_count, 4), np.uint32), np.empty((lv.vertex_count, 4), np.float32)
+        check(lib.ssc_model_get_level_sources(self.handle, lv.index, vertices.ctypes.data_as(c_uint32_p), weights.ctypes.data_as(c_float_p),
+                                              lv.vertex_count))
+        return vertices, weights
+
+    def level_landmarks(self, level: Union[int, str]):
+        """(triangles (L,) uint32, barycentric (L, 3) float32): each landmark on a level's triangles, in landmark order."""
+        lv = self.level(level)
+        n = self.landmark_count
+        triangles, barycentric = np.empty(n, np.uint32), np.empty((n, 3), np.float32)
+        check(lib.ssc_model_get_level_landmarks(self.handle, lv.index, triangles.ctypes.data_as(c_uint32_p), barycentric.ctypes.data_as(c_float_p), n))
+        return triangles, barycentric
 
     def sample_shapes(self, count: int, seed: int = 1, truncation: float = 2.5) -> np.ndarray:
         """(count, K) float32 random shapes: standard normal coefficients truncated at ``truncation`` SD."""

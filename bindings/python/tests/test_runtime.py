@@ -544,3 +544,35 @@ def test_the_library_warnings_reach_the_sscape_logger(model, tmp_path, caplog):
     said = [r.getMessage() for r in caplog.records if r.name == "sscape"]
     assert any("landmark 'Lt. Tragoin' is not one of the model's; ignored" in m for m in said), said
     assert all(r.levelno == logging.WARNING for r in caplog.records if r.name == "sscape")
+
+
+def test_levels_of_detail(model, tmp_path):
+    """Every level of the default model: its rest vertices are its sources' weighted sums of the
+    body's, its posed vertices come from its own skin, and it is written with its own triangles."""
+    levels = model.levels
+    assert [lv.name for lv in levels] == ["full", "simplified", "female1605", "proxy741"]
+    assert levels[0].vertex_count == model.vertex_count and levels[3].vertex_count == 741
+    body = sscape.Body(model)
+    body.shape = model.sample_shapes(1, seed=3)[0]
+    body.set_pose(model.named_pose("sitting"))
+    rest = body.rest_vertices
+    for lv in levels:
+        vertices, weights = model.level_sources(lv.name)
+        assert np.allclose(np.einsum("nk,nkc->nc", weights, rest[vertices]), body.level_rest_vertices(lv.index), atol=1e-5)
+        joints, skin = model.level_skin(lv.index)
+        assert joints.shape == (lv.vertex_count, 4) and np.allclose(skin.sum(axis=1), 1, atol=1e-3)
+        posed = body.level_vertices(lv.name)
+        assert posed.shape == (lv.vertex_count, 3) and np.isfinite(posed).all()
+        assert np.allclose(np.linalg.norm(body.level_normals(lv.index), axis=1), 1, atol=1e-3)
+        assert model.level_triangles(lv.index).max() < lv.vertex_count
+        uv, tri = model.level_uvs(lv.index)
+        assert tri.shape == (lv.triangle_count, 3) and tri.max() < uv.shape[0]
+    assert np.array_equal(body.level_vertices(0), body.vertices)
+    path = tmp_path / "far.obj"
+    body.write(path, level="proxy741")
+    text = path.read_text()
+    assert text.count("\nv ") == 741 and text.count("\nf ") == levels[3].triangle_count
+    with pytest.raises(KeyError, match="proxy741"):
+        model.level("proxy9")
+    with pytest.raises(IndexError):
+        body.level_vertices(4)

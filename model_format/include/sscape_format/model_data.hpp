@@ -106,6 +106,24 @@ struct ShapeSegment {
     QuantizedBasis basis;
 };
 
+// See the schema (DetailLevel). 4 entries per level vertex in sources, source_weights, skin_joints
+// and skin_weights.
+struct DetailLevel {
+    std::string name;
+    uint32_t vertex_count = 0;
+    std::vector<uint32_t> sources;
+    std::vector<float> source_weights;
+    std::vector<uint32_t> triangles;
+    std::vector<float> uvs;                   // optional
+    std::vector<uint32_t> triangle_uvs;       // with uvs
+    std::vector<uint16_t> skin_joints;
+    std::vector<float> skin_weights;
+    std::vector<uint32_t> landmark_triangles;   // one per model landmark
+    std::vector<float> landmark_barycentric;    // 3 per model landmark
+
+    uint32_t triangle_count() const { return static_cast<uint32_t>(triangles.size() / 3); }
+};
+
 struct ModelData {
     Metadata metadata;
     Mesh mesh;
@@ -118,6 +136,7 @@ struct ModelData {
     AttributeModel attributes;
     std::vector<JointRole> joint_roles;    // one per joint, or empty (the runtime's table by names)
     std::vector<ShapeSegment> segments;    // segment shape spaces, optional
+    std::vector<DetailLevel> levels;       // levels of detail, finest first, optional
 
     uint32_t vertex_count() const { return mesh.vertex_count; }
     uint32_t joint_count() const { return static_cast<uint32_t>(skeleton.parents.size()); }

@@ -212,6 +212,16 @@ pub struct ssc_slider_info {
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
+pub struct ssc_level_info {
+    pub struct_size: u32,
+    pub name: *const c_char,
+    pub vertex_count: u32,
+    pub triangle_count: u32,
+    pub uv_count: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
 pub struct ssc_segment_info {
     pub struct_size: u32,
     pub name: *const c_char,
@@ -422,6 +432,18 @@ extern "C" {
     pub fn ssc_body_get_sliders(body: *const ssc_body, out: *mut f32, capacity: u32) -> ssc_status;
     pub fn ssc_body_set_slider(body: *mut ssc_body, index: u32, value: f32) -> ssc_status;
     pub fn ssc_body_set_sliders(body: *mut ssc_body, values: *const f32, count: u32) -> ssc_status;
+    pub fn ssc_model_level_count(model: *const ssc_model) -> u32;
+    pub fn ssc_model_get_level_info(model: *const ssc_model, level: u32, out: *mut ssc_level_info) -> ssc_status;
+    pub fn ssc_model_get_level_triangles(model: *const ssc_model, level: u32, out: *mut u32, capacity: u32) -> ssc_status;
+    pub fn ssc_model_get_level_uvs(model: *const ssc_model, level: u32, out: *mut f32, capacity: u32) -> ssc_status;
+    pub fn ssc_model_get_level_triangle_uvs(model: *const ssc_model, level: u32, out: *mut u32, capacity: u32) -> ssc_status;
+    pub fn ssc_model_get_level_skin(model: *const ssc_model, level: u32, joints: *mut u16, weights: *mut f32, capacity: u32) -> ssc_status;
+    pub fn ssc_model_get_level_sources(model: *const ssc_model, level: u32, vertices: *mut u32, weights: *mut f32, capacity: u32) -> ssc_status;
+    pub fn ssc_model_get_level_landmarks(model: *const ssc_model, level: u32, triangles: *mut u32, barycentric: *mut f32, capacity: u32) -> ssc_status;
+    pub fn ssc_body_get_level_vertices(body: *mut ssc_body, level: u32, out: *mut f32, capacity: u32, stride: usize) -> ssc_status;
+    pub fn ssc_body_get_level_normals(body: *mut ssc_body, level: u32, out: *mut f32, capacity: u32, stride: usize) -> ssc_status;
+    pub fn ssc_body_get_level_rest_vertices(body: *mut ssc_body, level: u32, out: *mut f32, capacity: u32, stride: usize) -> ssc_status;
+    pub fn ssc_body_write_level_file(body: *mut ssc_body, level: u32, path: *const c_char, format: ssc_file_format) -> ssc_status;
     pub fn ssc_model_segment_count(model: *const ssc_model) -> u32;
     pub fn ssc_model_get_segment_info(model: *const ssc_model, index: u32, out: *mut ssc_segment_info) -> ssc_status;
     pub fn ssc_model_find_segment(model: *const ssc_model, name: *const c_char, out_index: *mut u32) -> ssc_status;

@@ -1,0 +1,198 @@
+// Levels of detail: level 0 the full mesh, levels 1.. the model's (Model::level(level - 1)).
+#include "export/body_export.hpp"
+#include "guard.hpp"
+#include "handles.hpp"
+
+#include <cstring>
+
+using namespace ssc;
+using namespace ssc::capi;
+
+namespace {
+
+// The model's level (level > 0), after checking the index.
+const format::DetailLevel* level_at(const Model& model, uint32_t level) {
+    SSC_REQUIRE_ARG_S(level <= model.level_count(), "level " << level << " is out of range (count " << model.level_count() + 1 << ", 0 the full mesh)");
+    return level ? &model.level(level - 1) : nullptr;
+}
+
+// SSC_ERROR_NOT_FOUND for a level without UVs.
+void need_uvs(const Model& model, const format::DetailLevel* l, uint32_t level) {
+    if ((l ? l->uvs.size() : model.data().mesh.uvs.size()) == 0) fail(SSC_ERROR_NOT_FOUND, "level " + std::to_string(level) + " has no UVs");
+}
+
+template <class V, class T>
+void copy_out(const V& v, T* out, uint64_t capacity, std::size_t per_elem) {
+    check_output(out, capacity, v.size() / per_elem, 0, sizeof(T) * per_elem);
+    std::copy(v.begin(), v.end(), out);
+}
+
+void copy_xyz(const float* src, std::size_t n, float* out, std::size_t stride) {
+    auto* base = reinterpret_cast<unsigned char*>(out);
+    for (std::size_t i = 0; i < n; ++i) std::memcpy(base + i * stride, src + 3 * i, 12);
+}
+
+exporters::BodyFormat body_format(ssc_file_format format, const char* path) {
+    const int32_t f = enum_value(format);
+    SSC_REQUIRE_ARG_S(f >= SSC_FILE_FORMAT_BY_EXTENSION && f <= SSC_FILE_GLB,
+                      "format " << f << " is not an ssc_file_format (0 by extension, 1 OBJ, 2 PLY, 3 GLB)");
+    return f == SSC_FILE_OBJ ? exporters::BodyFormat::Obj : f == SSC_FILE_PLY ? exporters::BodyFormat::Ply
+                             : f == SSC_FILE_GLB ? exporters::BodyFormat::Glb : exporters::format_of(path);
+}
+
+}  // namespace
+
+extern "C" {
+
+uint32_t ssc_model_level_count(const ssc_model* model) { return model ? model->model.level_count() + 1 : 0; }
+
+ssc_status ssc_model_get_level_info(const ssc_model* model, uint32_t level, ssc_level_info* out) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        need(out, "out");
+        SSC_REQUIRE_ARG(out->struct_size >= sizeof(uint32_t) && out->struct_size <= sizeof(ssc_level_info),
+                        "out->struct_size is " + std::to_string(out->struct_size) + "; expected sizeof(ssc_level_info)");
+        const Model& m = model->model;
+        const format::DetailLevel* l = level_at(m, level);
+        ssc_level_info info{};
+        info.struct_size = out->struct_size;
+        info.name = l ? l->name.c_str() : "full";
+        info.vertex_count = l ? l->vertex_count : m.vertex_count();
+        info.triangle_count = l ? l->triangle_count() : m.triangle_count();
+        info.uv_count = uint32_t((l ? l->uvs.size() : m.data().mesh.uvs.size()) / 2);
+        std::memcpy(out, &info, out->struct_size);
+    });
+}
+
+ssc_status ssc_model_get_level_triangles(const ssc_model* model, uint32_t level, uint32_t* out, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        const format::DetailLevel* l = level_at(model->model, level);
+        if (l) copy_out(l->triangles, out, capacity, 3);
+        else copy_out(model->model.data().mesh.triangles, out, capacity, 3);
+    });
+}
+
+ssc_status ssc_model_get_level_uvs(const ssc_model* model, uint32_t level, float* out, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        const format::DetailLevel* l = level_at(model->model, level);
+        need_uvs(model->model, l, level);
+        if (l) copy_out(l->uvs, out, capacity, 2);
+        else copy_out(model->model.data().mesh.uvs, out, capacity, 2);
+    });
+}
+
+ssc_status ssc_model_get_level_triangle_uvs(const ssc_model* model, uint32_t level, uint32_t* out, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        const format::DetailLevel* l = level_at(model->model, level);
+        need_uvs(model->model, l, level);
+        if (l) copy_out(l->triangle_uvs, out, capacity, 3);
+        else copy_out(model->model.data().mesh.triangle_uvs, out, capacity, 3);
+    });
+}
+
+ssc_status ssc_model_get_level_skin(const ssc_model* model, uint32_t level, uint16_t* joints, float* weights, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        const format::DetailLevel* l = level_at(model->model, level);
+        const auto& d = model->model.data();
+        const uint32_t N = l ? l->vertex_count : model->model.vertex_count();
+        if (joints) check_output(joints, capacity, N, 0, 8);
+        if (weights) check_output(weights, capacity, N, 0, 16);
+        if (joints) l ? (void)std::copy(l->skin_joints.begin(), l->skin_joints.end(), joints) : (void)std::copy(d.skin.joints.begin(), d.skin.joints.end(), joints);
+        if (weights) l ? (void)std::copy(l->skin_weights.begin(), l->skin_weights.end(), weights) : (void)std::copy(d.skin.weights.begin(), d.skin.weights.end(), weights);
+    });
+}
+
+ssc_status ssc_model_get_level_sources(const ssc_model* model, uint32_t level, uint32_t* vertices, float* weights, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        const format::DetailLevel* l = level_at(model->model, level);
+        const uint32_t N = l ? l->vertex_count : model->model.vertex_count();
+        if (vertices) check_output(vertices, capacity, N, 0, 16);
+        if (weights) check_output(weights, capacity, N, 0, 16);
+        for (uint32_t i = 0; i < N; ++i)
+            for (uint32_t k = 0; k < 4; ++k) {
+                if (vertices) vertices[4 * std::size_t(i) + k] = l ? l->sources[4 * std::size_t(i) + k] : i;
+                if (weights) weights[4 * std::size_t(i) + k] = l ? l->source_weights[4 * std::size_t(i) + k] : (k == 0 ? 1.f : 0.f);
+            }
+    });
+}
+
+ssc_status ssc_model_get_level_landmarks(const ssc_model* model, uint32_t level, uint32_t* triangles, float* barycentric, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(model, "model");
+        const format::DetailLevel* l = level_at(model->model, level);
+        const auto& d = model->model.data();
+        const std::size_t L = d.landmarks.size();
+        if (triangles) check_output(triangles, capacity, L, 0, 4);
+        if (barycentric) check_output(barycentric, capacity, L, 0, 12);
+        // A vertex landmark of the full mesh: the first triangle with that corner.
+        auto corner_triangle = [&](uint32_t v, float* bc) {
+            for (std::size_t i = 0; i < d.mesh.triangles.size(); ++i)
+                if (d.mesh.triangles[i] == v) {
+                    bc[0] = bc[1] = bc[2] = 0, bc[i % 3] = 1;
+                    return uint32_t(i / 3);
+                }
+            fail(SSC_ERROR_INTERNAL, "landmark vertex " + std::to_string(v) + " is on no triangle");
+        };
+        for (std::size_t k = 0; k < L; ++k) {
+            float bc[3];
+            uint32_t t;
+            if (l) {
+                t = l->landmark_triangles[k];
+                std::copy(&l->landmark_barycentric[3 * k], &l->landmark_barycentric[3 * k] + 3, bc);
+            } else if (d.landmarks[k].vertex != format::kNone) {
+                t = corner_triangle(d.landmarks[k].vertex, bc);
+            } else {
+                t = d.landmarks[k].triangle;
+                std::copy(d.landmarks[k].barycentric, d.landmarks[k].barycentric + 3, bc);
+            }
+            if (triangles) triangles[k] = t;
+            if (barycentric) std::copy(bc, bc + 3, barycentric + 3 * k);
+        }
+    });
+}
+
+ssc_status ssc_body_get_level_vertices(ssc_body* body, uint32_t level, float* out, uint32_t capacity, size_t stride) {
+    if (level == 0) return ssc_body_get_vertices(body, out, capacity, stride);
+    return guarded(__func__, [&] {
+        need(body, "body");
+        const format::DetailLevel* l = level_at(body->body.model(), level);
+        stride = check_output(out, capacity, l->vertex_count, stride, 12);
+        kernels::planar_to_xyz(body->body.level_posed(level - 1), l->vertex_count, out, stride);
+    });
+}
+
+ssc_status ssc_body_get_level_normals(ssc_body* body, uint32_t level, float* out, uint32_t capacity, size_t stride) {
+    if (level == 0) return ssc_body_get_normals(body, out, capacity, stride);
+    return guarded(__func__, [&] {
+        need(body, "body");
+        const format::DetailLevel* l = level_at(body->body.model(), level);
+        stride = check_output(out, capacity, l->vertex_count, stride, 12);
+        copy_xyz(body->body.level_normals(level - 1), l->vertex_count, out, stride);
+    });
+}
+
+ssc_status ssc_body_get_level_rest_vertices(ssc_body* body, uint32_t level, float* out, uint32_t capacity, size_t stride) {
+    if (level == 0) return ssc_body_get_rest_vertices(body, out, capacity, stride);
+    return guarded(__func__, [&] {
+        need(body, "body");
+        const format::DetailLevel* l = level_at(body->body.model(), level);
+        stride = check_output(out, capacity, l->vertex_count, stride, 12);
+        kernels::planar_to_xyz(body->body.level_rest(level - 1), l->vertex_count, out, stride);
+    });
+}
+
+ssc_status ssc_body_write_level_file(ssc_body* body, uint32_t level, const char* path, ssc_file_format format) {
+    return guarded(__func__, [&] {
+        need(body, "body");
+        need(path, "path");
+        if (level != SSC_LEVEL_ALL) level_at(body->body.model(), level);
+        exporters::write_body(body->body, path, body_format(format, path), level == SSC_LEVEL_ALL ? exporters::kAllLevels : level);
+    });
+}
+
+}  // extern "C"
