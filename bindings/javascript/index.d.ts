@@ -76,6 +76,15 @@ export interface Segment {
   vertexCount: number;
 }
 
+/** A level of detail: 0 the full mesh ("full"), then the model's coarser meshes, finest first. */
+export interface Level {
+  index: number;
+  name: string;
+  vertexCount: number;
+  triangleCount: number;
+  uvCount: number;
+}
+
 export class Model extends Handle {
   /** The default model built into the library. */
   static loadDefault(): Model;
@@ -99,6 +108,12 @@ export class Model extends Handle {
   /** The segment shape spaces (head, arm_l, ...), in index order; none in a model without them. */
   readonly segments: Segment[];
   segmentIndex(name: string): number;
+  /** The levels of detail, in index order (at least the full mesh). */
+  readonly levels: Level[];
+  /** One level by index or name; throws RangeError for one the model lacks. */
+  level(level: number | string): Level;
+  /** A level's triangles, 3 vertex indices each. */
+  levelTriangles(level: number | string): Uint32Array;
   /** count * shapeCount coefficients of random bodies of the population, reproducible by seed. */
   sampleShapes(count: number, options?: { seed?: number; truncation?: number }): Float32Array;
   /** Many bodies in one call: count * vertexCount * 3 floats (and normals when asked for). */
@@ -123,12 +138,15 @@ export class Body extends Handle {
   readonly vertices: Float32Array;
   readonly normals: Float32Array;
   readonly landmarks: Float32Array;
+  /** A level of detail's posed vertices and unit normals (its vertexCount * 3). */
+  levelVertices(level: number | string): Float32Array;
+  levelNormals(level: number | string): Float32Array;
   /** Every measurement, in the order of measurements(). */
   measureAll(): Float32Array;
   /** Every measurement by name. */
   measure(): Record<string, number>;
   /** 'obj', 'ply' or 'glb'; from the file name when omitted. */
-  write(path: string, format?: 'obj' | 'ply' | 'glb'): void;
+  write(path: string, format?: 'obj' | 'ply' | 'glb', options?: { level?: number | string }): void;
 }
 
 /** Fits shape and pose to landmarks and points. One thread at a time. */

@@ -149,10 +149,19 @@ namespace Sscape
         public int ShapeCount, VertexCount;
     }
 
+    /// <summary>A level of detail: 0 the full mesh ("full"), then the model's coarser meshes, finest first.</summary>
+    public struct Level
+    {
+        public int Index;
+        public string Name;
+        public int VertexCount, TriangleCount, UvCount;
+    }
+
     /// <summary>The counts a body or fitter needs of its model, read once.</summary>
     internal struct Counts
     {
         public int Vertices, Joints, Shapes, Landmarks;
+        public int[] LevelVertices;
     }
 
     /// <summary>A loaded model: immutable, safe to share across threads.</summary>
@@ -217,7 +226,13 @@ namespace Sscape
 
         internal Counts Counts
         {
-            get { return new Counts { Vertices = VertexCount, Joints = JointCount, Shapes = ShapeCount, Landmarks = LandmarkCount }; }
+            get
+            {
+                Level[] levels = Levels;
+                int[] levelVertices = new int[levels.Length];
+                for (int i = 0; i < levels.Length; ++i) levelVertices[i] = levels[i].VertexCount;
+                return new Counts { Vertices = VertexCount, Joints = JointCount, Shapes = ShapeCount, Landmarks = LandmarkCount, LevelVertices = levelVertices };
+            }
         }
 
         /// <summary>3 vertex indices per triangle.</summary>
@@ -303,6 +318,44 @@ namespace Sscape
 
         /// <summary>A segment's index; SSC_ERROR_NOT_FOUND for a name the model lacks.</summary>
         public int SegmentIndex(string name) { return Find(Api.ssc_model_find_segment, name); }
+
+        /// <summary>The levels of detail, in index order: 0 the full mesh, then the model's, finest first.</summary>
+        public Level[] Levels
+        {
+            get
+            {
+                Level[] levels = new Level[Api.ssc_model_level_count(Raw)];
+                for (uint i = 0; i < levels.Length; ++i)
+                {
+                    ssc_level_info info = new ssc_level_info { struct_size = (uint)sizeof(ssc_level_info) };
+                    Library.Check(Api.ssc_model_get_level_info(Raw, i, &info));
+                    levels[i] = new Level { Index = (int)i, Name = Library.Utf8(info.name), VertexCount = (int)info.vertex_count,
+                                            TriangleCount = (int)info.triangle_count, UvCount = (int)info.uv_count };
+                }
+                GC.KeepAlive(this);
+                return levels;
+            }
+        }
+
+        /// <summary>A level's index by name; ArgumentException for a name the model lacks.</summary>
+        public int LevelIndex(string name)
+        {
+            foreach (Level l in Levels)
+                if (l.Name == name) return l.Index;
+            throw new ArgumentException("the model has no level '" + name + "'", "name");
+        }
+
+        /// <summary>A level's triangles, 3 vertex indices each.</summary>
+        public uint[] LevelTriangles(int level)
+        {
+            if (level < 0) throw new ArgumentOutOfRangeException("level");
+            ssc_level_info info = new ssc_level_info { struct_size = (uint)sizeof(ssc_level_info) };
+            Library.Check(Api.ssc_model_get_level_info(Raw, (uint)level, &info));
+            uint[] out_ = new uint[info.triangle_count * 3];
+            fixed (uint* p = out_) Library.Check(Api.ssc_model_get_level_triangles(Raw, (uint)level, p, info.triangle_count));
+            GC.KeepAlive(this);
+            return out_;
+        }
 
         /// <summary>count * ShapeCount coefficients of random bodies of the population, reproducible by seed.</summary>
         public float[] SampleShapes(int count, uint seed = 1, float truncation = 2.5f)
@@ -509,12 +562,30 @@ namespace Sscape
         }
 
         /// <summary>Writes the posed body as OBJ, PLY or glTF binary, chosen by the file's extension.</summary>
-        public void Write(string path)
+        public void Write(string path) { Write(path, 0); }
+
+        /// <summary>Write's level for every level of detail in one .glb file (a node each).</summary>
+        public const int AllLevels = -1;
+
+        /// <summary>Writes a level of detail of the posed body (0 the full mesh; AllLevels: every level in one .glb).</summary>
+        public void Write(string path, int level)
         {
+            if (level < AllLevels) throw new ArgumentOutOfRangeException("level");
             byte[] utf8 = Library.ToUtf8(path);
             fixed (byte* p = utf8)
-                Library.Check(Api.ssc_body_write_file(Raw, p, ssc_file_format.SSC_FILE_FORMAT_BY_EXTENSION));
+                Library.Check(Api.ssc_body_write_level_file(Raw, level == AllLevels ? 0xFFFFFFFFu : (uint)level, p, ssc_file_format.SSC_FILE_FORMAT_BY_EXTENSION));
             GC.KeepAlive(this);
+        }
+
+        /// <summary>A level of detail's posed vertices (its VertexCount * 3, metres).</summary>
+        public float[] GetLevelVertices(int level)
+        {
+            if (level < 0 || level >= counts.LevelVertices.Length) throw new ArgumentOutOfRangeException("level");
+            int n = counts.LevelVertices[level];
+            float[] out_ = new float[n * 3];
+            fixed (float* p = out_) Library.Check(Api.ssc_body_get_level_vertices(Raw, (uint)level, p, (uint)n, UIntPtr.Zero));
+            GC.KeepAlive(this);
+            return out_;
         }
     }
 

@@ -181,6 +181,28 @@ static class Tests
             Throws<ObjectDisposedException>(() => closed.GetVertices(), e => true, "use after Dispose");
         });
 
+        Run("levels of detail: listed, posed, written one or all", delegate
+        {
+            using (Model model = Model.LoadDefault())
+            using (Body body = model.CreateBody())
+            {
+                Level[] levels = model.Levels;
+                Assert(levels.Length == 4 && levels[0].Name == "full" && levels[3].Name == "proxy741" && levels[3].VertexCount == 741, "four levels");
+                int far = model.LevelIndex("proxy741");
+                uint[] tris = model.LevelTriangles(far);
+                Assert(tris.Length == levels[far].TriangleCount * 3, "the level's triangles");
+                float[] v = body.GetLevelVertices(far);
+                Assert(v.Length == 741 * 3 && !float.IsNaN(v[0]), "the level's vertices");
+                string dir = System.IO.Path.Combine(System.IO.Path.GetTempPath(), "sscape-cs-levels-" + System.Guid.NewGuid().ToString("N"));
+                System.IO.Directory.CreateDirectory(dir);
+                body.Write(System.IO.Path.Combine(dir, "all.glb"), Body.AllLevels);
+                Assert(new System.IO.FileInfo(System.IO.Path.Combine(dir, "all.glb")).Length > 1000000, "every level in one glb");
+                Throws<SscapeException>(() => body.Write(System.IO.Path.Combine(dir, "all.obj"), Body.AllLevels),
+                                        e => e.Status == ssc_status.SSC_ERROR_INVALID_ARGUMENT, "all levels in an OBJ");
+                System.IO.Directory.Delete(dir, true);
+            }
+        });
+
         Run("segment shape spaces: listed, set on a body, moving their part only", delegate
         {
             using (Model model = Model.LoadDefault())

@@ -197,6 +197,31 @@ class Model extends Handle {
     return segments;
   }
 
+  /** The levels of detail, [{ index, name, vertexCount, triangleCount, uvCount }]: 0 the full mesh ("full"), then the model's, finest first. */
+  get levels() {
+    const levels = [];
+    const count = api().ssc_model_level_count(this.handle);
+    for (let i = 0; i < count; ++i) {
+      const info = { struct_size: koffi.sizeof('ssc_level_info') };
+      call('ssc_model_get_level_info', this.handle, i, info);
+      levels.push({ index: i, name: info.name, vertexCount: info.vertex_count, triangleCount: info.triangle_count, uvCount: info.uv_count });
+    }
+    return levels;
+  }
+
+  /** One level of detail by index or name; throws RangeError for one the model lacks. */
+  level(level) {
+    return pickLevel(this.levels, level);
+  }
+
+  /** A level's triangles: 3 vertex indices each (Uint32Array). */
+  levelTriangles(level) {
+    const l = this.level(level);
+    const out = new Uint32Array(l.triangleCount * 3);
+    call('ssc_model_get_level_triangles', this.handle, l.index, out, l.triangleCount);
+    return out;
+  }
+
   /** A segment's index by name; throws NOT_FOUND for a name the model lacks. */
   segmentIndex(name) {
     const out = new Uint32Array(1);
@@ -278,7 +303,14 @@ function index(value, what) {
 
 function counts(model) {
   return Object.freeze({ vertexCount: model.vertexCount, jointCount: model.jointCount, shapeCount: model.shapeCount,
-    landmarkCount: model.landmarkCount });
+    landmarkCount: model.landmarkCount, levels: Object.freeze(model.levels) });
+}
+
+// A level of detail of a list (Model.levels) by index or name; RangeError for one it lacks.
+function pickLevel(levels, level) {
+  const found = typeof level === 'string' ? levels.find((l) => l.name === level) : levels[level];
+  if (!found) throw new RangeError(`no level ${level}; the model's: ${levels.map((l) => l.name).join(', ')}`);
+  return found;
 }
 
 /** The measurements the library knows: [{ name, unit, definition }], in measurement order. */
@@ -357,6 +389,22 @@ class Body extends Handle {
   /** The landmarks on the posed body (landmarkCount * 3). */
   get landmarks() { return this._vertexArray('ssc_body_get_landmarks', this.model.landmarkCount); }
 
+  /** A level of detail's posed vertices (Model.level: by index or name; its vertexCount * 3). */
+  levelVertices(level) {
+    const l = pickLevel(this.model.levels, level);
+    const out = new Float32Array(l.vertexCount * 3);
+    call('ssc_body_get_level_vertices', this.handle, l.index, out, l.vertexCount, 0);
+    return out;
+  }
+
+  /** A level of detail's unit normals (its vertexCount * 3). */
+  levelNormals(level) {
+    const l = pickLevel(this.model.levels, level);
+    const out = new Float32Array(l.vertexCount * 3);
+    call('ssc_body_get_level_normals', this.handle, l.index, out, l.vertexCount, 0);
+    return out;
+  }
+
   /** Every measurement, in the order of measurements() (Float32Array; metres, square metres, kg, ...). */
   measureAll() {
     const out = new Float32Array(api().ssc_measurement_count());
@@ -370,12 +418,14 @@ class Body extends Handle {
     return Object.fromEntries(measurements().map((m, i) => [m.name, values[i]]));
   }
 
-  /** Writes the posed body: format 'obj', 'ply' or 'glb' (from the file name when omitted). */
-  write(path, format) {
+  /** Writes the posed body: format 'obj', 'ply' or 'glb' (from the file name when omitted); level: a level of
+   *  detail by index or name (0 the full mesh), or 'all' for every level in one .glb (a node each). */
+  write(path, format, { level = 0 } = {}) {
     const kind = (format || String(path).split('.').pop()).toUpperCase();
     const value = enums.ssc_file_format[`SSC_FILE_${kind}`];
     if (value === undefined) throw new RangeError(`write: unknown format ${kind}`);
-    call('ssc_body_write_file', this.handle, String(path), value);
+    const index = level === 'all' ? 0xFFFFFFFF : pickLevel(this.model.levels, level).index;
+    call('ssc_body_write_level_file', this.handle, index, String(path), value);
   }
 }
 

@@ -107,6 +107,31 @@ test('errors become SscapeError with the status and the library\'s message', () 
   model.close();
 });
 
+test('levels of detail: listed, posed, written one or all', () => {
+  const model = sscape.Model.loadDefault();
+  const levels = model.levels;
+  assert.deepStrictEqual(levels.map((l) => l.name), ['full', 'simplified', 'female1605', 'proxy741']);
+  assert.strictEqual(model.level('proxy741').vertexCount, 741);
+  const tris = model.levelTriangles('proxy741');
+  assert.ok(tris.length === 3 * levels[3].triangleCount && Math.max(...tris) < 741);
+  const body = model.createBody();
+  const far = body.levelVertices(3);
+  assert.ok(far.length === 741 * 3 && far.every(Number.isFinite));
+  assert.deepStrictEqual(body.levelVertices('full'), body.vertices);
+  const n = body.levelNormals('simplified');
+  assert.ok(Math.abs(Math.hypot(n[0], n[1], n[2]) - 1) < 1e-4);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'sscape-levels-'));
+  body.write(path.join(dir, 'far.obj'), undefined, { level: 'proxy741' });
+  assert.strictEqual((fs.readFileSync(path.join(dir, 'far.obj'), 'utf8').match(/^v /gm) || []).length, 741);
+  body.write(path.join(dir, 'all.glb'), undefined, { level: 'all' });
+  assert.ok(fs.statSync(path.join(dir, 'all.glb')).size > 1e6);
+  assert.throws(() => body.write(path.join(dir, 'all.obj'), undefined, { level: 'all' }), (e) => e.code === 'SSC_ERROR_INVALID_ARGUMENT');
+  assert.throws(() => model.level('proxy9'), RangeError);
+  fs.rmSync(dir, { recursive: true });
+  body.close();
+  model.close();
+});
+
 test('segment shape spaces: listed, set on a body, moving their part only', () => {
   const model = sscape.Model.loadDefault();
   const segments = model.segments;

@@ -14,7 +14,10 @@ const s: number = pose.scale;
 const segments: sscape.Segment[] = model.segments;
 body.setSegmentShape(model.segmentIndex('head'), [1.0]);
 const head: Float32Array = body.segmentShape(model.segmentIndex('head'), segments[0].shapeCount);
+const levels: sscape.Level[] = model.levels;
+const far: Float32Array = body.levelVertices(model.level('proxy741').index);
+body.write('/tmp/sscape-types-check.glb', 'glb', { level: levels.length - 1 });
 const batch = model.synthesize({ shapes: model.sampleShapes(2, { seed: 1 }) }).vertices;
 try { model.jointIndex('x'); } catch (e) { if (e instanceof sscape.SscapeError) console.log(e.code, e.status); }
-console.log(v.length, head.length, m.stature, report.iterations, s, batch.length, sscape.version().major, sscape.measurements()[0].unit);
+console.log(v.length, head.length, far.length, m.stature, report.iterations, s, batch.length, sscape.version().major, sscape.measurements()[0].unit);
 body.close(); fitter.close(); model.close();

@@ -266,10 +266,10 @@ class Body(Handle):
 
     def write(self, path: Union[str, os.PathLike], format: Optional[str] = None, level: Union[int, str] = 0) -> None:
         """Writes the body as OBJ, PLY or rigged glTF (.glb); format None: from the extension; level: a level of
-        detail (Model.levels) by index or name, 0 the full mesh."""
+        detail (Model.levels) by index or name, 0 the full mesh, or "all": every level in one .glb (a node each)."""
         if format not in _FORMATS:
             raise ValueError(f"format must be one of obj, ply, glb or None, not {format!r}")
-        index = self.model.level(level).index
+        index = 0xFFFFFFFF if level == "all" else self.model.level(level).index
         if index == 0:
             check(lib.ssc_body_write_file(self.handle, os.fsencode(path), _FORMATS[format]))
         else:

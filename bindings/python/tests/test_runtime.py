@@ -572,6 +572,11 @@ def test_levels_of_detail(model, tmp_path):
     body.write(path, level="proxy741")
     text = path.read_text()
     assert text.count("\nv ") == 741 and text.count("\nf ") == levels[3].triangle_count
+    body.write(tmp_path / "all.glb", level="all")
+    assert (tmp_path / "all.glb").stat().st_size > 1_000_000
+    with pytest.raises(sscape.SscapeError):
+        body.write(tmp_path / "all.obj", level="all")
+    assert not (tmp_path / "all.obj").exists()
     with pytest.raises(KeyError, match="proxy741"):
         model.level("proxy9")
     with pytest.raises(IndexError):

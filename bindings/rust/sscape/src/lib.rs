@@ -171,12 +171,13 @@ impl Drop for Model {
 }
 
 /// The counts a body or fitter needs, read once from its model.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Counts {
     vertices: usize,
     joints: usize,
     shapes: usize,
     landmarks: usize,
+    level_vertices: Vec<usize>,
 }
 
 impl Model {
@@ -232,7 +233,14 @@ impl Model {
     }
 
     fn counts(&self) -> Counts {
-        Counts { vertices: self.vertex_count(), joints: self.joint_count(), shapes: self.shape_count(), landmarks: self.landmark_count() }
+        let level_vertices = self.levels().map(|levels| levels.iter().map(|l| l.vertex_count).collect()).unwrap_or_default();
+        Counts {
+            vertices: self.vertex_count(),
+            joints: self.joint_count(),
+            shapes: self.shape_count(),
+            landmarks: self.landmark_count(),
+            level_vertices,
+        }
     }
 
     /// 3 vertex indices per triangle.
@@ -277,6 +285,41 @@ impl Model {
         let mut index = 0u32;
         check(unsafe { sys::ssc_model_find_landmark(self.raw.as_ptr(), c_name.as_ptr(), &mut index) })?;
         Ok(index as usize)
+    }
+
+    /// The levels of detail, in index order: 0 the full mesh (`"full"`), then the model's, finest first.
+    pub fn levels(&self) -> Result<Vec<Level>> {
+        let count = unsafe { sys::ssc_model_level_count(self.raw.as_ptr()) };
+        (0..count)
+            .map(|index| {
+                let mut info = sys::ssc_level_info {
+                    struct_size: std::mem::size_of::<sys::ssc_level_info>() as u32,
+                    name: ptr::null(),
+                    vertex_count: 0,
+                    triangle_count: 0,
+                    uv_count: 0,
+                };
+                check(unsafe { sys::ssc_model_get_level_info(self.raw.as_ptr(), index, &mut info) })?;
+                // Safety: the name belongs to the model, alive here.
+                let name = unsafe { CStr::from_ptr(info.name) }.to_string_lossy().into_owned();
+                Ok(Level {
+                    index: index as usize,
+                    name,
+                    vertex_count: info.vertex_count as usize,
+                    triangle_count: info.triangle_count as usize,
+                    uv_count: info.uv_count as usize,
+                })
+            })
+            .collect()
+    }
+
+    /// A level's triangles, 3 vertex indices each.
+    pub fn level_triangles(&self, level: usize) -> Result<Vec<u32>> {
+        let levels = self.levels()?;
+        let l = levels.get(level).ok_or_else(|| Error::invalid(format!("level {} of a model with {} levels", level, levels.len())))?;
+        let mut out = vec![0u32; l.triangle_count * 3];
+        check(unsafe { sys::ssc_model_get_level_triangles(self.raw.as_ptr(), level as u32, out.as_mut_ptr(), l.triangle_count as u32) })?;
+        Ok(out)
     }
 
     /// The segment shape spaces (head, arm_l, ...; none in a model without them), in index order.
@@ -383,6 +426,19 @@ impl Model {
         Ok(Fitter { raw, counts: self.counts() })
     }
 }
+
+/// A level of detail: 0 the full mesh, then the model's coarser meshes, finest first.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Level {
+    pub index: usize,
+    pub name: String,
+    pub vertex_count: usize,
+    pub triangle_count: usize,
+    pub uv_count: usize,
+}
+
+/// `Body::write_level`'s level for every level of detail in one .glb file (a node each).
+pub const ALL_LEVELS: usize = usize::MAX;
 
 /// A segment shape space: its name, components and the vertices they move.
 #[derive(Clone, Debug, PartialEq)]
@@ -498,10 +554,24 @@ impl Body {
 
     /// Writes the posed body as OBJ, PLY or glTF binary, chosen by the file's extension.
     pub fn write(&mut self, path: impl AsRef<Path>) -> Result<()> {
+        self.write_level(path, 0)
+    }
+
+    /// Writes a level of detail of the posed body (0 the full mesh; `ALL_LEVELS`: every level in one .glb).
+    pub fn write_level(&mut self, path: impl AsRef<Path>, level: usize) -> Result<()> {
         let path = path.as_ref();
         let text = path.to_str().ok_or_else(|| Error::invalid(format!("{} is not UTF-8", path.display())))?;
         let c_path = c_string(text, "the path")?;
-        check(unsafe { sys::ssc_body_write_file(self.raw.as_ptr(), c_path.as_ptr(), sys::SSC_FILE_FORMAT_BY_EXTENSION) })
+        let index = if level == ALL_LEVELS { u32::MAX } else { u32::try_from(level).map_err(|_| Error::invalid(format!("level {}", level)))? };
+        check(unsafe { sys::ssc_body_write_level_file(self.raw.as_ptr(), index, c_path.as_ptr(), sys::SSC_FILE_FORMAT_BY_EXTENSION) })
+    }
+
+    /// A level of detail's posed vertices, its `vertex_count * 3`.
+    pub fn level_vertices(&mut self, level: usize) -> Result<Vec<f32>> {
+        let n = *self.counts.level_vertices.get(level).ok_or_else(|| Error::invalid(format!("level {} is out of range", level)))?;
+        let mut out = vec![0f32; n * 3];
+        check(unsafe { sys::ssc_body_get_level_vertices(self.raw.as_ptr(), level as u32, out.as_mut_ptr(), n as u32, 0) })?;
+        Ok(out)
     }
 }
 

@@ -80,6 +80,28 @@ fn errors_carry_the_status_and_message() {
 }
 
 #[test]
+fn levels_of_detail_are_listed_posed_and_written() {
+    let model = Model::load_default().unwrap();
+    let levels = model.levels().unwrap();
+    let names: Vec<&str> = levels.iter().map(|l| l.name.as_str()).collect();
+    assert_eq!(names, ["full", "simplified", "female1605", "proxy741"]);
+    assert_eq!(levels[3].vertex_count, 741);
+    let tris = model.level_triangles(3).unwrap();
+    assert!(tris.len() == levels[3].triangle_count * 3 && tris.iter().all(|&v| v < 741));
+    let mut body = model.body().unwrap();
+    let far = body.level_vertices(3).unwrap();
+    assert!(far.len() == 741 * 3 && far.iter().all(|x| x.is_finite()));
+    assert_eq!(body.level_vertices(0).unwrap(), body.vertices().unwrap());
+    assert!(body.level_vertices(4).is_err());
+    let dir = std::env::temp_dir().join(format!("sscape-rs-levels-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    body.write_level(dir.join("all.glb"), sscape::ALL_LEVELS).unwrap();
+    assert!(std::fs::metadata(dir.join("all.glb")).unwrap().len() > 1_000_000);
+    assert!(body.write_level(dir.join("all.obj"), sscape::ALL_LEVELS).is_err());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn segment_shape_spaces_move_their_part_only() {
     let model = Model::load_default().unwrap();
     let segments = model.segments().unwrap();
