@@ -10,21 +10,22 @@ using namespace ssc::capi;
 
 namespace {
 
-// The model's level (level > 0), after checking the index.
-const format::DetailLevel* level_at(const Model& model, uint32_t level) {
+// Level `level` of the model (0 the full mesh), after checking the index.
+Model::LevelMesh level_at(const Model& model, uint32_t level) {
     SSC_REQUIRE_ARG_S(level <= model.level_count(), "level " << level << " is out of range (count " << model.level_count() + 1 << ", 0 the full mesh)");
-    return level ? &model.level(level - 1) : nullptr;
+    return model.level_mesh(level);
 }
 
 // SSC_ERROR_NOT_FOUND for a level without UVs.
-void need_uvs(const Model& model, const format::DetailLevel* l, uint32_t level) {
-    if ((l ? l->uvs.size() : model.data().mesh.uvs.size()) == 0) fail(SSC_ERROR_NOT_FOUND, "level " + std::to_string(level) + " has no UVs");
+void need_uvs(const Model::LevelMesh& l, uint32_t level) {
+    if (l.uv_count == 0) fail(SSC_ERROR_NOT_FOUND, "level " + std::to_string(level) + " has no UVs");
 }
 
-template <class V, class T>
-void copy_out(const V& v, T* out, uint64_t capacity, std::size_t per_elem) {
-    check_output(out, capacity, v.size() / per_elem, 0, sizeof(T) * per_elem);
-    std::copy(v.begin(), v.end(), out);
+// Copies count items of per_item values to out, after checking its capacity (in items).
+template <class T>
+void copy_out(const T* values, uint32_t count, std::size_t per_item, T* out, uint32_t capacity) {
+    check_output(out, capacity, count, 0, sizeof(T) * per_item);
+    std::copy(values, values + std::size_t(count) * per_item, out);
 }
 
 void copy_xyz(const float* src, std::size_t n, float* out, std::size_t stride) {
@@ -52,14 +53,13 @@ ssc_status ssc_model_get_level_info(const ssc_model* model, uint32_t level, ssc_
         need(out, "out");
         SSC_REQUIRE_ARG(out->struct_size >= sizeof(uint32_t) && out->struct_size <= sizeof(ssc_level_info),
                         "out->struct_size is " + std::to_string(out->struct_size) + "; expected sizeof(ssc_level_info)");
-        const Model& m = model->model;
-        const format::DetailLevel* l = level_at(m, level);
+        const Model::LevelMesh l = level_at(model->model, level);
         ssc_level_info info{};
         info.struct_size = out->struct_size;
-        info.name = l ? l->name.c_str() : "full";
-        info.vertex_count = l ? l->vertex_count : m.vertex_count();
-        info.triangle_count = l ? l->triangle_count() : m.triangle_count();
-        info.uv_count = uint32_t((l ? l->uvs.size() : m.data().mesh.uvs.size()) / 2);
+        info.name = l.name;
+        info.vertex_count = l.vertex_count;
+        info.triangle_count = l.triangle_count;
+        info.uv_count = l.uv_count;
         std::memcpy(out, &info, out->struct_size);
     });
 }
@@ -67,50 +67,45 @@ ssc_status ssc_model_get_level_info(const ssc_model* model, uint32_t level, ssc_
 ssc_status ssc_model_get_level_triangles(const ssc_model* model, uint32_t level, uint32_t* out, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(model, "model");
-        const format::DetailLevel* l = level_at(model->model, level);
-        if (l) copy_out(l->triangles, out, capacity, 3);
-        else copy_out(model->model.data().mesh.triangles, out, capacity, 3);
+        const Model::LevelMesh l = level_at(model->model, level);
+        copy_out(l.triangles, l.triangle_count, 3, out, capacity);
     });
 }
 
 ssc_status ssc_model_get_level_uvs(const ssc_model* model, uint32_t level, float* out, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(model, "model");
-        const format::DetailLevel* l = level_at(model->model, level);
-        need_uvs(model->model, l, level);
-        if (l) copy_out(l->uvs, out, capacity, 2);
-        else copy_out(model->model.data().mesh.uvs, out, capacity, 2);
+        const Model::LevelMesh l = level_at(model->model, level);
+        need_uvs(l, level);
+        copy_out(l.uvs, l.uv_count, 2, out, capacity);
     });
 }
 
 ssc_status ssc_model_get_level_triangle_uvs(const ssc_model* model, uint32_t level, uint32_t* out, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(model, "model");
-        const format::DetailLevel* l = level_at(model->model, level);
-        need_uvs(model->model, l, level);
-        if (l) copy_out(l->triangle_uvs, out, capacity, 3);
-        else copy_out(model->model.data().mesh.triangle_uvs, out, capacity, 3);
+        const Model::LevelMesh l = level_at(model->model, level);
+        need_uvs(l, level);
+        copy_out(l.triangle_uvs, l.triangle_count, 3, out, capacity);
     });
 }
 
 ssc_status ssc_model_get_level_skin(const ssc_model* model, uint32_t level, uint16_t* joints, float* weights, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(model, "model");
-        const format::DetailLevel* l = level_at(model->model, level);
-        const auto& d = model->model.data();
-        const uint32_t N = l ? l->vertex_count : model->model.vertex_count();
-        if (joints) check_output(joints, capacity, N, 0, 8);
-        if (weights) check_output(weights, capacity, N, 0, 16);
-        if (joints) l ? (void)std::copy(l->skin_joints.begin(), l->skin_joints.end(), joints) : (void)std::copy(d.skin.joints.begin(), d.skin.joints.end(), joints);
-        if (weights) l ? (void)std::copy(l->skin_weights.begin(), l->skin_weights.end(), weights) : (void)std::copy(d.skin.weights.begin(), d.skin.weights.end(), weights);
+        const Model::LevelMesh l = level_at(model->model, level);
+        if (joints) check_output(joints, capacity, l.vertex_count, 0, 8);
+        if (weights) check_output(weights, capacity, l.vertex_count, 0, 16);
+        if (joints) std::copy(l.skin_joints, l.skin_joints + 4 * std::size_t(l.vertex_count), joints);
+        if (weights) std::copy(l.skin_weights, l.skin_weights + 4 * std::size_t(l.vertex_count), weights);
     });
 }
 
 ssc_status ssc_model_get_level_sources(const ssc_model* model, uint32_t level, uint32_t* vertices, float* weights, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(model, "model");
-        const format::DetailLevel* l = level_at(model->model, level);
-        const uint32_t N = l ? l->vertex_count : model->model.vertex_count();
+        const uint32_t N = level_at(model->model, level).vertex_count;
+        const format::DetailLevel* l = level ? &model->model.level(level - 1) : nullptr;
         if (vertices) check_output(vertices, capacity, N, 0, 16);
         if (weights) check_output(weights, capacity, N, 0, 16);
         for (uint32_t i = 0; i < N; ++i)
@@ -124,7 +119,8 @@ ssc_status ssc_model_get_level_sources(const ssc_model* model, uint32_t level, u
 ssc_status ssc_model_get_level_landmarks(const ssc_model* model, uint32_t level, uint32_t* triangles, float* barycentric, uint32_t capacity) {
     return guarded(__func__, [&] {
         need(model, "model");
-        const format::DetailLevel* l = level_at(model->model, level);
+        level_at(model->model, level);
+        const format::DetailLevel* l = level ? &model->model.level(level - 1) : nullptr;
         const auto& d = model->model.data();
         const std::size_t L = d.landmarks.size();
         if (triangles) check_output(triangles, capacity, L, 0, 4);
@@ -160,9 +156,9 @@ ssc_status ssc_body_get_level_vertices(ssc_body* body, uint32_t level, float* ou
     if (level == 0) return ssc_body_get_vertices(body, out, capacity, stride);
     return guarded(__func__, [&] {
         need(body, "body");
-        const format::DetailLevel* l = level_at(body->body.model(), level);
-        stride = check_output(out, capacity, l->vertex_count, stride, 12);
-        kernels::planar_to_xyz(body->body.level_posed(level - 1), l->vertex_count, out, stride);
+        const uint32_t n = level_at(body->body.model(), level).vertex_count;
+        stride = check_output(out, capacity, n, stride, 12);
+        kernels::planar_to_xyz(body->body.level_posed(level - 1), n, out, stride);
     });
 }
 
@@ -170,9 +166,9 @@ ssc_status ssc_body_get_level_normals(ssc_body* body, uint32_t level, float* out
     if (level == 0) return ssc_body_get_normals(body, out, capacity, stride);
     return guarded(__func__, [&] {
         need(body, "body");
-        const format::DetailLevel* l = level_at(body->body.model(), level);
-        stride = check_output(out, capacity, l->vertex_count, stride, 12);
-        copy_xyz(body->body.level_normals(level - 1), l->vertex_count, out, stride);
+        const uint32_t n = level_at(body->body.model(), level).vertex_count;
+        stride = check_output(out, capacity, n, stride, 12);
+        copy_xyz(body->body.level_normals(level - 1), n, out, stride);
     });
 }
 
@@ -180,9 +176,9 @@ ssc_status ssc_body_get_level_rest_vertices(ssc_body* body, uint32_t level, floa
     if (level == 0) return ssc_body_get_rest_vertices(body, out, capacity, stride);
     return guarded(__func__, [&] {
         need(body, "body");
-        const format::DetailLevel* l = level_at(body->body.model(), level);
-        stride = check_output(out, capacity, l->vertex_count, stride, 12);
-        kernels::planar_to_xyz(body->body.level_rest(level - 1), l->vertex_count, out, stride);
+        const uint32_t n = level_at(body->body.model(), level).vertex_count;
+        stride = check_output(out, capacity, n, stride, 12);
+        kernels::planar_to_xyz(body->body.level_rest(level - 1), n, out, stride);
     });
 }
 

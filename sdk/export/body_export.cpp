@@ -18,20 +18,15 @@ std::vector<float> interleaved(const float* planar, uint32_t n) {
     return out;
 }
 
-// A level's triangles and UVs (level 0: the model's mesh; l > 0: Model::level(l - 1)) into a
-// MeshView or a RiggedMesh (the same fields in both).
+// A level's triangles and UVs (Model::level_mesh) into a MeshView or a RiggedMesh (the same
+// fields in both).
 template <class View>
-void set_surface(View& view, const Model& model, uint32_t level) {
-    const auto& d = model.data();
-    const bool full = level == 0;
-    const format::DetailLevel* l = full ? nullptr : &model.level(level - 1);
-    view.triangle_count = full ? uint32_t(d.mesh.triangles.size() / 3) : l->triangle_count();
-    view.triangles = full ? d.mesh.triangles.data() : l->triangles.data();
-    const std::size_t uv_floats = full ? d.mesh.uvs.size() : l->uvs.size();
-    if (uv_floats == 0) return;
-    view.uv_count = uint32_t(uv_floats / 2);
-    view.uvs = full ? d.mesh.uvs.data() : l->uvs.data();
-    view.triangle_uvs = full ? d.mesh.triangle_uvs.data() : l->triangle_uvs.data();
+void set_surface(View& view, const Model::LevelMesh& l) {
+    view.triangle_count = l.triangle_count;
+    view.triangles = l.triangles;
+    view.uv_count = l.uv_count;
+    view.uvs = l.uvs;
+    view.triangle_uvs = l.triangle_uvs;
 }
 
 }  // namespace
@@ -51,14 +46,14 @@ void write_body(Body& body, const std::string& path, BodyFormat format, uint32_t
     const bool all = level == kAllLevels;
     SSC_REQUIRE_ARG_S(all || level <= model.level_count(), "level " << level << " of a model with " << model.level_count() + 1 << " levels (0 the full mesh)");
     SSC_REQUIRE_ARG(!all || format == BodyFormat::Glb, "every level in one file: glTF (.glb) only, one node per level");
-    const uint32_t V = all ? 0 : level ? model.level(level - 1).vertex_count : model.vertex_count(), J = model.joint_count();
+    const uint32_t V = all ? 0 : model.level_mesh(level).vertex_count, J = model.joint_count();
     if (format != BodyFormat::Glb) {
         const std::vector<float> positions = interleaved(level ? body.level_posed(level - 1) : body.posed(), V);
         MeshView mesh;
         mesh.vertex_count = V;
         mesh.positions = positions.data();
         mesh.normals = level ? body.level_normals(level - 1) : body.normals();
-        set_surface(mesh, model, level);
+        set_surface(mesh, model.level_mesh(level));
         return format == BodyFormat::Obj ? write_obj(path, mesh) : write_ply(path, mesh);
     }
     // glTF: the bind pose is the body's shape at rest; its normals come from a rest-posed twin.
@@ -73,13 +68,14 @@ void write_body(Body& body, const std::string& path, BodyFormat format, uint32_t
     for (uint32_t l = all ? 0 : level; l <= (all ? model.level_count() : level); ++l) {
         RiggedMesh mesh;
         mesh.name = name;
-        mesh.vertex_count = l ? model.level(l - 1).vertex_count : model.vertex_count();
+        mesh.vertex_count = model.level_mesh(l).vertex_count;
         rest_positions.push_back(interleaved(l ? body.level_rest(l - 1) : body.rest_planar(), mesh.vertex_count));
         mesh.rest_positions = rest_positions.back().data();
         mesh.rest_normals = l ? rest.level_normals(l - 1) : rest.normals();
-        set_surface(mesh, model, l);
-        mesh.skin_joints = l ? model.level(l - 1).skin_joints.data() : d.skin.joints.data();
-        mesh.skin_weights = l ? model.level(l - 1).skin_weights.data() : d.skin.weights.data();
+        const Model::LevelMesh lm = model.level_mesh(l);
+        set_surface(mesh, lm);
+        mesh.skin_joints = lm.skin_joints;
+        mesh.skin_weights = lm.skin_weights;
         rb.meshes.push_back(mesh);
     }
     rb.joint_count = J;

@@ -75,6 +75,19 @@ Model::Model(format::ModelData data, const Allocator* alloc)
     kernels::landmarks(data_, mean_planar_.data(), landmark_rest_.data(), 12);
 }
 
+Model::LevelMesh Model::level_mesh(uint32_t level) const {
+    if (level == 0) {
+        const auto& mesh = data_.mesh;
+        const bool uv = !mesh.uvs.empty();
+        return {"full", V_, triangle_count(), uint32_t(mesh.uvs.size() / 2), mesh.triangles.data(), uv ? mesh.uvs.data() : nullptr,
+                uv ? mesh.triangle_uvs.data() : nullptr, data_.skin.joints.data(), data_.skin.weights.data()};
+    }
+    const format::DetailLevel& l = data_.levels[level - 1];
+    const bool uv = !l.uvs.empty();
+    return {l.name.c_str(), l.vertex_count, l.triangle_count(), uint32_t(l.uvs.size() / 2), l.triangles.data(), uv ? l.uvs.data() : nullptr,
+            uv ? l.triangle_uvs.data() : nullptr, l.skin_joints.data(), l.skin_weights.data()};
+}
+
 int64_t Model::find_joint(const std::string& name) const {
     auto it = joint_index_.find(name);
     return it == joint_index_.end() ? int64_t{-1} : int64_t{it->second};

@@ -63,6 +63,19 @@ public:
     const LevelTopology& level_topology(uint32_t l) const { return level_topology_[l]; }
     const SkinLayout& level_skin(uint32_t l) const { return level_skin_[l]; }
 
+    // One mesh of the model by level, as plain arrays: 0 the full mesh, l > 0 level(l - 1). What
+    // the C API and the exporters read, so "level 0 is the full mesh" is decided here once.
+    struct LevelMesh {
+        const char* name;
+        uint32_t vertex_count, triangle_count, uv_count;
+        const uint32_t* triangles;                 // 3 per triangle
+        const float* uvs;                          // 2 per coordinate, null without UVs
+        const uint32_t* triangle_uvs;              // 3 per triangle, null without UVs
+        const uint16_t* skin_joints;               // 4 per vertex
+        const float* skin_weights;                 // 4 per vertex
+    };
+    LevelMesh level_mesh(uint32_t level) const;    // level <= level_count()
+
     // -1 when absent.
     int64_t find_joint(const std::string& name) const;
     int64_t find_landmark(const std::string& name) const;
