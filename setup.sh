@@ -42,6 +42,8 @@ if [ "$mode" = test ]; then packages+=(catch2 libbenchmark-dev clang libclang-rt
   packages+=(mono-mcs mono-runtime)
   command -v cargo > /dev/null 2>&1 || [ -x "$HOME/.cargo/bin/cargo" ] || packages+=(cargo)
   command -v node > /dev/null 2>&1 || packages+=(nodejs npm)
+  # Blender (headless) tests the Blender add-on and imports the GLB files.
+  packages+=(blender)
 fi
 missing=()
 for p in "${packages[@]}"; do

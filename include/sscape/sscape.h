@@ -801,6 +801,44 @@ SSC_EXPERIMENTAL ssc_status ssc_body_get_level_rest_vertices(ssc_body* body, uin
  */
 SSC_EXPERIMENTAL ssc_status ssc_body_write_level_file(ssc_body* body, uint32_t level, const char* path, ssc_file_format format);
 
+/** Shape morph targets in a GLB file (ssc_export_def::morphs). */
+typedef enum ssc_morphs {
+    SSC_MORPHS_NONE = 0,       /**< None (the default). */
+    SSC_MORPHS_COMPONENTS = 1, /**< The first morph_count whole-body shape components; weight 1 = +1
+                                    standard deviation of the component. */
+    SSC_MORPHS_SLIDERS = 2,    /**< The semantic sliders (ssc_model_slider_count; morph_count 0: all, else
+                                    the first morph_count); weight 1 = +1 population standard deviation
+                                    of the slider's attribute, the other sliders held. */
+    SSC_MORPHS_FORCE32 = 0x7FFFFFFF
+} ssc_morphs;
+
+/** Options of ssc_body_export. Fill with ssc_export_def_init; append-only. */
+typedef struct ssc_export_def {
+    uint32_t struct_size;   /**< Set by ssc_export_def_init. */
+    ssc_file_format format; /**< Default SSC_FILE_FORMAT_BY_EXTENSION. */
+    uint32_t level;         /**< Default 0 (the full mesh); a level of detail, or SSC_LEVEL_ALL (GLB only). */
+    ssc_morphs morphs;      /**< Default SSC_MORPHS_NONE; morph targets are GLB only. */
+    uint32_t morph_count;   /**< How many components, or sliders (0: all); default 0. */
+} ssc_export_def;
+
+/** Fills def with the defaults (size: sizeof *def). Threads: any. */
+SSC_EXPERIMENTAL void ssc_export_def_init(ssc_export_def* def, size_t size);
+
+/**
+ * Writes the body as ssc_body_write_level_file does, with options; def NULL: the defaults.
+ * With morph targets every mesh of the GLB carries one target per component or slider around the
+ * body's shape (positions exactly, as the shape is linear in its coefficients; normals to first
+ * order), named in the mesh's extras.targetNames ("component_1", ..., or the sliders' attribute
+ * names), weights 0. An engine that changes the weights moves the joints with the shape from
+ * skins[0].extras.sscape_morphs: per target, each joint node's translation change and each
+ * inverse bind matrix's translation change per unit of weight (docs/engines.md). Every GLB vertex
+ * carries _MODEL_VERTEX, the index of the level's vertex it was split from at a UV seam.
+ * SSC_ERROR_INVALID_ARGUMENT for morph targets in OBJ or PLY, more components or sliders than the
+ * model has, or sliders of a model without them; nothing is written then.
+ * Ownership: none kept. Threads: the body's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_body_export(ssc_body* body, const char* path, const ssc_export_def* def);
+
 /* ---------------------------------------------------------------------------------------------- */
 /* Segment shape spaces (SSC_EXPERIMENTAL: may change in a minor version)                          */
 

@@ -25,16 +25,6 @@ void set_pose(ssc_body* body, ssc_rotation_format format, const float* rotations
     body->body.set_pose(checked_pose(body, format, rotations, joint_count, translation).data(), translation);
 }
 
-// Copies n xyz triples (packed) to out at stride.
-void copy_xyz(const float* src, std::size_t n, float* out, std::size_t stride) {
-    auto* base = reinterpret_cast<unsigned char*>(out);
-    if (stride == 12) {
-        std::memcpy(out, src, n * 12);
-        return;
-    }
-    for (std::size_t i = 0; i < n; ++i) std::memcpy(base + i * stride, src + 3 * i, 12);
-}
-
 void copy_matrices(const ssc_body* body, float* out, const float* src) {
     std::memcpy(out, src, sizeof(float) * 16 * body->body.model().joint_count());
 }

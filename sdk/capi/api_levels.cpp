@@ -1,5 +1,4 @@
 // Levels of detail: level 0 the full mesh, levels 1.. the model's (Model::level(level - 1)).
-#include "export/body_export.hpp"
 #include "guard.hpp"
 #include "handles.hpp"
 
@@ -26,19 +25,6 @@ template <class T>
 void copy_out(const T* values, uint32_t count, std::size_t per_item, T* out, uint32_t capacity) {
     check_output(out, capacity, count, 0, sizeof(T) * per_item);
     std::copy(values, values + std::size_t(count) * per_item, out);
-}
-
-void copy_xyz(const float* src, std::size_t n, float* out, std::size_t stride) {
-    auto* base = reinterpret_cast<unsigned char*>(out);
-    for (std::size_t i = 0; i < n; ++i) std::memcpy(base + i * stride, src + 3 * i, 12);
-}
-
-exporters::BodyFormat body_format(ssc_file_format format, const char* path) {
-    const int32_t f = enum_value(format);
-    SSC_REQUIRE_ARG_S(f >= SSC_FILE_FORMAT_BY_EXTENSION && f <= SSC_FILE_GLB,
-                      "format " << f << " is not an ssc_file_format (0 by extension, 1 OBJ, 2 PLY, 3 GLB)");
-    return f == SSC_FILE_OBJ ? exporters::BodyFormat::Obj : f == SSC_FILE_PLY ? exporters::BodyFormat::Ply
-                             : f == SSC_FILE_GLB ? exporters::BodyFormat::Glb : exporters::format_of(path);
 }
 
 }  // namespace
@@ -179,15 +165,6 @@ ssc_status ssc_body_get_level_rest_vertices(ssc_body* body, uint32_t level, floa
         const uint32_t n = level_at(body->body.model(), level).vertex_count;
         stride = check_output(out, capacity, n, stride, 12);
         kernels::planar_to_xyz(body->body.level_rest(level - 1), n, out, stride);
-    });
-}
-
-ssc_status ssc_body_write_level_file(ssc_body* body, uint32_t level, const char* path, ssc_file_format format) {
-    return guarded(__func__, [&] {
-        need(body, "body");
-        need(path, "path");
-        if (level != SSC_LEVEL_ALL) level_at(body->body.model(), level);
-        exporters::write_body(body->body, path, body_format(format, path), level == SSC_LEVEL_ALL ? exporters::kAllLevels : level);
     });
 }
 

@@ -55,6 +55,16 @@ inline std::string optional_string(const char* s) { return s ? std::string(s) : 
 // Checks an output array of count elements of elem_bytes at stride (0 = packed); returns the stride.
 std::size_t check_output(const void* out, uint64_t capacity, uint64_t count, std::size_t stride, std::size_t elem_bytes);
 
+// Copies n xyz triples (packed) to out at stride (at least 12 bytes).
+inline void copy_xyz(const float* src, std::size_t n, float* out, std::size_t stride) {
+    if (stride == 12) {
+        std::memcpy(out, src, n * 12);
+        return;
+    }
+    auto* base = reinterpret_cast<unsigned char*>(out);
+    for (std::size_t i = 0; i < n; ++i) std::memcpy(base + i * stride, src + 3 * i, 12);
+}
+
 // Reads a caller's def struct: defaults first, then the struct_size bytes the caller declared.
 template <class Def>
 Def read_def(const Def* def, void (*init)(Def*, std::size_t), const char* name) {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -34,7 +35,29 @@ struct Options {
     std::vector<float> hands;  // --hands: left and right closure, or one for both
     std::vector<std::string> segment_texts;  // --segment NAME=C1,C2,...
     std::string lod = "0";                   // --lod: a level of detail, by number or name
+    std::string morphs;                      // --morphs: K components, or "sliders"
 };
+
+// --morphs: "sliders" or a component count, as the export options take them.
+ssc_export_def export_def(ssc_model* model, const std::string& morphs, uint32_t level) {
+    ssc_export_def def;
+    ssc_export_def_init(&def, sizeof def);
+    def.level = level;
+    if (morphs.empty()) return def;
+    if (morphs == "sliders") {
+        if (ssc_model_slider_count(model) == 0) throw UsageError("--morphs sliders: the model has no semantic sliders");
+        def.morphs = SSC_MORPHS_SLIDERS;
+        return def;
+    }
+    const uint32_t K = ssc_model_shape_count(model);
+    char* end = nullptr;
+    const unsigned long k = std::strtoul(morphs.c_str(), &end, 10);
+    if (!std::isdigit(static_cast<unsigned char>(morphs[0])) || *end || k < 1 || k > K)
+        throw UsageError("--morphs: '" + morphs + "' is neither sliders nor a component count from 1 to " + std::to_string(K));
+    def.morphs = SSC_MORPHS_COMPONENTS;
+    def.morph_count = uint32_t(k);
+    return def;
+}
 
 // --lod: the level's number (0 the full mesh) or name, checked against the model's.
 uint32_t find_level(ssc_model* model, const std::string& text) {
@@ -217,6 +240,9 @@ int run_synth(Options o) {
     if (written != 0 && !o.landmarks_png.empty()) throw UsageError("--landmarks-png draws the full mesh: leave --lod out");
     if (written == SSC_LEVEL_ALL && exporters::format_of(o.out) != exporters::BodyFormat::Glb)
         throw UsageError("--lod all writes every level into one glTF file: the output must be .glb");
+    if (!o.morphs.empty() && exporters::format_of(o.out) != exporters::BodyFormat::Glb)
+        throw UsageError("--morphs: morph targets are written into glTF files: the output must be .glb");
+    const ssc_export_def def = export_def(model, o.morphs, written);
     const uint32_t level = written == SSC_LEVEL_ALL ? 0 : written;  // what the table and --png show
     ssc_level_info info{};
     info.struct_size = sizeof info;
@@ -271,7 +297,7 @@ int run_synth(Options o) {
         check(ssc_body_get_level_vertices(guard.body, level, verts.data(), V, 0), "vertices");
         // The library writes the file: OBJ with normals and UVs, binary PLY, or rigged glTF.
         const std::string path = numbered(o.out, i, n);
-        check(ssc_body_write_level_file(guard.body, written, staging.path(path).c_str(), SSC_FILE_FORMAT_BY_EXTENSION), path);
+        check(ssc_body_export(guard.body, staging.path(path).c_str(), &def), path);
         if (!o.png.empty() && rendered.size() < 20) rendered.push_back(verts);
         if (!o.landmarks_png.empty() && i == 0) {  // drawn once every body is written
             const uint32_t L = ssc_model_landmark_count(model);
@@ -358,6 +384,9 @@ Run add_synth(CLI::App& app) {
         ->type_name("NAME=C1,C2,...");
     c->add_option("--lod", o->lod, "the level of detail to write, by number or name (0 or full: the whole mesh; sscape info lists "
                                    "the model's); all: every level in one .glb, a node each")->type_name("LEVEL")->capture_default_str();
+    c->add_option("--morphs", o->morphs, "shape morph targets in the .glb, so an engine varies the body without the library: K (the "
+                  "first K shape components, weight 1 = +1 SD) or sliders (the semantic sliders, weight 1 = +1 SD of the attribute); "
+                  "the joints' motion per unit of weight goes into the file's extras (docs/engines.md)")->type_name("K|sliders");
     c->add_flag("--normals", o->normals, "kept for old scripts: normals are always written");
     random->excludes(shape)->excludes(sliders)->excludes(measure);
     return [o] { return run_synth(*o); };

@@ -47,7 +47,7 @@ constexpr int kArrayBuffer = 34962, kElementBuffer = 34963;
 
 // One mesh's primitive: its attributes and indices in the binary chunk, one output vertex per
 // distinct (vertex, uv) pair (glTF attributes are per vertex). Returns the primitive (material 0).
-json add_primitive(Bin& bin, const RiggedMesh& b, uint32_t joint_count) {
+json add_primitive(Bin& bin, const RiggedMesh& b, uint32_t joint_count, std::size_t morph_count) {
     SSC_REQUIRE_ARG(b.vertex_count > 0 && b.rest_positions && b.triangles && b.triangle_count > 0, "glTF export: no mesh");
     SSC_REQUIRE_ARG(b.skin_joints && b.skin_weights, "glTF export: a mesh without a skin");
     const bool has_uv = b.uvs && b.triangle_uvs && b.uv_count > 0;
@@ -94,8 +94,63 @@ json add_primitive(Bin& bin, const RiggedMesh& b, uint32_t joint_count) {
     if (has_uv) attributes["TEXCOORD_0"] = bin.add(uv.data(), uv.size() * 4, kFloat, n, "VEC2", kArrayBuffer);
     attributes["JOINTS_0"] = bin.add(joints.data(), joints.size() * 2, kUShort, n, "VEC4", kArrayBuffer);
     attributes["WEIGHTS_0"] = bin.add(weights.data(), weights.size() * 4, kFloat, n, "VEC4", kArrayBuffer);
+    // The mesh vertex each glTF vertex was split from (glTF allows no integer vertex attributes).
+    std::vector<float> model_vertex(source.begin(), source.end());
+    attributes["_MODEL_VERTEX"] = bin.add(model_vertex.data(), n * 4, kFloat, n, "SCALAR", kArrayBuffer);
     const int index_acc = bin.add(indices.data(), indices.size() * 4, kUInt, indices.size(), "SCALAR", kElementBuffer);
-    return {{"attributes", attributes}, {"indices", index_acc}, {"mode", 4}, {"material", 0}};
+    json primitive = {{"attributes", attributes}, {"indices", index_acc}, {"mode", 4}, {"material", 0}};
+
+    SSC_REQUIRE_ARG(b.morph_positions.size() == morph_count && (b.morph_normals.empty() || b.morph_normals.size() == morph_count),
+                    "glTF export: a mesh without every morph target");
+    json targets = json::array();
+    std::vector<float> delta(3 * n);
+    for (std::size_t m = 0; m < morph_count; ++m) {
+        json target;
+        float dlo[3] = {1e30f, 1e30f, 1e30f}, dhi[3] = {-1e30f, -1e30f, -1e30f};
+        for (std::size_t i = 0; i < n; ++i)
+            for (int a = 0; a < 3; ++a) {
+                delta[3 * i + a] = b.morph_positions[m][3 * source[i] + a];
+                dlo[a] = std::min(dlo[a], delta[3 * i + a]);
+                dhi[a] = std::max(dhi[a], delta[3 * i + a]);
+            }
+        target["POSITION"] = bin.add(delta.data(), delta.size() * 4, kFloat, n, "VEC3", kArrayBuffer,
+                                     {{"min", {dlo[0], dlo[1], dlo[2]}}, {"max", {dhi[0], dhi[1], dhi[2]}}});
+        if (!b.morph_normals.empty() && b.rest_normals) {
+            for (std::size_t i = 0; i < n; ++i)
+                for (int a = 0; a < 3; ++a) delta[3 * i + a] = b.morph_normals[m][3 * source[i] + a];
+            target["NORMAL"] = bin.add(delta.data(), delta.size() * 4, kFloat, n, "VEC3", kArrayBuffer);
+        }
+        targets.push_back(target);
+    }
+    if (morph_count) primitive["targets"] = targets;
+    return primitive;
+}
+
+// skins[0].extras.sscape_morphs: per morph target, what one unit of weight adds to each joint
+// node's translation (node j's is its offset from its parent in the parent's rest frame,
+// W_parent^T (p_j - p_parent), or p_root) and to each inverse bind matrix's translation (-W_j^T p_j).
+json morph_joint_extras(const RiggedBody& b) {
+    json out = json::array();
+    for (const RiggedMorph& m : b.morphs) {
+        SSC_REQUIRE_ARG(m.joint_offsets.size() == 3ull * b.joint_count, "glTF export: a morph target without its joints' offsets");
+        std::vector<float> node(3ull * b.joint_count), ibm(3ull * b.joint_count);
+        for (uint32_t j = 0; j < b.joint_count; ++j) {
+            // The rest rotation W_j^T is the inverse bind matrix's upper-left 3x3.
+            const Eigen::Matrix3f Wt = Eigen::Map<const Eigen::Matrix4f>(b.inverse_bind + 16 * j).topLeftCorner<3, 3>();
+            const Eigen::Vector3f d(m.joint_offsets.data() + 3 * j);
+            Eigen::Vector3f local = d;
+            if (b.parents[j] >= 0) {
+                const auto p = std::size_t(b.parents[j]);
+                const Eigen::Matrix3f Wpt = Eigen::Map<const Eigen::Matrix4f>(b.inverse_bind + 16 * p).topLeftCorner<3, 3>();
+                local = Wpt * (d - Eigen::Vector3f(m.joint_offsets.data() + 3 * p));
+            }
+            const Eigen::Vector3f bind = -(Wt * d);
+            for (int a = 0; a < 3; ++a) node[3 * j + a] = local[a], ibm[3 * j + a] = bind[a];
+        }
+        out.push_back({{"name", m.name}, {"kind", m.kind}, {"per_weight", m.per_weight}, {"unit", m.unit},
+                       {"node_translation", node}, {"inverse_bind_translation", ibm}, {"joint_position", m.joint_offsets}});
+    }
+    return out;
 }
 
 }  // namespace
@@ -106,7 +161,16 @@ void write_glb(const std::string& path, const RiggedBody& b) {
                     "glTF export: incomplete skeleton");
     Bin bin;
     json meshes = json::array();
-    for (const RiggedMesh& m : b.meshes) meshes.push_back({{"name", m.name}, {"primitives", {add_primitive(bin, m, b.joint_count)}}});
+    json target_names = json::array();
+    for (const RiggedMorph& m : b.morphs) target_names.push_back(m.name);
+    for (const RiggedMesh& m : b.meshes) {
+        json mesh = {{"name", m.name}, {"primitives", {add_primitive(bin, m, b.joint_count, b.morphs.size())}}};
+        if (!b.morphs.empty()) {
+            mesh["weights"] = std::vector<float>(b.morphs.size(), 0.f);
+            mesh["extras"] = {{"targetNames", target_names}};
+        }
+        meshes.push_back(mesh);
+    }
     const int ibm_acc = bin.add(b.inverse_bind, 64ull * b.joint_count, kFloat, b.joint_count, "MAT4", 0);
 
     // Joint nodes carry the posed local transforms: local = world_parent^-1 * world.
@@ -156,6 +220,8 @@ void write_glb(const std::string& path, const RiggedBody& b) {
         textures.push_back({{"source", 0}, {"sampler", 0}});
         pbr["baseColorTexture"] = {{"index", 0}};
     }
+    json skin = {{"joints", joint_list}, {"inverseBindMatrices", ibm_acc}, {"skeleton", 0}};
+    if (!b.morphs.empty()) skin["extras"] = {{"sscape_morphs", morph_joint_extras(b)}};
     const json material = {{"name", "skin"}, {"pbrMetallicRoughness", pbr}, {"doubleSided", false}};
     json doc = {{"asset", {{"version", "2.0"}, {"generator", "sscape"}}},
                 {"scene", 0},
@@ -163,7 +229,7 @@ void write_glb(const std::string& path, const RiggedBody& b) {
                 {"nodes", nodes},
                 {"meshes", meshes},
                 {"materials", {material}},
-                {"skins", {{{"joints", joint_list}, {"inverseBindMatrices", ibm_acc}, {"skeleton", 0}}}},
+                {"skins", {skin}},
                 {"buffers", {{{"byteLength", 0}}}},
                 {"bufferViews", bin.views},
                 {"accessors", bin.accessors}};

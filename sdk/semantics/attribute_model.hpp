@@ -14,6 +14,8 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +30,8 @@ public:
     bool empty() const { return attributes_.empty(); }
     const std::vector<format::Attribute>& attributes() const { return attributes_; }
     int find(const std::string& name) const;  // -1 when absent
+    // The population's standard deviation of an attribute.
+    double standard_deviation(int attribute) const { return std::sqrt(covariance_(attribute, attribute)); }
 
     // The values accepted for an attribute (slider values, made-to-measure targets): the
     // population's range (0.5th to 99.5th percentile) widened by its own width on each side, and

@@ -38,6 +38,12 @@ int main(void) {
     printf("ssc_level_info.vertex_count offset %zu\n", offsetof(ssc_level_info, vertex_count));
     printf("ssc_level_info.triangle_count offset %zu\n", offsetof(ssc_level_info, triangle_count));
     printf("ssc_level_info.uv_count offset %zu\n", offsetof(ssc_level_info, uv_count));
+    printf("ssc_export_def size %zu\n", sizeof(ssc_export_def));
+    printf("ssc_export_def.struct_size offset %zu\n", offsetof(ssc_export_def, struct_size));
+    printf("ssc_export_def.format offset %zu\n", offsetof(ssc_export_def, format));
+    printf("ssc_export_def.level offset %zu\n", offsetof(ssc_export_def, level));
+    printf("ssc_export_def.morphs offset %zu\n", offsetof(ssc_export_def, morphs));
+    printf("ssc_export_def.morph_count offset %zu\n", offsetof(ssc_export_def, morph_count));
     printf("ssc_segment_info size %zu\n", sizeof(ssc_segment_info));
     printf("ssc_segment_info.struct_size offset %zu\n", offsetof(ssc_segment_info, struct_size));
     printf("ssc_segment_info.name offset %zu\n", offsetof(ssc_segment_info, name));

@@ -89,6 +89,14 @@ namespace Sscape.Native
         SSC_UNIT_FORCE32 = 2147483647,
     }
 
+    public enum ssc_morphs : int
+    {
+        SSC_MORPHS_NONE = 0,
+        SSC_MORPHS_COMPONENTS = 1,
+        SSC_MORPHS_SLIDERS = 2,
+        SSC_MORPHS_FORCE32 = 2147483647,
+    }
+
     public enum ssc_rotation_format : int
     {
         SSC_ROTATION_QUATERNION = 0,
@@ -216,6 +224,16 @@ namespace Sscape.Native
         public uint @vertex_count;
         public uint @triangle_count;
         public uint @uv_count;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct ssc_export_def
+    {
+        public uint @struct_size;
+        public ssc_file_format @format;
+        public uint @level;
+        public ssc_morphs @morphs;
+        public uint @morph_count;
     }
 
     [StructLayout(LayoutKind.Sequential)]
@@ -611,6 +629,12 @@ namespace Sscape.Native
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern ssc_status ssc_body_write_level_file(IntPtr @body, uint @level, byte* @path, ssc_file_format @format);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern void ssc_export_def_init(ssc_export_def* @def, UIntPtr @size);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_body_export(IntPtr @body, byte* @path, ssc_export_def* @def);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern uint ssc_model_segment_count(IntPtr @model);

@@ -16,6 +16,7 @@ const enums = {
   ssc_limit_mode: { SSC_LIMITS_REJECT: 0, SSC_LIMITS_CLAMP: 1, SSC_LIMIT_MODE_FORCE32: 2147483647 },
   ssc_measurement: { SSC_MEASUREMENT_STATURE: 0, SSC_MEASUREMENT_CHEST_GIRTH: 1, SSC_MEASUREMENT_UNDERBUST_GIRTH: 2, SSC_MEASUREMENT_WAIST_GIRTH: 3, SSC_MEASUREMENT_HIP_GIRTH: 4, SSC_MEASUREMENT_NECK_GIRTH: 5, SSC_MEASUREMENT_THIGH_GIRTH: 6, SSC_MEASUREMENT_CALF_GIRTH: 7, SSC_MEASUREMENT_UPPER_ARM_GIRTH: 8, SSC_MEASUREMENT_WRIST_GIRTH: 9, SSC_MEASUREMENT_INSEAM: 10, SSC_MEASUREMENT_ARM_LENGTH: 11, SSC_MEASUREMENT_SHOULDER_BREADTH: 12, SSC_MEASUREMENT_SURFACE_AREA: 13, SSC_MEASUREMENT_VOLUME: 14, SSC_MEASUREMENT_MASS: 15, SSC_MEASUREMENT_FORCE32: 2147483647 },
   ssc_unit: { SSC_UNIT_METRE: 0, SSC_UNIT_SQUARE_METRE: 1, SSC_UNIT_CUBIC_METRE: 2, SSC_UNIT_KILOGRAM: 3, SSC_UNIT_FORCE32: 2147483647 },
+  ssc_morphs: { SSC_MORPHS_NONE: 0, SSC_MORPHS_COMPONENTS: 1, SSC_MORPHS_SLIDERS: 2, SSC_MORPHS_FORCE32: 2147483647 },
   ssc_rotation_format: { SSC_ROTATION_QUATERNION: 0, SSC_ROTATION_AXIS_ANGLE: 1, SSC_ROTATION_FORMAT_FORCE32: 2147483647 },
   ssc_depth_format: { SSC_DEPTH_U16_MM: 0, SSC_DEPTH_F32_M: 1, SSC_DEPTH_FORMAT_FORCE32: 2147483647 },
   ssc_fit_problem: { SSC_FIT_PROBLEM_NONE: 0, SSC_FIT_PROBLEM_JOINT_PAST_RANGE: 1, SSC_FIT_PROBLEM_SCAN_UNEXPLAINED: 2, SSC_FIT_PROBLEM_LIMB_OFF_SCAN: 3, SSC_FIT_PROBLEM_LIMB_INSIDE: 4, SSC_FIT_PROBLEM_FORCE32: 2147483647 },
@@ -71,6 +72,13 @@ function declareTypes(koffi) {
     vertex_count: 'uint32_t',
     triangle_count: 'uint32_t',
     uv_count: 'uint32_t',
+  });
+  types.ssc_export_def = koffi.struct('ssc_export_def', {
+    struct_size: 'uint32_t',
+    format: 'int32_t',
+    level: 'uint32_t',
+    morphs: 'int32_t',
+    morph_count: 'uint32_t',
   });
   types.ssc_segment_info = koffi.struct('ssc_segment_info', {
     struct_size: 'uint32_t',
@@ -275,6 +283,8 @@ const prototypes = [
   'int32_t ssc_body_get_level_normals(ssc_body* body, uint32_t level, float* out, uint32_t capacity, size_t stride)',
   'int32_t ssc_body_get_level_rest_vertices(ssc_body* body, uint32_t level, float* out, uint32_t capacity, size_t stride)',
   'int32_t ssc_body_write_level_file(ssc_body* body, uint32_t level, const char* path, int32_t format)',
+  'void ssc_export_def_init(_Inout_ ssc_export_def* def, size_t size)',
+  'int32_t ssc_body_export(ssc_body* body, const char* path, const ssc_export_def* def)',
   'uint32_t ssc_model_segment_count(const ssc_model* model)',
   'int32_t ssc_model_get_segment_info(const ssc_model* model, uint32_t index, _Inout_ ssc_segment_info* out)',
   'int32_t ssc_model_find_segment(const ssc_model* model, const char* name, uint32_t* out_index)',

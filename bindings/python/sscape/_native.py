@@ -80,6 +80,8 @@ class RegistrationReport(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("rounds", c_uint32), ("solves", c_uint32), ("valid_vertices", c_uint32),
                 ("seconds", c_float), ("fit_seconds", c_float), ("quality", RegistrationQuality), ("scan_points", c_uint32),
                 ("landmarks", c_uint32)]
+class ExportDef(ctypes.Structure):
+    _fields_ = [("struct_size", c_uint32), ("format", c_int32), ("level", c_uint32), ("morphs", c_int32), ("morph_count", c_uint32)]
 class BodyDef(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("reserved", c_uint32)]
 class DepthImageDef(ctypes.Structure):
@@ -244,6 +246,8 @@ _DECLARATIONS = {
     "ssc_body_get_level_normals": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32, c_size_t]),
     "ssc_body_get_level_rest_vertices": (_STATUS, [_BODY, c_uint32, c_float_p, c_uint32, c_size_t]),
     "ssc_body_write_level_file": (_STATUS, [_BODY, c_uint32, c_char_p, c_int32]),
+    "ssc_export_def_init": (None, [POINTER(ExportDef), c_size_t]),
+    "ssc_body_export": (_STATUS, [_BODY, c_char_p, POINTER(ExportDef)]),
 }
 
 # The offline tools (sscape_offline.h): in libsscape_offline.so only.

@@ -7,7 +7,7 @@ from typing import Dict, List, Optional, Union
 
 import numpy as np
 
-from ._native import BodyDef, MadeToMeasureDef, c_float_p, c_uint32_p, lib
+from ._native import BodyDef, ExportDef, MadeToMeasureDef, c_float_p, c_uint32_p, lib
 from ._handle import Handle, progress_callback
 from .errors import check
 from .model import Model
@@ -264,16 +264,26 @@ class Body(Handle):
         check(lib.ssc_body_measure_by_name(self.handle, name.encode(), ctypes.byref(out)))
         return out.value
 
-    def write(self, path: Union[str, os.PathLike], format: Optional[str] = None, level: Union[int, str] = 0) -> None:
+    def write(self, path: Union[str, os.PathLike], format: Optional[str] = None, level: Union[int, str] = 0,
+              morphs: Union[int, str, None] = None) -> None:
         """Writes the body as OBJ, PLY or rigged glTF (.glb); format None: from the extension; level: a level of
-        detail (Model.levels) by index or name, 0 the full mesh, or "all": every level in one .glb (a node each)."""
+        detail (Model.levels) by index or name, 0 the full mesh, or "all": every level in one .glb (a node each).
+        morphs (.glb only): K for the first K shape components as morph targets (weight 1 = +1 SD), or
+        "sliders" for the semantic sliders (weight 1 = +1 SD of the attribute); the file's
+        skins[0].extras.sscape_morphs says how the joints move per unit of weight (docs/engines.md)."""
         if format not in _FORMATS:
             raise ValueError(f"format must be one of obj, ply, glb or None, not {format!r}")
         index = 0xFFFFFFFF if level == "all" else self.model.level(level).index
-        if index == 0:
-            check(lib.ssc_body_write_file(self.handle, os.fsencode(path), _FORMATS[format]))
-        else:
-            check(lib.ssc_body_write_level_file(self.handle, index, os.fsencode(path), _FORMATS[format]))
+        d = ExportDef()
+        lib.ssc_export_def_init(ctypes.byref(d), ctypes.sizeof(d))
+        d.format, d.level = _FORMATS[format], index
+        if morphs == "sliders":
+            d.morphs = 2
+        elif morphs is not None:
+            if isinstance(morphs, bool) or not isinstance(morphs, int):
+                raise TypeError(f"morphs must be a component count or 'sliders', not {morphs!r}")
+            d.morphs, d.morph_count = 1, morphs
+        check(lib.ssc_body_export(self.handle, os.fsencode(path), ctypes.byref(d)))
 
     def level_vertices(self, level: Union[int, str], out: Optional[np.ndarray] = None) -> np.ndarray:
         """(N, 3) float32 posed vertices of a level of detail (Model.levels; by index or name), metres."""

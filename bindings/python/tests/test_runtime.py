@@ -581,3 +581,35 @@ def test_levels_of_detail(model, tmp_path):
         model.level("proxy9")
     with pytest.raises(IndexError):
         body.level_vertices(4)
+
+
+def _glb_json(path):
+    import json
+    import struct
+    data = path.read_bytes()
+    length = struct.unpack_from("<I", data, 12)[0]
+    return json.loads(data[20:20 + length])
+
+
+def test_glb_morph_targets(model, tmp_path):
+    body = sscape.Body(model)
+    body.write(tmp_path / "components.glb", level="all", morphs=4)
+    doc = _glb_json(tmp_path / "components.glb")
+    assert len(doc["meshes"]) == len(model.levels)
+    for mesh in doc["meshes"]:
+        assert mesh["extras"]["targetNames"] == ["component_1", "component_2", "component_3", "component_4"]
+        assert len(mesh["primitives"][0]["targets"]) == 4
+        assert "_MODEL_VERTEX" in mesh["primitives"][0]["attributes"]
+    morphs = doc["skins"][0]["extras"]["sscape_morphs"]
+    assert [m["unit"] for m in morphs] == ["sd"] * 4
+    assert len(morphs[0]["node_translation"]) == 3 * len(model.joint_names)
+    body.write(tmp_path / "sliders.glb", morphs="sliders")
+    names = _glb_json(tmp_path / "sliders.glb")["meshes"][0]["extras"]["targetNames"]
+    assert names == [s.name for s in model.sliders]
+    with pytest.raises(sscape.SscapeError, match="glTF"):
+        body.write(tmp_path / "x.obj", morphs=2)
+    with pytest.raises(TypeError):
+        body.write(tmp_path / "x.glb", morphs=2.5)
+    with pytest.raises(sscape.SscapeError):
+        body.write(tmp_path / "x.glb", morphs=model.shape_count + 1)
+    assert not (tmp_path / "x.obj").exists() and not (tmp_path / "x.glb").exists()

@@ -81,6 +81,12 @@ pub const SSC_UNIT_CUBIC_METRE: ssc_unit = 2;
 pub const SSC_UNIT_KILOGRAM: ssc_unit = 3;
 pub const SSC_UNIT_FORCE32: ssc_unit = 2147483647;
 
+pub type ssc_morphs = i32;
+pub const SSC_MORPHS_NONE: ssc_morphs = 0;
+pub const SSC_MORPHS_COMPONENTS: ssc_morphs = 1;
+pub const SSC_MORPHS_SLIDERS: ssc_morphs = 2;
+pub const SSC_MORPHS_FORCE32: ssc_morphs = 2147483647;
+
 pub type ssc_rotation_format = i32;
 pub const SSC_ROTATION_QUATERNION: ssc_rotation_format = 0;
 pub const SSC_ROTATION_AXIS_ANGLE: ssc_rotation_format = 1;
@@ -218,6 +224,16 @@ pub struct ssc_level_info {
     pub vertex_count: u32,
     pub triangle_count: u32,
     pub uv_count: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct ssc_export_def {
+    pub struct_size: u32,
+    pub format: ssc_file_format,
+    pub level: u32,
+    pub morphs: ssc_morphs,
+    pub morph_count: u32,
 }
 
 #[repr(C)]
@@ -444,6 +460,8 @@ extern "C" {
     pub fn ssc_body_get_level_normals(body: *mut ssc_body, level: u32, out: *mut f32, capacity: u32, stride: usize) -> ssc_status;
     pub fn ssc_body_get_level_rest_vertices(body: *mut ssc_body, level: u32, out: *mut f32, capacity: u32, stride: usize) -> ssc_status;
     pub fn ssc_body_write_level_file(body: *mut ssc_body, level: u32, path: *const c_char, format: ssc_file_format) -> ssc_status;
+    pub fn ssc_export_def_init(def: *mut ssc_export_def, size: usize);
+    pub fn ssc_body_export(body: *mut ssc_body, path: *const c_char, def: *const ssc_export_def) -> ssc_status;
     pub fn ssc_model_segment_count(model: *const ssc_model) -> u32;
     pub fn ssc_model_get_segment_info(model: *const ssc_model, index: u32, out: *mut ssc_segment_info) -> ssc_status;
     pub fn ssc_model_find_segment(model: *const ssc_model, name: *const c_char, out_index: *mut u32) -> ssc_status;
