@@ -309,3 +309,65 @@ TEST_CASE("MakeHuman proxy meshes are read, bound to the body and refused when m
     CHECK_THROWS_WITH(training::mh::read_proxy(write("eight.proxy", head + "0\n1\n2 3 4 0.2 0.3 0.5 0 0\n"), 100), Catch::Contains("a binding is one base vertex or 9 numbers"));
     CHECK_THROWS_WITH(training::mh::read_proxy(write("huge.proxy", head + "0\n1\n2 3 4 1e300 0.3 0.5 0 0 0\n"), 100), Catch::Contains("out of range"));
 }
+
+TEST_CASE("batch synthesis of a level of detail gives what a body gives", "[levels][batch]") {
+    test::DefaultBody b;
+    const uint32_t K = ssc_model_shape_count(b.model), J = ssc_model_joint_count(b.model), n = 5;
+    std::vector<float> shapes(std::size_t(n) * K), poses(std::size_t(n) * 4 * J), translations(3 * n);
+    REQUIRE(ssc_model_sample_shapes(b.model, 11, n, 2.5f, shapes.data(), uint32_t(shapes.size())) == SSC_OK);
+    const char* names[] = {"sitting", "arms_raised", "t_pose", "crouching", "a_pose"};
+    for (uint32_t i = 0; i < n; ++i) {
+        REQUIRE(ssc_model_get_named_pose(b.model, names[i], &poses[std::size_t(i) * 4 * J], J) == SSC_OK);
+        translations[3 * i] = 0.1f * float(i);
+    }
+    for (uint32_t level = 1; level < ssc_model_level_count(b.model); ++level) {
+        ssc_level_info info{};
+        info.struct_size = sizeof info;
+        REQUIRE(ssc_model_get_level_info(b.model, level, &info) == SSC_OK);
+        const uint32_t N = info.vertex_count;
+        std::vector<float> vertices(3ull * n * N), normals(3ull * n * N);
+        ssc_batch_desc d;
+        ssc_batch_desc_init(&d, sizeof d);
+        d.body_count = n;
+        d.shapes = shapes.data();
+        d.shape_count = K;
+        d.poses = poses.data();
+        d.translations = translations.data();
+        d.vertices = vertices.data();
+        d.vertices_capacity = std::size_t(n) * N;
+        d.normals = normals.data();
+        d.normals_capacity = std::size_t(n) * N;
+        d.level = level;
+        REQUIRE(ssc_model_synthesize_batch(b.model, &d) == SSC_OK);
+        double worst = 0, worst_normal = 0;
+        std::vector<float> one(3ull * N), one_normals(3ull * N);
+        for (uint32_t i = 0; i < n; ++i) {
+            REQUIRE(ssc_body_set_shape(b.body, &shapes[std::size_t(i) * K], K) == SSC_OK);
+            REQUIRE(ssc_body_set_pose(b.body, &poses[std::size_t(i) * 4 * J], J, &translations[3 * i]) == SSC_OK);
+            REQUIRE(ssc_body_get_level_vertices(b.body, level, one.data(), N, 0) == SSC_OK);
+            REQUIRE(ssc_body_get_level_normals(b.body, level, one_normals.data(), N, 0) == SSC_OK);
+            for (std::size_t k = 0; k < 3ull * N; ++k) {
+                worst = std::max(worst, double(std::abs(one[k] - vertices[3ull * N * i + k])));
+                worst_normal = std::max(worst_normal, double(std::abs(one_normals[k] - normals[3ull * N * i + k])));
+            }
+        }
+        INFO("level " << level);
+        CHECK(worst < 1e-6);
+        CHECK(worst_normal < 1e-5);
+        // The level's size, not the full mesh's: one vertex short is refused, outputs untouched.
+        d.vertices_capacity = std::size_t(n) * N - 1;
+        std::fill(vertices.begin(), vertices.end(), -7.f);
+        CHECK(ssc_model_synthesize_batch(b.model, &d) == SSC_ERROR_BUFFER_TOO_SMALL);
+        CHECK(vertices[0] == -7.f);
+    }
+    ssc_batch_desc d;
+    ssc_batch_desc_init(&d, sizeof d);
+    CHECK(d.level == 0);
+    d.body_count = 1;
+    d.level = ssc_model_level_count(b.model);
+    std::vector<float> out(3ull * ssc_model_vertex_count(b.model));
+    d.vertices = out.data();
+    d.vertices_capacity = ssc_model_vertex_count(b.model);
+    CHECK(ssc_model_synthesize_batch(b.model, &d) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(ssc_last_error()).find("level") != std::string::npos);
+}

@@ -968,10 +968,13 @@ typedef struct ssc_batch_desc {
     ssc_rotation_format pose_format; /**< Format of poses. Default SSC_ROTATION_QUATERNION. */
     const float* poses;              /**< body_count * joint_count rotations; NULL = rest pose. */
     const float* translations;       /**< body_count * 3 floats; NULL = zero. */
-    float* vertices;                 /**< Out: body_count * vertex_count * 3 floats, body after body. */
+    float* vertices;                 /**< Out: body_count * vertex_count * 3 floats, body after body (the level's vertex count with level). */
     size_t vertices_capacity;        /**< Vertices the buffer holds: >= body_count * vertex_count. */
     float* normals;                  /**< Optional out (NULL = skip), laid out like vertices. */
     size_t normals_capacity;         /**< Vertices normals holds. */
+    uint32_t level;                  /**< Level of detail (ssc_model_level_count): 0 the full mesh (default);
+                                          the outputs then hold the level's vertices, as
+                                          ssc_body_get_level_vertices / _normals give them. */
 } ssc_batch_desc;
 
 /** Fills desc with defaults (no bodies); size = sizeof(*desc). Threads: any. */

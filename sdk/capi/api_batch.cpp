@@ -28,7 +28,9 @@ ssc_status ssc_model_synthesize_batch(const ssc_model* model, const ssc_batch_de
         need(desc, "desc");
         const ssc_batch_desc d = read_def(desc, ssc_batch_desc_init, "desc");
         const Model& m = model->model;
-        const uint32_t V = m.vertex_count(), J = m.joint_count(), K = m.component_count();
+        const uint32_t J = m.joint_count(), K = m.component_count();
+        SSC_REQUIRE_ARG_S(d.level <= m.level_count(), "desc->level " << d.level << " is out of range (count " << m.level_count() + 1 << ", 0 the full mesh)");
+        const uint32_t V = m.level_mesh(d.level).vertex_count;  // the level's vertices
         const std::size_t n = d.body_count;
         if (n == 0) return;
         SSC_REQUIRE_ARG(d.shape_count <= K, "shape_count is " + std::to_string(d.shape_count) + "; the model has " +
@@ -64,6 +66,7 @@ ssc_status ssc_model_synthesize_batch(const ssc_model* model, const ssc_batch_de
         job.translations = d.translations;
         job.vertices = d.vertices;
         job.normals = d.normals;
+        job.level = d.level;
         synthesize_batch(m, model->context->pool, job);
     });
 }

@@ -1,6 +1,7 @@
 #include "batch.hpp"
 
 #include "kernels.hpp"
+#include "levels.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -13,6 +14,9 @@ constexpr std::size_t kGroup = 8;  // bodies sharing one pass over the basis
 
 void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
     const uint32_t V = m.vertex_count(), J = m.joint_count(), K = m.component_count();
+    // A level of detail: the level's map of the rest body, posed by its own skin (as Body does).
+    const format::DetailLevel* level = job.level ? &m.level(job.level - 1) : nullptr;
+    const uint32_t N = level ? level->vertex_count : V;
     const std::size_t groups = (job.count + kGroup - 1) / kGroup;
     std::vector<float> identity(4ull * J, 0.f);
     for (uint32_t j = 0; j < J; ++j) identity[4 * j + 3] = 1.f;
@@ -20,7 +24,7 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
     // Scratch per thread, allocated before any output is written: an allocation failure leaves
     // the caller's buffers untouched.
     struct Scratch {
-        std::vector<float> coeffs, rest, joints, skeleton, faces, posed;
+        std::vector<float> coeffs, rest, joints, skeleton, faces, posed, level_rest;
         std::vector<kernels::SkinMatrix> skinning;
     };
     std::vector<Scratch> scratch(pool.size());
@@ -31,7 +35,8 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
         s.skinning.resize(J);
         s.posed.resize(3ull * V);
         s.skeleton.resize(kernels::kSkeletonScratch * J);
-        if (job.normals) s.faces.resize(3ull * m.triangle_count());
+        if (job.normals) s.faces.resize(3ull * (level ? level->triangle_count() : m.triangle_count()));
+        if (level) s.level_rest.resize(3ull * N);
     }
     pool.parallel_for(groups, [&](std::size_t group, unsigned worker) {
         Scratch& s = scratch[worker];
@@ -55,9 +60,18 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
             const float* q = job.quats ? job.quats + b * 4ull * J : identity.data();
             const float* t = job.translations ? job.translations + 3 * b : zero;
             kernels::skeleton(m, jp[g], q, t, s.skeleton.data(), nullptr, nullptr, s.skinning.data());
-            kernels::skin(m, rp[g], s.skinning.data(), s.posed.data());
-            kernels::planar_to_xyz(s.posed.data(), V, job.vertices + b * 3ull * V, 12, /*streaming=*/true);
-            if (job.normals) kernels::normals(m, s.posed.data(), s.faces.data(), job.normals + b * 3ull * V);
+            if (level) {
+                const SkinLayout& skin = m.level_skin(job.level - 1);
+                levels::from_body(*level, rp[g], V, s.level_rest.data());
+                kernels::skin_slots(skin, s.level_rest.data(), s.skinning.data(), s.posed.data(), 0, skin.slot_count(), kernels::active_isa());
+            } else {
+                kernels::skin(m, rp[g], s.skinning.data(), s.posed.data());
+            }
+            kernels::planar_to_xyz(s.posed.data(), N, job.vertices + b * 3ull * N, 12, /*streaming=*/true);
+            if (job.normals && level)
+                levels::normals(*level, m.level_topology(job.level - 1), s.posed.data(), s.faces.data(), job.normals + b * 3ull * N);
+            else if (job.normals)
+                kernels::normals(m, s.posed.data(), s.faces.data(), job.normals + b * 3ull * V);
         }
     });
 }

@@ -15,6 +15,7 @@ struct BatchJob {
     const float* translations = nullptr;  // count * 3, or null
     float* vertices = nullptr;       // count * 3V
     float* normals = nullptr;        // count * 3V, or null
+    uint32_t level = 0;              // 0 the full mesh; l > 0 the model's level l - 1 (V its vertices then)
 };
 
 // Inputs must be valid (checked by the caller).

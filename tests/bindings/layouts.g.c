@@ -67,6 +67,7 @@ int main(void) {
     printf("ssc_batch_desc.vertices_capacity offset %zu\n", offsetof(ssc_batch_desc, vertices_capacity));
     printf("ssc_batch_desc.normals offset %zu\n", offsetof(ssc_batch_desc, normals));
     printf("ssc_batch_desc.normals_capacity offset %zu\n", offsetof(ssc_batch_desc, normals_capacity));
+    printf("ssc_batch_desc.level offset %zu\n", offsetof(ssc_batch_desc, level));
     printf("ssc_fitter_def size %zu\n", sizeof(ssc_fitter_def));
     printf("ssc_fitter_def.struct_size offset %zu\n", offsetof(ssc_fitter_def, struct_size));
     printf("ssc_fitter_def.shape_count offset %zu\n", offsetof(ssc_fitter_def, shape_count));

@@ -269,6 +269,7 @@ namespace Sscape.Native
         public UIntPtr @vertices_capacity;
         public float* @normals;
         public UIntPtr @normals_capacity;
+        public uint @level;
     }
 
     [StructLayout(LayoutKind.Sequential)]

@@ -105,6 +105,7 @@ function declareTypes(koffi) {
     vertices_capacity: 'size_t',
     normals: 'float*',
     normals_capacity: 'size_t',
+    level: 'uint32_t',
   });
   types.ssc_fitter_def = koffi.struct('ssc_fitter_def', {
     struct_size: 'uint32_t',

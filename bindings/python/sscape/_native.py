@@ -35,7 +35,7 @@ class SliderInfo(ctypes.Structure):
 class BatchDesc(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("body_count", c_uint32), ("shapes", c_float_p), ("shape_count", c_uint32),
                 ("pose_format", c_int32), ("poses", c_float_p), ("translations", c_float_p), ("vertices", c_float_p),
-                ("vertices_capacity", c_size_t), ("normals", c_float_p), ("normals_capacity", c_size_t)]
+                ("vertices_capacity", c_size_t), ("normals", c_float_p), ("normals_capacity", c_size_t), ("level", c_uint32)]
 
 
 class ContextDef(ctypes.Structure):

@@ -391,9 +391,11 @@ class Model(Handle):
         check(lib.ssc_model_sample_shapes(self.handle, seed, count, truncation, out.ctypes.data_as(c_float_p), out.size))
         return out
 
-    def synthesize(self, shapes=None, poses=None, translations=None, normals: bool = False, count: Union[int, None] = None):
+    def synthesize(self, shapes=None, poses=None, translations=None, normals: bool = False, count: Union[int, None] = None,
+                   level: Union[int, str] = 0):
         """Many bodies at once on the library's worker threads: (N, V, 3) float32 vertices (and normals
-        when asked, as a second array), equal to what a Body gives for the same parameters.
+        when asked, as a second array), equal to what a Body gives for the same parameters; with a
+        level of detail (index or name, 0 the full mesh), its N vertices, as Body.level_vertices.
 
         shapes: (N, k) coefficients, k <= K (None: the mean); poses: (N, J, 4) quaternions x y z w
         (None: the rest pose); translations: (N, 3) (None: zero); count: N when nothing else gives it.
@@ -411,12 +413,14 @@ class Model(Handle):
             raise ValueError("give count, or shapes/poses/translations with one number of bodies" if not counts else
                              f"the arrays disagree on the number of bodies: {sorted(counts)}")
         n = counts.pop()
-        V = self.vertex_count
+        lv = self.level(level)
+        V = lv.vertex_count
         vertices = np.empty((n, V, 3), np.float32)
         out_normals = np.empty((n, V, 3), np.float32) if normals else None
         desc = BatchDesc()
         lib.ssc_batch_desc_init(ctypes.byref(desc), ctypes.sizeof(BatchDesc))
         desc.body_count = n
+        desc.level = lv.index
         if "shapes" in arrays:
             desc.shapes = arrays["shapes"].ctypes.data_as(c_float_p)
             desc.shape_count = arrays["shapes"].shape[1]

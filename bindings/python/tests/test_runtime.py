@@ -581,6 +581,13 @@ def test_levels_of_detail(model, tmp_path):
         model.level("proxy9")
     with pytest.raises(IndexError):
         body.level_vertices(4)
+    # Many bodies of a level at once: what a Body gives.
+    shapes = model.sample_shapes(3, seed=2)
+    batch, batch_normals = model.synthesize(shapes=shapes, normals=True, level="proxy741")
+    assert batch.shape == (3, 741, 3) and batch_normals.shape == (3, 741, 3)
+    body.shape = shapes[2]
+    body.set_pose()
+    assert np.abs(batch[2] - body.level_vertices("proxy741")).max() < 1e-6
 
 
 def _glb_json(path):

@@ -269,6 +269,7 @@ pub struct ssc_batch_desc {
     pub vertices_capacity: usize,
     pub normals: *mut f32,
     pub normals_capacity: usize,
+    pub level: u32,
 }
 
 #[repr(C)]

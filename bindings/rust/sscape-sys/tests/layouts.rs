@@ -76,6 +76,7 @@ fn lines() -> Vec<String> {
         format!("ssc_batch_desc.vertices_capacity offset {}", offset!(ssc_batch_desc, vertices_capacity)),
         format!("ssc_batch_desc.normals offset {}", offset!(ssc_batch_desc, normals)),
         format!("ssc_batch_desc.normals_capacity offset {}", offset!(ssc_batch_desc, normals_capacity)),
+        format!("ssc_batch_desc.level offset {}", offset!(ssc_batch_desc, level)),
         format!("ssc_fitter_def size {}", size_of::<ssc_fitter_def>()),
         format!("ssc_fitter_def.struct_size offset {}", offset!(ssc_fitter_def, struct_size)),
         format!("ssc_fitter_def.shape_count offset {}", offset!(ssc_fitter_def, shape_count)),
