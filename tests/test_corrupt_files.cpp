@@ -98,7 +98,10 @@ TEST_CASE("header problems get the right status", "[corrupt]") {
     }
     SECTION("another major version") {
         auto b = good;
-        b[8] = 2;
+        b[8] = 3;
+        CHECK(load_status(b) == SSC_ERROR_UNSUPPORTED_VERSION);
+        CHECK(std::string(ssc_last_error()).find("1.x to 2.x") != std::string::npos);
+        b[8] = 0;
         CHECK(load_status(b) == SSC_ERROR_UNSUPPORTED_VERSION);
     }
     SECTION("unknown flags") {

@@ -1,13 +1,16 @@
 // A small model built in code is written and read back; every field must come back equal.
 #include "support.hpp"
 
+#include "common/error.hpp"
 #include "sscape_format/basis_codec.hpp"
 #include "sscape_format/container.hpp"
+#include "sscape_format/model_io.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 
 using namespace ssc;
 
@@ -172,4 +175,75 @@ TEST_CASE("the default model is built in, verified, and what the README says", "
     REQUIRE(ssc_model_get_shape_stddevs(m, sd.data(), 50) == SSC_OK);
     for (int k = 1; k < 50; ++k) CHECK(sd[k] <= sd[k - 1]);  // PCA order
     ssc_model_release(m);
+}
+
+TEST_CASE("mirror prediction codes the default model in far fewer bytes and decodes it exactly", "[format][default]") {
+    const void* data = nullptr;
+    std::size_t size = 0;
+    REQUIRE(ssc_default_model_file(&data, &size) == SSC_OK);
+    CHECK(ssc_default_model_file(nullptr, &size) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_default_model_file(&data, nullptr) == SSC_ERROR_INVALID_ARGUMENT);
+    const auto* file = static_cast<const unsigned char*>(data);
+    CHECK(size <= 2500000);  // issue 49: the model with its levels of detail within 2.5 MB
+    CHECK((file[8] | file[9] << 8) == format::kContainerMajor);
+    const format::ModelData d = format::read_model(file, size);
+    const auto mirrored = format::write_model(d);
+    format::WriteOptions plain;
+    plain.mirror_prediction = false;
+    const auto tree_only = format::write_model(d, plain);
+    INFO(mirrored.size() << " bytes with mirror prediction, " << tree_only.size() << " without");
+    CHECK(double(mirrored.size()) < 0.8 * double(tree_only.size()));
+    CHECK((tree_only[8] | tree_only[9] << 8) == 1);  // readable by 1.x readers
+    for (const auto* bytes : {&mirrored, &tree_only}) {
+        const format::ModelData back = format::read_model(bytes->data(), bytes->size());
+        same(back.shape.basis.q, d.shape.basis.q);
+        REQUIRE(back.segments.size() == d.segments.size());
+        for (std::size_t s = 0; s < d.segments.size(); ++s) same(back.segments[s].basis.q, d.segments[s].basis.q);
+    }
+    // Nearly every vertex of the body has its twin.
+    const auto tree = format::build_mirror_tree(d.vertex_count(), d.mesh.triangles, d.mesh.quads, d.shape.mean.data(), 1e-3);
+    std::size_t twins = 0;
+    for (std::size_t i = 0; i < tree.mirror.size(); ++i) twins += tree.mirror[i] != i;
+    CHECK(twins > d.vertex_count() * 45 / 100);
+}
+
+TEST_CASE("mirror prediction round-trips any basis over any valid tree", "[format]") {
+    std::mt19937 rng(3);
+    const uint32_t n = 200, K = 3;
+    format::PredictionTree tree;
+    for (uint32_t i = 0; i < n; ++i) {
+        tree.order.push_back(i);
+        tree.predictor.push_back(i == 0 ? 0 : uint32_t(rng() % i));
+        tree.mirror.push_back(i > 1 && rng() % 2 ? uint32_t(rng() % i) : i);
+    }
+    std::shuffle(tree.order.begin(), tree.order.end(), rng);
+    format::QuantizedBasis b;
+    b.components = K;
+    b.step.assign(K, 1e-5f);
+    for (std::size_t i = 0; i < 3ull * K * n; ++i) b.q.push_back(int16_t(int(rng() % 65535) - 32767));
+    const format::EncodedBasis coded = format::encode_basis(b, n, tree);
+    REQUIRE(coded.signs.size() == K);
+    Vec<int16_t> q;
+    format::decode_residuals(coded.planes.data(), coded.planes.size(), n, K, tree.order.data(), tree.predictor.data(), tree.mirror.data(),
+                             coded.signs.data(), q);
+    same(q, b.q);
+}
+
+TEST_CASE("hostile mirror arrays are refused", "[format][corrupt]") {
+    const uint32_t n = 4;
+    const uint32_t order[] = {0, 1, 2, 3}, predictor[] = {0, 0, 1, 2};
+    std::vector<uint8_t> planes(4 * 3 * n, 0);
+    Vec<int16_t> q;
+    const int8_t good_sign[] = {1}, bad_sign[] = {2};
+    const uint32_t forward[] = {0, 1, 3, 3}, good[] = {0, 0, 1, 2};
+    auto decode = [&](const uint32_t* mirror, const int8_t* signs, const uint32_t* pred) {
+        format::decode_residuals(planes.data(), planes.size(), n, 1, order, pred, mirror, signs, q);
+    };
+    REQUIRE_NOTHROW(decode(good, good_sign, predictor));
+    CHECK_THROWS_AS(decode(forward, good_sign, predictor), Error);
+    CHECK_THROWS_AS(decode(good, bad_sign, predictor), Error);
+    CHECK_THROWS_AS(decode(good, nullptr, predictor), Error);
+    CHECK_THROWS_AS(decode(nullptr, good_sign, predictor), Error);
+    const uint32_t rootless[] = {0, 1, 1, 2};  // position 1 has a twin but no parent
+    CHECK_THROWS_AS(decode(good, good_sign, rootless), Error);
 }

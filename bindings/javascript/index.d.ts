@@ -116,9 +116,10 @@ export class Model extends Handle {
   levelTriangles(level: number | string): Uint32Array;
   /** count * shapeCount coefficients of random bodies of the population, reproducible by seed. */
   sampleShapes(count: number, options?: { seed?: number; truncation?: number }): Float32Array;
-  /** Many bodies in one call: count * vertexCount * 3 floats (and normals when asked for). */
+  /** Many bodies in one call: count * vertexCount * 3 floats (and normals when asked for); with a
+   *  level of detail (index or name), its vertices. */
   synthesize(options: { shapes?: Floats | null; count?: number; poses?: Floats | null; translations?: Floats | null;
-                        normals?: boolean }): { vertices: Float32Array; normals?: Float32Array };
+                        normals?: boolean; level?: number | string }): { vertices: Float32Array; normals?: Float32Array };
   createBody(): Body;
   createFitter(options?: FitterOptions): Fitter;
 }
@@ -145,8 +146,9 @@ export class Body extends Handle {
   measureAll(): Float32Array;
   /** Every measurement by name. */
   measure(): Record<string, number>;
-  /** 'obj', 'ply' or 'glb'; from the file name when omitted. */
-  write(path: string, format?: 'obj' | 'ply' | 'glb', options?: { level?: number | string }): void;
+  /** 'obj', 'ply' or 'glb'; from the file name when omitted. level: a level of detail or 'all' (GLB);
+   *  morphs (GLB): the first K shape components, or 'sliders', as morph targets (docs/engines.md). */
+  write(path: string, format?: 'obj' | 'ply' | 'glb', options?: { level?: number | string | 'all'; morphs?: number | 'sliders' }): void;
 }
 
 /** Fits shape and pose to landmarks and points. One thread at a time. */

@@ -215,6 +215,15 @@ SSC_API ssc_status ssc_model_load_memory(ssc_context* ctx, const void* data, siz
  */
 SSC_API ssc_status ssc_model_load_default(ssc_context* ctx, ssc_model** out);
 
+/**
+ * The default model's .sscape file image, as compiled into the library (what ssc_model_load_default
+ * loads; write it out to get the file). Read-only; valid as long as the library is loaded.
+ * @param out_data  receives the first byte.
+ * @param out_size  receives the size in bytes.
+ * Threads: any.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_default_model_file(const void** out_data, size_t* out_size);
+
 /** Adds a reference. NULL is ignored. Threads: any. */
 SSC_API void ssc_model_retain(ssc_model* model);
 

@@ -51,7 +51,7 @@ uint64_t get_le(const unsigned char* p, int bytes) {
 
 }  // namespace
 
-std::vector<unsigned char> pack_container(const void* payload, std::size_t size, int level) {
+std::vector<unsigned char> pack_container(const void* payload, std::size_t size, int level, uint16_t major) {
     std::vector<unsigned char> out(kHeaderSize + ZSTD_compressBound(size));
     ZSTD_CCtx* cctx = ZSTD_createCCtx();
     if (!cctx) throw std::bad_alloc();
@@ -63,7 +63,7 @@ std::vector<unsigned char> pack_container(const void* payload, std::size_t size,
     if (ZSTD_isError(n)) fail(SSC_ERROR_INTERNAL, std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
     out.resize(kHeaderSize + n);
     std::memcpy(out.data(), kMagic, 8);
-    put_u16(out.data() + 8, kContainerMajor);
+    put_u16(out.data() + 8, major);
     put_u16(out.data() + 10, kContainerMinor);
     put_u32(out.data() + 12, kFlagZstd);
     put_u64(out.data() + 16, n);
@@ -79,10 +79,10 @@ void unpack_container(const void* data, std::size_t size, uint64_t max_bytes, Ve
     SSC_REQUIRE_MODEL(std::memcmp(p, kMagic, 8) == 0, "bad magic at offset 0: not a .sscape file");
     const auto major = static_cast<uint16_t>(get_le(p + 8, 2));
     const auto minor = static_cast<uint16_t>(get_le(p + 10, 2));
-    if (major != kContainerMajor)
+    if (major < kOldestContainerMajor || major > kContainerMajor)
         fail(SSC_ERROR_UNSUPPORTED_VERSION, "container version " + std::to_string(major) + "." +
                                                 std::to_string(minor) + " (offset 8); this library reads " +
-                                                std::to_string(kContainerMajor) + ".x");
+                                                std::to_string(kOldestContainerMajor) + ".x to " + std::to_string(kContainerMajor) + ".x");
     const auto flags = static_cast<uint32_t>(get_le(p + 12, 4));
     SSC_REQUIRE_MODEL(flags == kFlagZstd, "unknown container flags 0x" + std::to_string(flags) + " at offset 12");
     const uint64_t payload = get_le(p + 16, 8);

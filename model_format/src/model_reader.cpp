@@ -29,6 +29,16 @@ const flatbuffers::Vector<T>* need(const flatbuffers::Vector<T>* v, const char* 
 
 std::string text(const flatbuffers::String* s) { return s ? s->str() : std::string(); }
 
+// A basis's optional mirror prediction arrays (container 2.0): both or neither, sized by positions
+// and components. Returns null pointers without them.
+std::pair<const uint32_t*, const int8_t*> mirror_arrays(const flatbuffers::Vector<uint32_t>* mirror, const flatbuffers::Vector<int8_t>* signs,
+                                                         uint32_t n, uint32_t components, const std::string& what) {
+    if (!mirror && !signs) return {nullptr, nullptr};
+    SSC_REQUIRE_MODEL(mirror && signs && mirror->size() == n && signs->size() == components,
+                      what + ": mirror needs one entry per position and mirror_signs one per component");
+    return {mirror->data(), signs->data()};
+}
+
 }  // namespace
 
 ModelData read_model(const void* data, std::size_t size, const ReadOptions& options) {
@@ -83,7 +93,8 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
     const auto* planes = need(shape->residual_planes(), "shape.residual_planes");
     SSC_REQUIRE_MODEL(order->size() == V && pred->size() == V, "shape.vertex_order/predictor must hold one entry per vertex");
     // Bounded: the plane size is checked against components * 3V before q is allocated.
-    decode_residuals(planes->data(), planes->size(), V, m.shape.basis.components, order->data(), pred->data(),
+    const auto [mirror, signs] = mirror_arrays(shape->mirror(), shape->mirror_signs(), V, m.shape.basis.components, "shape");
+    decode_residuals(planes->data(), planes->size(), V, m.shape.basis.components, order->data(), pred->data(), mirror, signs,
                      m.shape.basis.q);
 
     const auto* sk = root->skeleton();
@@ -193,7 +204,9 @@ ModelData read_model(const void* data, std::size_t size, const ReadOptions& opti
             const auto* planes = need(sg->residual_planes(), "segments.residual_planes");
             SSC_REQUIRE_MODEL(order->size() == n && pred->size() == n,
                               "segment '" + out.name + "': vertex_order/predictor must hold one entry per segment vertex");
-            decode_residuals(planes->data(), planes->size(), n, out.basis.components, order->data(), pred->data(), out.basis.q);
+            const auto [mirror, signs] = mirror_arrays(sg->mirror(), sg->mirror_signs(), n, out.basis.components, "segment '" + out.name + "'");
+            decode_residuals(planes->data(), planes->size(), n, out.basis.components, order->data(), pred->data(), mirror, signs,
+                             out.basis.q);
             m.segments.push_back(std::move(out));
         }
     }

@@ -20,9 +20,12 @@ flatbuffers::Offset<flatbuffers::Vector<T>> opt_vec(flatbuffers::FlatBufferBuild
     return v.empty() ? 0 : vec(fbb, v);
 }
 
+// Vertices of the mean body within this of each other's mirror image are twins for mirror prediction.
+constexpr double kMirrorTolerance = 1e-3;
+
 // A segment's basis is predicted over the triangles whose corners all lie in the segment.
 flatbuffers::Offset<sscape::fb::ShapeSegment> write_segment(flatbuffers::FlatBufferBuilder& fbb, const ShapeSegment& s,
-                                                           const Mesh& mesh) {
+                                                           const Mesh& mesh, const Vec<float>& mean, bool mirror) {
     const auto n = static_cast<uint32_t>(s.vertices.size());
     std::vector<uint32_t> local(mesh.vertex_count, kNone);
     for (uint32_t i = 0; i < n; ++i)
@@ -32,11 +35,16 @@ flatbuffers::Offset<sscape::fb::ShapeSegment> write_segment(flatbuffers::FlatBuf
         const uint32_t a = local[mesh.triangles[t]], b = local[mesh.triangles[t + 1]], c = local[mesh.triangles[t + 2]];
         if (a != kNone && b != kNone && c != kNone) triangles.insert(triangles.end(), {a, b, c});
     }
-    const PredictionTree tree = build_prediction_tree(n, triangles, Vec<uint32_t>{});
-    const std::vector<uint8_t> planes = encode_residuals(s.basis, n, tree);
+    std::vector<float> positions(3ull * n, 0.f);
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t a = 0; a < 3 && 3ull * s.vertices[i] + a < mean.size(); ++a) positions[3 * i + a] = mean[3ull * s.vertices[i] + a];
+    const PredictionTree tree = mirror ? build_mirror_tree(n, triangles, Vec<uint32_t>{}, positions.data(), kMirrorTolerance)
+                                       : build_prediction_tree(n, triangles, Vec<uint32_t>{});
+    const EncodedBasis coded = encode_basis(s.basis, n, tree);
     return sscape::fb::CreateShapeSegment(fbb, fbb.CreateString(s.name), fbb.CreateVector(s.vertices), fbb.CreateVector(s.weights),
                                           fbb.CreateVector(s.stddev), vec(fbb, s.basis.step), fbb.CreateVector(tree.order),
-                                          fbb.CreateVector(tree.predictor), fbb.CreateVector(planes));
+                                          fbb.CreateVector(tree.predictor), fbb.CreateVector(coded.planes),
+                                          mirror ? fbb.CreateVector(tree.mirror) : 0, mirror ? fbb.CreateVector(coded.signs) : 0);
 }
 
 }  // namespace
@@ -62,11 +70,14 @@ std::vector<unsigned char> write_model(const ModelData& m, const WriteOptions& o
 
     // Sized by the vertex data actually present (equal to vertex_count in any valid model).
     const auto data_vertices = static_cast<uint32_t>(m.shape.mean.size() / 3);
-    const PredictionTree tree = build_prediction_tree(data_vertices, me.triangles, me.quads);
-    const std::vector<uint8_t> planes = encode_residuals(m.shape.basis, data_vertices, tree);
+    const bool mirror = options.mirror_prediction;
+    const PredictionTree tree = mirror ? build_mirror_tree(data_vertices, me.triangles, me.quads, m.shape.mean.data(), kMirrorTolerance)
+                                       : build_prediction_tree(data_vertices, me.triangles, me.quads);
+    const EncodedBasis coded = encode_basis(m.shape.basis, data_vertices, tree);
     auto shape = fb::CreateShapeSpace(fbb, vec(fbb, m.shape.mean), vec(fbb, m.shape.stddev), vec(fbb, m.shape.basis.step),
                                       fbb.CreateVector(tree.order), fbb.CreateVector(tree.predictor),
-                                      fbb.CreateVector(planes));
+                                      fbb.CreateVector(coded.planes), mirror ? fbb.CreateVector(tree.mirror) : 0,
+                                      mirror ? fbb.CreateVector(coded.signs) : 0);
 
     const auto& sk = m.skeleton;
     auto skeleton = fb::CreateSkeleton(fbb, fbb.CreateVectorOfStrings(sk.joint_names), vec(fbb, sk.parents),
@@ -101,7 +112,7 @@ std::vector<unsigned char> write_model(const ModelData& m, const WriteOptions& o
         roles.push_back(fb::CreateJointRole(fbb, r.part, r.side, r.rotation_sigma, r.coarse, r.limb_joint));
 
     std::vector<flatbuffers::Offset<fb::ShapeSegment>> segments;
-    for (const auto& s : m.segments) segments.push_back(write_segment(fbb, s, me));
+    for (const auto& s : m.segments) segments.push_back(write_segment(fbb, s, me, m.shape.mean, mirror));
 
     std::vector<flatbuffers::Offset<fb::DetailLevel>> levels;
     for (const auto& l : m.levels)
@@ -116,7 +127,7 @@ std::vector<unsigned char> write_model(const ModelData& m, const WriteOptions& o
                                 m.joint_roles.empty() ? 0 : fbb.CreateVector(roles),
                                 m.segments.empty() ? 0 : fbb.CreateVector(segments), m.levels.empty() ? 0 : fbb.CreateVector(levels));
     fb::FinishModelBuffer(fbb, root);
-    return pack_container(fbb.GetBufferPointer(), fbb.GetSize(), options.zstd_level);
+    return pack_container(fbb.GetBufferPointer(), fbb.GetSize(), options.zstd_level, mirror ? kContainerMajor : kOldestContainerMajor);
 }
 
 void write_file(const std::string& path, const std::vector<unsigned char>& bytes) {

@@ -1,6 +1,7 @@
 // The default model compiled into the library (model_format/models/sscape-default.sscape,
 // embedded by embed_default_model.S). It is loaded through the same verified path as any file.
 #include "capi/cpp_access.hpp"
+#include "capi/guard.hpp"
 
 #include <sscape/sscape.h>
 
@@ -13,6 +14,16 @@ extern const unsigned char ssc_internal_default_model_end[];
 ssc_status ssc_model_load_default(ssc_context* ctx, ssc_model** out) {
     const ssc::FileBytes file = ssc::default_model_file();
     return ssc_model_load_memory(ctx, file.data, file.size, out);
+}
+
+ssc_status ssc_default_model_file(const void** out_data, size_t* out_size) {
+    return ssc::capi::guarded(__func__, [&] {
+        ssc::capi::need(out_data, "out_data");
+        ssc::capi::need(out_size, "out_size");
+        const ssc::FileBytes file = ssc::default_model_file();
+        *out_data = file.data;
+        *out_size = file.size;
+    });
 }
 }
 

@@ -6,7 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 
 namespace ssc::cli {
@@ -56,11 +58,22 @@ void draw_segments(ssc_model* model, const std::string& png) {
 int run_info(const std::string& path, bool json, const std::string& segments_png) {
     ssc_model* model = load_model(path);
     Handles guard(model);
+    // The file's size and container version (its header's bytes 8-11), or the built-in model's.
     long long size = -1;
+    unsigned char header[12] = {};
     if (!path.empty()) {
         std::ifstream f(path, std::ios::binary | std::ios::ate);
         size = static_cast<long long>(f.tellg());
+        f.seekg(0);
+        f.read(reinterpret_cast<char*>(header), sizeof header);
+    } else {
+        const void* data = nullptr;
+        std::size_t bytes = 0;
+        check(ssc_default_model_file(&data, &bytes), "default model");
+        size = static_cast<long long>(bytes);
+        std::memcpy(header, data, std::min(bytes, sizeof header));
     }
+    const std::string version = std::to_string(header[8] | header[9] << 8) + "." + std::to_string(header[10] | header[11] << 8);
     auto meta = [&](ssc_metadata_key k) {
         const char* s = "";
         ssc_model_get_metadata(model, k, &s);
@@ -68,7 +81,8 @@ int run_info(const std::string& path, bool json, const std::string& segments_png
     };
     nlohmann::ordered_json j;
     j["file"] = path.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(path);
-    if (size >= 0) j["file_bytes"] = size;
+    j["file_bytes"] = size;
+    j["container_version"] = version;
     j["name"] = meta(SSC_METADATA_NAME);
     j["version"] = meta(SSC_METADATA_VERSION);
     j["license"] = meta(SSC_METADATA_LICENSE);
@@ -144,8 +158,8 @@ int run_info(const std::string& path, bool json, const std::string& segments_png
         return 0;
     }
 
-    if (path.empty()) std::printf("file:        (default model, built into the library)\n");
-    else std::printf("file:        %s (%lld bytes, %.2f MB)\n", path.c_str(), size, size / 1e6);
+    std::printf("file:        %s (%lld bytes, %.2f MB, container %s)\n", path.empty() ? "(default model, built into the library)" : path.c_str(),
+                size, size / 1e6, version.c_str());
     std::printf("name:        %s\n", meta(SSC_METADATA_NAME).c_str());
     std::printf("version:     %s\n", meta(SSC_METADATA_VERSION).c_str());
     std::printf("license:     %s\n", meta(SSC_METADATA_LICENSE).c_str());

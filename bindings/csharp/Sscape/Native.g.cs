@@ -419,6 +419,9 @@ namespace Sscape.Native
         public static extern ssc_status ssc_model_load_default(IntPtr @ctx, IntPtr* @out);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_default_model_file(void** @out_data, UIntPtr* @out_size);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern void ssc_model_retain(IntPtr @model);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]

@@ -249,15 +249,17 @@ class Model extends Handle {
    * rest pose; translations: count * 3 or null. Returns { vertices, normals } (count * vertexCount * 3
    * each; normals only when asked for).
    */
-  synthesize({ shapes = null, count, poses = null, translations = null, normals = false } = {}) {
+  synthesize({ shapes = null, count, poses = null, translations = null, normals = false, level = 0 } = {}) {
     const K = this.shapeCount;
     if (count === undefined) {
       if (!shapes) throw new RangeError('synthesize: give shapes or count');
       count = Math.floor(shapes.length / K);
     }
-    const V = this.vertexCount;
+    const lv = pickLevel(this.levels, level);
+    const V = lv.vertexCount;
     const desc = {};
     api().ssc_batch_desc_init(desc, koffi.sizeof('ssc_batch_desc'));
+    desc.level = lv.index;
     const vertices = new Float32Array(count * V * 3);
     const normalsOut = normals ? new Float32Array(count * V * 3) : null;
     Object.assign(desc, {
@@ -420,12 +422,22 @@ class Body extends Handle {
 
   /** Writes the posed body: format 'obj', 'ply' or 'glb' (from the file name when omitted); level: a level of
    *  detail by index or name (0 the full mesh), or 'all' for every level in one .glb (a node each). */
-  write(path, format, { level = 0 } = {}) {
+  write(path, format, { level = 0, morphs = null } = {}) {
     const kind = (format || String(path).split('.').pop()).toUpperCase();
     const value = enums.ssc_file_format[`SSC_FILE_${kind}`];
     if (value === undefined) throw new RangeError(`write: unknown format ${kind}`);
-    const index = level === 'all' ? 0xFFFFFFFF : pickLevel(this.model.levels, level).index;
-    call('ssc_body_write_level_file', this.handle, index, String(path), value);
+    const def = {};
+    api().ssc_export_def_init(def, koffi.sizeof('ssc_export_def'));
+    def.format = value;
+    def.level = level === 'all' ? 0xFFFFFFFF : pickLevel(this.model.levels, level).index;
+    // Shape morph targets (GLB): the first K components, or 'sliders' (docs/engines.md).
+    if (morphs === 'sliders') {
+      def.morphs = enums.ssc_morphs.SSC_MORPHS_SLIDERS;
+    } else if (morphs !== null) {
+      def.morphs = enums.ssc_morphs.SSC_MORPHS_COMPONENTS;
+      def.morph_count = index(morphs, 'morphs');
+    }
+    call('ssc_body_export', this.handle, String(path), def);
   }
 }
 

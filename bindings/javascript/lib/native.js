@@ -213,6 +213,7 @@ const prototypes = [
   'int32_t ssc_model_load_file(ssc_context* ctx, const char* path, _Out_ ssc_model** out)',
   'int32_t ssc_model_load_memory(ssc_context* ctx, const void* data, size_t size, _Out_ ssc_model** out)',
   'int32_t ssc_model_load_default(ssc_context* ctx, _Out_ ssc_model** out)',
+  'int32_t ssc_default_model_file(_Out_ const void** out_data, size_t* out_size)',
   'void ssc_model_retain(ssc_model* model)',
   'void ssc_model_release(ssc_model* model)',
   'uint32_t ssc_model_vertex_count(const ssc_model* model)',

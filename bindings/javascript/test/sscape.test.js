@@ -127,6 +127,15 @@ test('levels of detail: listed, posed, written one or all', () => {
   assert.ok(fs.statSync(path.join(dir, 'all.glb')).size > 1e6);
   assert.throws(() => body.write(path.join(dir, 'all.obj'), undefined, { level: 'all' }), (e) => e.code === 'SSC_ERROR_INVALID_ARGUMENT');
   assert.throws(() => model.level('proxy9'), RangeError);
+  // Morph targets for engines, and many bodies of a level at once.
+  body.write(path.join(dir, 'morphs.glb'), undefined, { level: 'all', morphs: 3 });
+  const glb = fs.readFileSync(path.join(dir, 'morphs.glb'));
+  const doc = JSON.parse(glb.subarray(20, 20 + glb.readUInt32LE(12)).toString());
+  assert.deepStrictEqual(doc.meshes[0].extras.targetNames, ['component_1', 'component_2', 'component_3']);
+  body.write(path.join(dir, 'sliders.glb'), undefined, { morphs: 'sliders' });
+  assert.throws(() => body.write(path.join(dir, 'x.obj'), undefined, { morphs: 2 }), (e) => e.code === 'SSC_ERROR_INVALID_ARGUMENT');
+  const batch = model.synthesize({ count: 2, level: 'proxy741' });
+  assert.strictEqual(batch.vertices.length, 2 * 741 * 3);
   fs.rmSync(dir, { recursive: true });
   body.close();
   model.close();

@@ -14,7 +14,7 @@ from ._native import ABI_MAJOR, lib, library_path
 from .body import Body, measurement_names, quaternion_from_axis_angle
 from .errors import SscapeError
 from .fitter import Fitter
-from .model import Context, Level, Model, Segment, Slider, named_poses
+from .model import Context, Level, Model, Segment, Slider, default_model_bytes, named_poses
 from .registration import Registration
 
 __version__ = "0.1.0"
@@ -26,5 +26,5 @@ def library_version() -> str:
     return f"{v // 10000}.{v // 100 % 100}.{v % 100}"
 
 
-__all__ = ["ABI_MAJOR", "Body", "Context", "named_poses", "Fitter", "Level", "Model", "Registration", "Segment", "Slider", "SscapeError", "library_path", "library_version",
+__all__ = ["ABI_MAJOR", "Body", "Context", "default_model_bytes", "named_poses", "Fitter", "Level", "Model", "Registration", "Segment", "Slider", "SscapeError", "library_path", "library_version",
            "measurement_names", "quaternion_from_axis_angle", "__version__"]

@@ -133,6 +133,7 @@ _DECLARATIONS = {
     "ssc_model_load_file": (_STATUS, [c_void_p, c_char_p, POINTER(_MODEL)]),
     "ssc_model_load_memory": (_STATUS, [c_void_p, c_void_p, c_size_t, POINTER(_MODEL)]),
     "ssc_model_load_default": (_STATUS, [c_void_p, POINTER(_MODEL)]),
+    "ssc_default_model_file": (_STATUS, [POINTER(c_void_p), POINTER(c_size_t)]),
     "ssc_model_release": (None, [_MODEL]),
     "ssc_model_vertex_count": (c_uint32, [_MODEL]),
     "ssc_model_triangle_count": (c_uint32, [_MODEL]),

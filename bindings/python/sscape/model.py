@@ -75,6 +75,13 @@ class Context(Handle):
         self._own(handle, lib.ssc_context_destroy)
 
 
+def default_model_bytes() -> bytes:
+    """The built-in default model as .sscape file bytes (what Model() loads): write them to get the file."""
+    data, size = ctypes.c_void_p(), ctypes.c_size_t()
+    check(lib.ssc_default_model_file(ctypes.byref(data), ctypes.byref(size)))
+    return ctypes.string_at(data.value, size.value)
+
+
 def named_poses() -> Dict[str, str]:
     """The library's named poses (a_pose, t_pose, ...) with their descriptions: Model.named_pose takes them."""
     out = {}

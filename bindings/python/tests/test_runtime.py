@@ -598,6 +598,13 @@ def _glb_json(path):
     return json.loads(data[20:20 + length])
 
 
+def test_default_model_bytes(tmp_path):
+    data = sscape.default_model_bytes()
+    assert data[:8] == b"\x89SSCAPE\n" and len(data) <= 2_500_000
+    (tmp_path / "default.sscape").write_bytes(data)
+    assert sscape.Model.from_file(tmp_path / "default.sscape").vertex_count == 13380
+
+
 def test_glb_morph_targets(model, tmp_path):
     body = sscape.Body(model)
     body.write(tmp_path / "components.glb", level="all", morphs=4)

@@ -390,6 +390,7 @@ extern "C" {
     pub fn ssc_model_load_file(ctx: *mut ssc_context, path: *const c_char, out: *mut *mut ssc_model) -> ssc_status;
     pub fn ssc_model_load_memory(ctx: *mut ssc_context, data: *const c_void, size: usize, out: *mut *mut ssc_model) -> ssc_status;
     pub fn ssc_model_load_default(ctx: *mut ssc_context, out: *mut *mut ssc_model) -> ssc_status;
+    pub fn ssc_default_model_file(out_data: *mut *const c_void, out_size: *mut usize) -> ssc_status;
     pub fn ssc_model_retain(model: *mut ssc_model);
     pub fn ssc_model_release(model: *mut ssc_model);
     pub fn ssc_model_vertex_count(model: *const ssc_model) -> u32;
