@@ -57,16 +57,24 @@ void breadth_first(const Adjacency& adj, uint32_t n, const Include& include, std
 
 // Each vertex's mirror twin across x = 0 (itself when it has none): the nearest mirror image within
 // tolerance, kept only when the relation is mutual. A hash grid of tolerance-sized cells.
+// Vertices beyond a kilometre (or not finite: a model the writer is told not to validate) have none.
 std::vector<uint32_t> mirror_twins(uint32_t n, const float* p, double tolerance) {
+    auto usable = [&](uint32_t v) {
+        for (int a = 0; a < 3; ++a)
+            if (!(std::abs(double(p[3 * v + a])) < 1e3)) return false;
+        return true;
+    };
     auto cell = [&](double x) { return static_cast<int64_t>(std::floor(x / tolerance)); };
     auto key = [](int64_t x, int64_t y, int64_t z) { return (x * 73856093) ^ (y * 19349663) ^ (z * 83492791); };
     std::unordered_multimap<int64_t, uint32_t> grid;
-    for (uint32_t v = 0; v < n; ++v) grid.emplace(key(cell(p[3 * v]), cell(p[3 * v + 1]), cell(p[3 * v + 2])), v);
+    for (uint32_t v = 0; v < n; ++v)
+        if (usable(v)) grid.emplace(key(cell(p[3 * v]), cell(p[3 * v + 1]), cell(p[3 * v + 2])), v);
     std::vector<uint32_t> nearest(n);
     for (uint32_t v = 0; v < n; ++v) {
+        nearest[v] = v;
+        if (!usable(v)) continue;
         const double x = -double(p[3 * v]), y = p[3 * v + 1], z = p[3 * v + 2];
         double best = tolerance * tolerance;
-        nearest[v] = v;
         for (int64_t dx = -1; dx <= 1; ++dx)
             for (int64_t dy = -1; dy <= 1; ++dy)
                 for (int64_t dz = -1; dz <= 1; ++dz) {
@@ -84,7 +92,7 @@ std::vector<uint32_t> mirror_twins(uint32_t n, const float* p, double tolerance)
     return nearest;
 }
 
-// The residual of value at position i of one row (component k, axis a) under the tree.
+// The prediction of position i's value in one row (component k, axis a), from earlier positions.
 inline int64_t prediction(const int32_t* value, uint32_t i, const uint32_t* predictor, const uint32_t* mirror, int sign) {
     const uint32_t p = predictor[i];
     if (p == i) return 0;
