@@ -371,19 +371,24 @@ namespace Sscape
         /// <summary>
         /// Many bodies in one call: shapes holds count * ShapeCount coefficients; poses (or null: the
         /// rest pose) count * JointCount quaternions; translations (or null) count * 3. Returns
-        /// count * VertexCount * 3 vertex coordinates, body after body.
+        /// count * VertexCount * 3 vertex coordinates, body after body. With a level of detail (Levels),
+        /// its vertices: count * that level's VertexCount * 3.
         /// </summary>
-        public float[] Synthesize(float[] shapes, float[] poses = null, float[] translations = null)
+        public float[] Synthesize(float[] shapes, float[] poses = null, float[] translations = null, int level = 0)
         {
+            Level[] levels = Levels;
+            if (level < 0 || level >= levels.Length) throw new ArgumentOutOfRangeException("level");
+            int n = levels[level].VertexCount;
             if (shapes == null) throw new ArgumentNullException("shapes");
             int k = ShapeCount, count = k == 0 ? 0 : shapes.Length / k;
             if (k == 0 || shapes.Length % k != 0)
                 throw new ArgumentException(shapes.Length + " coefficients are not a whole number of bodies", "shapes");
             if (poses != null) Library.Count(poses, count * JointCount * 4, "poses");
             if (translations != null) Library.Count(translations, count * 3, "translations");
-            float[] vertices = new float[count * VertexCount * 3];
+            float[] vertices = new float[count * n * 3];
             ssc_batch_desc desc;
             Api.ssc_batch_desc_init(&desc, (UIntPtr)sizeof(ssc_batch_desc));
+            desc.level = (uint)level;
             fixed (float* s = shapes, r = poses, t = translations, v = vertices)
             {
                 desc.body_count = (uint)count;
@@ -392,7 +397,7 @@ namespace Sscape
                 desc.poses = r;
                 desc.translations = t;
                 desc.vertices = v;
-                desc.vertices_capacity = (UIntPtr)(count * VertexCount);
+                desc.vertices_capacity = (UIntPtr)(count * n);
                 Library.Check(Api.ssc_model_synthesize_batch(Raw, &desc));
             }
             GC.KeepAlive(this);

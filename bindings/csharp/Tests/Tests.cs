@@ -193,6 +193,8 @@ static class Tests
                 Assert(tris.Length == levels[far].TriangleCount * 3, "the level's triangles");
                 float[] v = body.GetLevelVertices(far);
                 Assert(v.Length == 741 * 3 && !float.IsNaN(v[0]), "the level's vertices");
+                float[] batch = model.Synthesize(new float[model.ShapeCount * 2], null, null, far);
+                Assert(batch.Length == 2 * 741 * 3 && batch[741 * 3] == v[0], "many bodies of a level at once, as a body gives them");
                 string dir = System.IO.Path.Combine(System.IO.Path.GetTempPath(), "sscape-cs-levels-" + System.Guid.NewGuid().ToString("N"));
                 System.IO.Directory.CreateDirectory(dir);
                 body.Write(System.IO.Path.Combine(dir, "all.glb"), Body.AllLevels);

@@ -371,7 +371,14 @@ impl Model {
     /// coefficients, `poses` (optional) `count * joint_count` quaternions, `translations` (optional)
     /// `count * 3`. Returns `count * vertex_count * 3` vertex coordinates, body after body.
     pub fn synthesize(&self, shapes: &[f32], poses: Option<&[f32]>, translations: Option<&[f32]>) -> Result<Vec<f32>> {
-        let (k, j, v) = (self.shape_count(), self.joint_count(), self.vertex_count());
+        self.synthesize_level(0, shapes, poses, translations)
+    }
+
+    /// `synthesize` for a level of detail (`levels`): `count * level vertex_count * 3` coordinates.
+    pub fn synthesize_level(&self, level: usize, shapes: &[f32], poses: Option<&[f32]>, translations: Option<&[f32]>) -> Result<Vec<f32>> {
+        let levels = self.levels()?;
+        let v = levels.get(level).ok_or_else(|| Error::invalid(format!("synthesize: no level {level} (the model has {})", levels.len())))?.vertex_count;
+        let (k, j) = (self.shape_count(), self.joint_count());
         if k == 0 || shapes.len() % k != 0 {
             return Err(Error::invalid(format!("synthesize: {} coefficients are not a whole number of bodies", shapes.len())));
         }
@@ -396,6 +403,7 @@ impl Model {
         desc.translations = translations.map_or(ptr::null(), |t| t.as_ptr());
         desc.vertices = vertices.as_mut_ptr();
         desc.vertices_capacity = count * v;
+        desc.level = level as u32;
         check(unsafe { sys::ssc_model_synthesize_batch(self.raw.as_ptr(), &desc) })?;
         Ok(vertices)
     }

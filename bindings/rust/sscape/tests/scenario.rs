@@ -98,6 +98,15 @@ fn levels_of_detail_are_listed_posed_and_written() {
     body.write_level(dir.join("all.glb"), sscape::ALL_LEVELS).unwrap();
     assert!(std::fs::metadata(dir.join("all.glb")).unwrap().len() > 1_000_000);
     assert!(body.write_level(dir.join("all.obj"), sscape::ALL_LEVELS).is_err());
+    // Many bodies of a level at once: what a body gives.
+    let shapes = model.sample_shapes(3, 2, 2.5).unwrap();
+    let batch = model.synthesize_level(3, &shapes, None, None).unwrap();
+    assert_eq!(batch.len(), 2 * 741 * 3);
+    body.set_shape(&shapes[model.shape_count()..]).unwrap();
+    body.set_pose(None, None).unwrap();
+    let one = body.level_vertices(3).unwrap();
+    assert!(one.iter().zip(&batch[741 * 3..]).all(|(a, b)| (a - b).abs() < 1e-6));
+    assert!(model.synthesize_level(4, &shapes, None, None).is_err());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
