@@ -582,6 +582,28 @@ namespace Sscape
             GC.KeepAlive(this);
         }
 
+        /// <summary>Write's morphs for the semantic sliders as morph targets instead of components.</summary>
+        public const int SliderMorphs = -1;
+
+        /// <summary>
+        /// Writes a .glb for engines: a level (or AllLevels) with shape morph targets, the first morphs
+        /// components (weight 1 = +1 SD) or SliderMorphs (one per semantic slider); the joints' motion
+        /// per unit of weight is in the file's skins[0].extras.sscape_morphs (docs/engines.md).
+        /// </summary>
+        public void Write(string path, int level, int morphs)
+        {
+            if (level < AllLevels) throw new ArgumentOutOfRangeException("level");
+            if (morphs < SliderMorphs) throw new ArgumentOutOfRangeException("morphs");
+            ssc_export_def def;
+            Api.ssc_export_def_init(&def, (UIntPtr)sizeof(ssc_export_def));
+            def.level = level == AllLevels ? 0xFFFFFFFFu : (uint)level;
+            if (morphs == SliderMorphs) def.morphs = ssc_morphs.SSC_MORPHS_SLIDERS;
+            else if (morphs > 0) { def.morphs = ssc_morphs.SSC_MORPHS_COMPONENTS; def.morph_count = (uint)morphs; }
+            byte[] utf8 = Library.ToUtf8(path);
+            fixed (byte* p = utf8) Library.Check(Api.ssc_body_export(Raw, p, &def));
+            GC.KeepAlive(this);
+        }
+
         /// <summary>A level of detail's posed vertices (its VertexCount * 3, metres).</summary>
         public float[] GetLevelVertices(int level)
         {

@@ -198,6 +198,13 @@ static class Tests
                 string dir = System.IO.Path.Combine(System.IO.Path.GetTempPath(), "sscape-cs-levels-" + System.Guid.NewGuid().ToString("N"));
                 System.IO.Directory.CreateDirectory(dir);
                 body.Write(System.IO.Path.Combine(dir, "all.glb"), Body.AllLevels);
+                body.Write(System.IO.Path.Combine(dir, "morphs.glb"), Body.AllLevels, 4);
+                body.Write(System.IO.Path.Combine(dir, "sliders.glb"), 0, Body.SliderMorphs);
+                byte[] bytes = System.IO.File.ReadAllBytes(System.IO.Path.Combine(dir, "morphs.glb"));
+                string json = System.Text.Encoding.ASCII.GetString(bytes, 20, BitConverter.ToInt32(bytes, 12));
+                Assert(json.Contains("\"component_4\"") && json.Contains("sscape_morphs"), "morph targets and the joints' motion in the glb");
+                Throws<SscapeException>(() => body.Write(System.IO.Path.Combine(dir, "x.obj"), 0, 2),
+                    e => e.Status == ssc_status.SSC_ERROR_INVALID_ARGUMENT, "morph targets are glTF only");
                 Assert(new System.IO.FileInfo(System.IO.Path.Combine(dir, "all.glb")).Length > 1000000, "every level in one glb");
                 Throws<SscapeException>(() => body.Write(System.IO.Path.Combine(dir, "all.obj"), Body.AllLevels),
                                         e => e.Status == ssc_status.SSC_ERROR_INVALID_ARGUMENT, "all levels in an OBJ");

@@ -448,6 +448,15 @@ pub struct Level {
 /// `Body::write_level`'s level for every level of detail in one .glb file (a node each).
 pub const ALL_LEVELS: usize = usize::MAX;
 
+/// Shape morph targets in a .glb (`Body::write_with_morphs`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Morphs {
+    /// The first K whole-body components; weight 1 = +1 standard deviation.
+    Components(usize),
+    /// One per semantic slider; weight 1 = +1 population standard deviation of its attribute.
+    Sliders,
+}
+
 /// A segment shape space: its name, components and the vertices they move.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Segment {
@@ -572,6 +581,29 @@ impl Body {
         let c_path = c_string(text, "the path")?;
         let index = if level == ALL_LEVELS { u32::MAX } else { u32::try_from(level).map_err(|_| Error::invalid(format!("level {}", level)))? };
         check(unsafe { sys::ssc_body_write_level_file(self.raw.as_ptr(), index, c_path.as_ptr(), sys::SSC_FILE_FORMAT_BY_EXTENSION) })
+    }
+
+    /// Writes a .glb for engines: a level (or `ALL_LEVELS`) with shape morph targets (docs/engines.md);
+    /// the joints' motion per unit of weight is in the file's `skins[0].extras.sscape_morphs`.
+    pub fn write_with_morphs(&mut self, path: impl AsRef<Path>, level: usize, morphs: Morphs) -> Result<()> {
+        let path = path.as_ref();
+        let text = path.to_str().ok_or_else(|| Error::invalid(format!("{} is not UTF-8", path.display())))?;
+        let c_path = c_string(text, "the path")?;
+        let mut def = std::mem::MaybeUninit::<sys::ssc_export_def>::uninit();
+        // Safety: ssc_export_def_init fills every field.
+        let mut def = unsafe {
+            sys::ssc_export_def_init(def.as_mut_ptr(), std::mem::size_of::<sys::ssc_export_def>());
+            def.assume_init()
+        };
+        def.level = if level == ALL_LEVELS { u32::MAX } else { u32::try_from(level).map_err(|_| Error::invalid(format!("level {}", level)))? };
+        match morphs {
+            Morphs::Components(k) => {
+                def.morphs = sys::SSC_MORPHS_COMPONENTS;
+                def.morph_count = u32::try_from(k).map_err(|_| Error::invalid(format!("{} components", k)))?;
+            }
+            Morphs::Sliders => def.morphs = sys::SSC_MORPHS_SLIDERS,
+        }
+        check(unsafe { sys::ssc_body_export(self.raw.as_ptr(), c_path.as_ptr(), &def) })
     }
 
     /// A level of detail's posed vertices, its `vertex_count * 3`.

@@ -98,6 +98,14 @@ fn levels_of_detail_are_listed_posed_and_written() {
     body.write_level(dir.join("all.glb"), sscape::ALL_LEVELS).unwrap();
     assert!(std::fs::metadata(dir.join("all.glb")).unwrap().len() > 1_000_000);
     assert!(body.write_level(dir.join("all.obj"), sscape::ALL_LEVELS).is_err());
+    body.write_with_morphs(dir.join("morphs.glb"), sscape::ALL_LEVELS, sscape::Morphs::Components(4)).unwrap();
+    body.write_with_morphs(dir.join("sliders.glb"), 0, sscape::Morphs::Sliders).unwrap();
+    let glb = std::fs::read(dir.join("morphs.glb")).unwrap();
+    let json_length = u32::from_le_bytes([glb[12], glb[13], glb[14], glb[15]]) as usize;
+    let text = String::from_utf8_lossy(&glb[20..20 + json_length]);
+    assert!(text.contains("\"component_4\"") && text.contains("sscape_morphs"));
+    assert!(body.write_with_morphs(dir.join("x.obj"), 0, sscape::Morphs::Components(2)).is_err());
+    assert!(body.write_with_morphs(dir.join("x.glb"), 0, sscape::Morphs::Components(51)).is_err());
     // Many bodies of a level at once: what a body gives.
     let shapes = model.sample_shapes(3, 2, 2.5).unwrap();
     let batch = model.synthesize_level(3, &shapes, None, None).unwrap();
