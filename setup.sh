@@ -85,7 +85,8 @@ build() {  # build DIR [cmake args...]; TARGET="a b" builds only those targets
 }
 
 # npm packages (pinned): the Khronos glTF validator for the export test; koffi and TypeScript for the
-# JavaScript binding's tests (bindings/javascript), which only the Release build runs.
+# JavaScript binding's tests (bindings/javascript) and three.js for importing the GLB as a web
+# viewer would, which only the Release build runs.
 gltf_validator=gltf-validator@2.0.0-dev.3.10
 npm_tools() {  # npm_tools DIR PACKAGE@VERSION...
   local dir="$1" missing_packages=() p; shift
@@ -123,7 +124,7 @@ else
   stage "Release build"
   build build "${release_args[@]}"
   stage "npm packages"
-  npm_tools build "$gltf_validator" koffi@3.3.4 typescript@5.9.3
+  npm_tools build "$gltf_validator" koffi@3.3.4 typescript@5.9.3 three@0.170.0
   stage "Release tests"
   (cd build && ctest -j "$jobs" --output-on-failure)
   stage "sanitizer build"
