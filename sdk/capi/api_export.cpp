@@ -18,10 +18,13 @@ exporters::BodyFormat body_format(ssc_file_format format, const char* path) {
                              : f == SSC_FILE_GLB ? exporters::BodyFormat::Glb : exporters::format_of(path);
 }
 
-uint32_t checked_level(const ssc_body* body, uint32_t level) {
-    const uint32_t count = body->body.model().level_count() + 1;
-    SSC_REQUIRE_ARG_S(level == SSC_LEVEL_ALL || level < count, "level " << level << " is out of range (count " << count << ", 0 the full mesh)");
-    return level == SSC_LEVEL_ALL ? exporters::kAllLevels : level;
+static_assert(SSC_LEVEL_ALL == exporters::kAllLevels, "the C API's every-level value is the exporter's");
+
+// The guarded body of every body-file function: write_body checks the level and the options.
+void write_body_file(ssc_body* body, const char* path, ssc_file_format format, const exporters::ExportOptions& options) {
+    need(body, "body");
+    need(path, "path");
+    exporters::write_body(body->body, path, body_format(format, path), options);
 }
 
 }  // namespace
@@ -29,16 +32,14 @@ uint32_t checked_level(const ssc_body* body, uint32_t level) {
 extern "C" {
 
 ssc_status ssc_body_write_file(ssc_body* body, const char* path, ssc_file_format format) {
-    return ssc_body_write_level_file(body, 0, path, format);
+    return guarded(__func__, [&] { write_body_file(body, path, format, {}); });
 }
 
 ssc_status ssc_body_write_level_file(ssc_body* body, uint32_t level, const char* path, ssc_file_format format) {
     return guarded(__func__, [&] {
-        need(body, "body");
-        need(path, "path");
         exporters::ExportOptions options;
-        options.level = checked_level(body, level);
-        exporters::write_body(body->body, path, body_format(format, path), options);
+        options.level = level;
+        write_body_file(body, path, format, options);
     });
 }
 
@@ -56,19 +57,18 @@ void ssc_export_def_init(ssc_export_def* def, size_t size) {
 ssc_status ssc_body_export(ssc_body* body, const char* path, const ssc_export_def* def) {
     return guarded(__func__, [&] {
         need(body, "body");
-        need(path, "path");
         const ssc_export_def d = read_def(def, ssc_export_def_init, "def");
         const int32_t kind = enum_value(d.morphs);
         SSC_REQUIRE_ARG_S(kind >= SSC_MORPHS_NONE && kind <= SSC_MORPHS_SLIDERS,
                           "def->morphs " << kind << " is not an ssc_morphs (0 none, 1 components, 2 sliders)");
         SSC_REQUIRE_ARG(kind != SSC_MORPHS_NONE || d.morph_count == 0, "def->morph_count without def->morphs");
         exporters::ExportOptions options;
-        options.level = checked_level(body, d.level);
+        options.level = d.level;
         if (kind != SSC_MORPHS_NONE)
             options.morphs = exporters::morph_targets(body->body.model(), body->model->attributes,
                                                       kind == SSC_MORPHS_COMPONENTS ? exporters::MorphKind::Components : exporters::MorphKind::Sliders,
                                                       d.morph_count);
-        exporters::write_body(body->body, path, body_format(d.format, path), options);
+        write_body_file(body, path, d.format, options);
     });
 }
 
