@@ -28,11 +28,14 @@ add_compile_options(-ffile-prefix-map=${PROJECT_SOURCE_DIR}/=)
 # Hardening of what ships: stack protector everywhere, fortified libc calls where optimising
 # (glibc needs -O; the sanitizers replace those checks), full RELRO and immediate binding for the
 # shared library and programs.
-add_compile_options(-fstack-protector-strong)
-if(NOT SSCAPE_SANITIZE AND NOT SSCAPE_FUZZ)
-  add_compile_options($<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-D_FORTIFY_SOURCE=2>)
+# (WebAssembly has neither: its linear memory holds no return addresses or relocations.)
+if(NOT EMSCRIPTEN)
+  add_compile_options(-fstack-protector-strong)
+  if(NOT SSCAPE_SANITIZE AND NOT SSCAPE_FUZZ)
+    add_compile_options($<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-D_FORTIFY_SOURCE=2>)
+  endif()
+  add_link_options(-Wl,-z,relro,-z,now)
 endif()
-add_link_options(-Wl,-z,relro,-z,now)
 
 # Our own targets: warnings on, hidden symbols, position-independent (they go into the .so).
 function(sscape_defaults target)

@@ -60,7 +60,7 @@ void validate_model(const ModelData& m) {
         require_below(mesh.triangle_uvs, mesh.uvs.size() / 2, "mesh.triangle_uvs");
         require_below(mesh.quad_uvs, mesh.uvs.size() / 2, "mesh.quad_uvs");
     }
-    SSC_REQUIRE_MODEL(mesh.triangles.size() / 3 < (1ull << 32), "too many triangles");
+    SSC_REQUIRE_MODEL(uint64_t(mesh.triangles.size() / 3) < (1ull << 32), "too many triangles");  // (always true where size_t has 32 bits)
 
     // Shape space.
     const auto& s = m.shape;

@@ -166,7 +166,8 @@ private:
             // The head's turn likewise (head_search.hpp), in fits from the automatic start as the
             // restarts: from a given start (a sequence's tracked frames) it turned heads wrong and
             // the frames after them followed (capture benchmark: 78 -> 70 of 100 frames good).
-            if (si == Schedule::kFine && !cancelled && ((o_.hand_search && search_hands()) | (F_ == 1 && searched_frames_ == 1 && search_head()))) {
+            // (Both searches run: | of ints, not ||.)
+            if (si == Schedule::kFine && !cancelled && (int(o_.hand_search && search_hands()) | int(F_ == 1 && searched_frames_ == 1 && search_head()))) {
                 Stage again = stages[Schedule::kFine];
                 again.iterations = std::max<uint32_t>(2, again.iterations / 2);
                 converged = p_.run_stage(again, kAllFrames, &progress, iteration, cancelled);
