@@ -7,7 +7,7 @@
 #     reached through a folder of links to each one, because adding /usr/include itself would put
 #     glibc's headers in front of emscripten's libc;
 #   zstd: compiled here from the zstd sources the npm registry serves inside the zstd-napi package
-#     (SSCAPE_ZSTD_SOURCE, its deps/zstd/lib; setup.sh installs it), so the model file is checked and
+#     (SSCAPE_NPM_MODULES; setup.sh installs it), so the model file is checked and
 #     decompressed by the very calls the native library makes;
 #   flatc: the host's (it only generates C++ from the schema).
 
@@ -16,10 +16,14 @@ foreach(off SSCAPE_BUILD_CLI SSCAPE_BUILD_TRAINING SSCAPE_BUILD_PICTURES SSCAPE_
   set(${off} OFF CACHE BOOL "off in the WebAssembly build" FORCE)
 endforeach()
 
-set(SSCAPE_ZSTD_SOURCE "" CACHE PATH "zstd's lib folder (zstd.h, common/, decompress/, compress/): npm zstd-napi's deps/zstd/lib")
-if(NOT EXISTS "${SSCAPE_ZSTD_SOURCE}/zstd.h" OR NOT EXISTS "${SSCAPE_ZSTD_SOURCE}/decompress/zstd_decompress.c")
-  message(FATAL_ERROR "SSCAPE_ZSTD_SOURCE='${SSCAPE_ZSTD_SOURCE}' is not zstd's lib folder (setup.sh installs npm zstd-napi@0.0.13 into build-wasm/npm: "
-                      "-DSSCAPE_ZSTD_SOURCE=build-wasm/npm/node_modules/zstd-napi/deps/zstd/lib)")
+# npm packages (setup.sh installs them, pinned, into build-wasm/npm): zstd-napi for zstd's sources,
+# three for the configurator page.
+set(SSCAPE_NPM_MODULES "" CACHE PATH "node_modules with zstd-napi@0.0.13 and three@0.170.0 (setup.sh: build-wasm/npm/node_modules)")
+set(SSCAPE_ZSTD_SOURCE ${SSCAPE_NPM_MODULES}/zstd-napi/deps/zstd/lib)
+set(SSCAPE_THREE ${SSCAPE_NPM_MODULES}/three)
+if(NOT EXISTS "${SSCAPE_ZSTD_SOURCE}/decompress/zstd_decompress.c" OR NOT EXISTS "${SSCAPE_THREE}/build/three.module.min.js")
+  message(FATAL_ERROR "SSCAPE_NPM_MODULES='${SSCAPE_NPM_MODULES}' lacks zstd-napi or three: "
+                      "npm install --prefix build-wasm/npm zstd-napi@0.0.13 three@0.170.0, then -DSSCAPE_NPM_MODULES=$PWD/build-wasm/npm/node_modules")
 endif()
 
 # The host's header-only libraries, each linked into one folder.
@@ -56,6 +60,7 @@ add_library(zstd::libzstd_static ALIAS sscape_wasm_zstd)
 
 # Everything: WebAssembly SIMD (Chromium, Firefox, Safari and Node all run it), exceptions as
 # WebAssembly exceptions (the C API's guard catches the library's errors; emscripten's default
-# would abort instead).
+# would abort instead). Not emscripten's SSE2 emulation: Eigen's SSE2 code holds x86 inline
+# assembly for the GCC versions clang claims to be (docs/web.md, "Same bits?").
 add_compile_options(-msimd128 -fwasm-exceptions)
 add_link_options(-fwasm-exceptions)

@@ -19,6 +19,9 @@
 #include <immintrin.h>
 #define SSC_SKIN_AVX2 1
 #endif
+#if defined(__wasm_simd128__)
+#include <wasm_simd128.h>
+#endif
 
 namespace ssc::kernels {
 namespace {
@@ -119,11 +122,11 @@ void skin_run_scalar(const SkinLayout& m, const SkinLayout::Run& run, const floa
         const uint32_t v = vid[s];
         auto blend = [&](int e) {
             float acc = W[0][s] * M[0][e];
-            for (int i = 1; i < N; ++i) acc = std::fma(W[i][s], M[i][e], acc);
+            for (int i = 1; i < N; ++i) acc = madd(W[i][s], M[i][e], acc);
             return acc;
         };
         auto row = [&](const int* e) {
-            return std::fma(blend(e[2]), a.zs[v], blend(e[0]) * a.xs[v]) + std::fma(blend(e[1]), a.ys[v], blend(e[3]));
+            return madd(blend(e[2]), a.zs[v], blend(e[0]) * a.xs[v]) + madd(blend(e[1]), a.ys[v], blend(e[3]));
         };
         a.ox[v] = row(kRowX);
         a.oy[v] = row(kRowY);
@@ -191,10 +194,64 @@ void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float*
 SSC_TARGET_END
 #endif
 
+#if defined(__wasm_simd128__)
+// WebAssembly SIMD (the browser runtime): the AVX2 path's blocks as two 4-lane halves, a multiply
+// and an add where it fuses them (see madd in cpu.hpp).
+template <int N>
+void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
+    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
+    const float *xs = a.xs, *ys = a.ys, *zs = a.zs;
+    float *ox = a.ox, *oy = a.oy, *oz = a.oz;
+    const float* const* M = a.M;
+    const float* const* W = a.W;
+    const uint32_t* vid = m.vertices.data();
+    auto madd4 = [](v128_t x, v128_t y, v128_t z) { return wasm_f32x4_add(wasm_f32x4_mul(x, y), z); };
+    for (uint32_t b = run.begin; b < run.end; b += 4) {
+        const bool contiguous = m.contiguous[b / SkinLayout::kBlock];
+        const uint32_t* id = vid + b;
+        v128_t x, y, z;
+        if (contiguous) {
+            x = wasm_v128_load(xs + id[0]);
+            y = wasm_v128_load(ys + id[0]);
+            z = wasm_v128_load(zs + id[0]);
+        } else {
+            x = wasm_f32x4_make(xs[id[0]], xs[id[1]], xs[id[2]], xs[id[3]]);
+            y = wasm_f32x4_make(ys[id[0]], ys[id[1]], ys[id[2]], ys[id[3]]);
+            z = wasm_f32x4_make(zs[id[0]], zs[id[1]], zs[id[2]], zs[id[3]]);
+        }
+        v128_t w[N];
+        for (int i = 0; i < N; ++i) w[i] = wasm_v128_load(W[i] + b);
+        auto blend = [&](int e) {
+            v128_t acc = wasm_f32x4_mul(w[0], wasm_f32x4_splat(M[0][e]));
+            for (int i = 1; i < N; ++i) acc = madd4(w[i], wasm_f32x4_splat(M[i][e]), acc);
+            return acc;
+        };
+        auto row = [&](const int* e) {
+            return wasm_f32x4_add(madd4(blend(e[2]), z, wasm_f32x4_mul(blend(e[0]), x)), madd4(blend(e[1]), y, blend(e[3])));
+        };
+        const v128_t px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
+        if (contiguous) {
+            wasm_v128_store(ox + id[0], px);
+            wasm_v128_store(oy + id[0], py);
+            wasm_v128_store(oz + id[0], pz);
+        } else {
+            alignas(16) float tx[4], ty[4], tz[4];
+            wasm_v128_store(tx, px);
+            wasm_v128_store(ty, py);
+            wasm_v128_store(tz, pz);
+            for (int l = 0; l < 4; ++l) ox[id[l]] = tx[l], oy[id[l]] = ty[l], oz[id[l]] = tz[l];
+        }
+    }
+}
+#endif
+
 template <int N>
 void skin_run(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, Isa isa) {
 #ifdef SSC_SKIN_AVX2
     if (isa != Isa::Baseline) return skin_run_avx2<N>(m, run, mats, rest, out);
+#endif
+#if defined(__wasm_simd128__)
+    return skin_run_wasm<N>(m, run, mats, rest, out);
 #endif
     (void)isa;
     skin_run_scalar<N>(m, run, mats, rest, out);

@@ -25,6 +25,9 @@
 #define SSC_SHAPE_AVX2 1
 #define SSC_SHAPE_AVX512 1
 #endif
+#if defined(__wasm_simd128__)
+#include <wasm_simd128.h>
+#endif
 
 namespace ssc::kernels {
 namespace {
@@ -132,6 +135,52 @@ SSC_AVX512 void shape_avx512(const Model& m, std::size_t count, const float* con
 
 #endif
 
+#if defined(__wasm_simd128__)
+// WebAssembly SIMD (the browser runtime). WebAssembly has no fused multiply-add (std::fma is done in
+// software there, many times slower), so each step is a multiply and an add, rounded twice: the rest
+// vertices differ from the native library's by an ulp or so (docs/web.md, "Same bits?").
+// One panel: its 16 int16 rows of component k are two 128-bit loads; each 32-bit lane holds rows 2i
+// and 2i+1, moved into the high half (even rows: a shift) or masked there (odd rows) and converted
+// as 65536 q: clang 14 turns wasm_i32x4_extend_low_i16x8 followed by a conversion into lane-by-lane
+// scalar code. The accumulators are put back into row order once at the end. (Two or four panels
+// at a time measured the same.)
+void tile_wasm(const Model& m, std::size_t c, const float* sg, float* out) {
+    const uint32_t K = m.component_count();
+    const int16_t* panel = m.basis_panels() + c * K * kChunk;
+    const float* mean = m.mean_planar() + c * kChunk;
+    v128_t even[2], odd[2];  // rows 0 2 4 6 / 1 3 5 7 of each half panel
+    for (int h = 0; h < 2; ++h) {
+        const v128_t lo = wasm_v128_load(mean + 8 * h), hi = wasm_v128_load(mean + 8 * h + 4);
+        even[h] = wasm_i32x4_shuffle(lo, hi, 0, 2, 4, 6);
+        odd[h] = wasm_i32x4_shuffle(lo, hi, 1, 3, 5, 7);
+    }
+    const v128_t high = wasm_i32x4_splat(int32_t(0xFFFF0000u));
+    for (uint32_t k = 0; k < K; ++k) {
+        // The rows come as 65536 q (exact in a float), so the coefficient is scaled by 2^-16 (exact
+        // too): each product is c q rounded once, as without the scaling.
+        const v128_t ck = wasm_f32x4_splat(sg[k] * (1.f / 65536.f));
+        const int16_t* q = panel + std::size_t(k) * kChunk;
+        for (int h = 0; h < 2; ++h) {
+            const v128_t pairs = wasm_v128_load(q + 8 * h);
+            const v128_t e = wasm_f32x4_convert_i32x4(wasm_i32x4_shl(pairs, 16));
+            const v128_t o = wasm_f32x4_convert_i32x4(wasm_v128_and(pairs, high));
+            even[h] = wasm_f32x4_add(wasm_f32x4_mul(ck, e), even[h]);
+            odd[h] = wasm_f32x4_add(wasm_f32x4_mul(ck, o), odd[h]);
+        }
+    }
+    for (int h = 0; h < 2; ++h) {
+        float* row = out + c * kChunk + 8 * h;
+        wasm_v128_store(row, wasm_i32x4_shuffle(even[h], odd[h], 0, 4, 1, 5));
+        wasm_v128_store(row + 4, wasm_i32x4_shuffle(even[h], odd[h], 2, 6, 3, 7));
+    }
+}
+
+void shape_wasm(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first, std::size_t end) {
+    for (std::size_t g = 0; g < count; ++g)
+        for (std::size_t c = first; c < end; ++c) tile_wasm(m, c, scaled[g], rest[g]);
+}
+#endif
+
 [[maybe_unused]] void shape_scalar(const Model& m, std::size_t count, const float* const* scaled, float* const* rest, std::size_t first,
                                    std::size_t end) {
     const uint32_t K = m.component_count();
@@ -169,6 +218,9 @@ void shape_rows(const Model& m, std::size_t count, const float* const* scaled, f
 #if defined(SSC_SHAPE_AVX2)
     if (isa != Isa::Baseline) return shape_avx2(m, count, scaled, rest, first_panel, end_panel);
 #endif
+#if defined(__wasm_simd128__)
+    return shape_wasm(m, count, scaled, rest, first_panel, end_panel);
+#endif
     shape_scalar(m, count, scaled, rest, first_panel, end_panel);
 }
 
@@ -183,7 +235,7 @@ namespace {
         float* out = joints[g];
         for (uint32_t i = 0; i < 3 * J; ++i) {
             float acc = m.joint_mean()[i];
-            for (uint32_t k = 0; k < K; ++k) acc = std::fma(scaled[g][k], m.joint_basis()[std::size_t(k) * 3 * J + i], acc);
+            for (uint32_t k = 0; k < K; ++k) acc = madd(scaled[g][k], m.joint_basis()[std::size_t(k) * 3 * J + i], acc);
             out[i] = acc;
         }
     }

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace {
@@ -140,6 +141,28 @@ void BM_ShapeAndPose(benchmark::State& state) {
     }
 }
 
+// Shape and pose of one level of detail of the default model, its vertices copied out: a new body
+// variant each iteration (the browser benchmark, tests/web/bench.mjs, runs the same in WebAssembly).
+void BM_ShapeAndPoseLevel(benchmark::State& state) {
+    OneBody f(true);
+    const uint32_t level = uint32_t(state.range(0));
+    if (level >= ssc_model_level_count(f.m)) {
+        state.SkipWithError("the default model has no such level");
+        return;
+    }
+    ssc_level_info info{};
+    info.struct_size = sizeof info;
+    ssc_model_get_level_info(f.m, level, &info);
+    std::size_t i = 0;
+    for (auto _ : state) {
+        ssc_body_set_shape(f.b, f.p.shapes[i % f.p.shapes.size()].data(), f.K);
+        ssc_body_set_pose_axis_angle(f.b, f.p.poses[i++ % f.p.poses.size()].data(), f.J, nullptr);
+        ssc_body_get_level_vertices(f.b, level, f.out.data(), info.vertex_count, 0);
+        benchmark::ClobberMemory();
+    }
+    state.SetLabel(std::string(info.name) + ", " + std::to_string(info.vertex_count) + " vertices");
+}
+
 void BM_Normals(benchmark::State& state) {
     OneBody f;
     std::size_t i = 0;
@@ -214,6 +237,7 @@ BENCHMARK(BM_PoseOnly)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PoseOnlyLevel)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PoseOnlySkeleton)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShapeAndPose)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ShapeAndPoseLevel)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Normals)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Batch)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
