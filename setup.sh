@@ -44,6 +44,9 @@ if [ "$mode" = test ]; then packages+=(catch2 libbenchmark-dev clang libclang-rt
   command -v node > /dev/null 2>&1 || packages+=(nodejs npm)
   # Blender (headless) tests the Blender add-on and imports the GLB files.
   packages+=(blender)
+  # The browser runtime: emscripten builds the library as WebAssembly (its JavaScript optimizer needs
+  # Debian's acorn), headless Chromium runs the configurator page (docs/web.md).
+  packages+=(emscripten node-acorn chromium)
 fi
 missing=()
 for p in "${packages[@]}"; do
@@ -79,14 +82,16 @@ build() {  # build DIR [cmake args...]; TARGET="a b" builds only those targets
     generator_args=(-G "$(sed -n 's/^CMAKE_GENERATOR:INTERNAL=//p' "$dir/CMakeCache.txt")")
   fi
   mkdir -p "$dir"
-  cmake -S . -B "$dir" "${generator_args[@]}" "$@" > "$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; exit 1; }
+  # CMAKE_WRAPPER: emcmake for the WebAssembly build (its toolchain file).
+  ${CMAKE_WRAPPER:-} cmake -S . -B "$dir" "${generator_args[@]}" "$@" > "$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; exit 1; }
   # shellcheck disable=SC2086
   cmake --build "$dir" -j "$jobs" ${TARGET:+--target $TARGET}
 }
 
 # npm packages (pinned): the Khronos glTF validator for the export test; koffi and TypeScript for the
-# JavaScript binding's tests (bindings/javascript) and three.js for importing the GLB as a web
-# viewer would, which only the Release build runs.
+# JavaScript binding's tests (bindings/javascript), three.js for importing the GLB as a web viewer
+# would and puppeteer-core for driving Chromium in the browser test, which only the Release build
+# runs. The WebAssembly build takes zstd's sources from zstd-napi and three.js for its page.
 gltf_validator=gltf-validator@2.0.0-dev.3.10
 npm_tools() {  # npm_tools DIR PACKAGE@VERSION...
   local dir="$1" missing_packages=() p; shift
@@ -94,7 +99,8 @@ npm_tools() {  # npm_tools DIR PACKAGE@VERSION...
   if [ "${#missing_packages[@]}" -eq 0 ]; then return; fi
   if command -v npm > /dev/null 2>&1; then
     echo "setup: installing npm packages ${missing_packages[*]} into $dir/npm"
-    npm install --silent --no-audit --no-fund --prefix "$dir/npm" "$@" > /dev/null 2>&1 \
+    # NPM_IGNORE_SCRIPTS=1: packages taken for their files only (no native addon is built).
+    npm install --silent --no-audit --no-fund ${NPM_IGNORE_SCRIPTS:+--ignore-scripts} --prefix "$dir/npm" "$@" > /dev/null 2>&1 \
       || { echo "setup: npm install of $* failed" >&2; exit 1; }
   else
     echo "setup: npm not found; the tests that need $* will be skipped"
@@ -123,8 +129,13 @@ if [ "$mode" = run ]; then
 else
   stage "Release build"
   build build "${release_args[@]}"
+  stage "WebAssembly build"
+  # The runtime, the browser package and the configurator page in build-wasm/web (docs/web.md); the
+  # Release tests run it in Chromium.
+  NPM_IGNORE_SCRIPTS=1 npm_tools build-wasm zstd-napi@0.0.13 three@0.170.0
+  NODE_PATH=/usr/share/nodejs CMAKE_WRAPPER=emcmake build build-wasm -DCMAKE_BUILD_TYPE=Release -DSSCAPE_NPM_MODULES="$PWD/build-wasm/npm/node_modules"
   stage "npm packages"
-  npm_tools build "$gltf_validator" koffi@3.3.4 typescript@5.9.3 three@0.170.0
+  npm_tools build "$gltf_validator" koffi@3.3.4 typescript@5.9.3 three@0.170.0 puppeteer-core@24.40.0
   stage "Release tests"
   (cd build && ctest -j "$jobs" --output-on-failure)
   stage "sanitizer build"
