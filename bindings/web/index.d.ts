@@ -71,6 +71,34 @@ export class Model extends Handle {
   synthesize(options: { shapes?: Floats | null; count: number; poses?: Floats | null; translations?: Floats | null;
                         normals?: boolean; level?: number | string }): { vertices: Float32Array; normals?: Float32Array };
   createBody(): Body;
+  /** Landmark names (CAESAR names for the default model), in the order of Body.landmarks. */
+  readonly landmarkNames: string[];
+  /** A fitter of shape and pose to landmarks and scan points (one frame). */
+  createFitter(options?: { shapeCount?: number; maxIterations?: number; seed?: number; jointLimits?: boolean }): Fitter;
+}
+
+/** What a solve did (ssc_fit_report's fields). */
+export interface FitReport {
+  iterations: number;
+  converged: boolean;
+  landmarkRms: number;
+  pointMean: number;
+  seconds: number;
+  restarts: number;
+  unexplainedFraction: number;
+  implausible: boolean;
+  problem: number;
+}
+
+export class Fitter extends Handle {
+  readonly model: Model;
+  /** Landmarks by name at positions (3 floats each, metres, any frame of reference). */
+  addLandmarks(names: string[], positions: Floats): void;
+  /** Scan points, 3 floats each. */
+  addPoints(points: Floats): void;
+  solve(): FitReport;
+  readonly shape: Float32Array;
+  readonly vertices: Float32Array;
 }
 
 export class Body extends Handle {
@@ -88,6 +116,8 @@ export class Body extends Handle {
   readonly normals: Float32Array;
   levelVertices(level: number | string): Float32Array;
   levelNormals(level: number | string): Float32Array;
+  /** The posed landmarks, 3 floats each (Model.landmarkNames order). */
+  readonly landmarks: Float32Array;
   measureAll(): Float32Array;
   measure(): Record<string, number>;
   /** The body as a GLB file's bytes; morphs: the first K shape components, or 'sliders' (docs/engines.md). */

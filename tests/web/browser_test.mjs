@@ -172,6 +172,28 @@ try {
   check(batch.worst === 0 && batch.length === 2 * 4002 * 3, `a batch of 2 bodies at the simplified level equals the bodies one by one (worst ${batch.worst})`);
   check(batch.objVertices === 741, `OBJ of the proxy741 level: ${batch.objVertices} vertices`);
 
+  // Fitting to landmarks in the page: the 73 landmarks of a body in a named pose give back its surface.
+  const fit = await page.evaluate(() => {
+    const { model } = window.sscapeApp;
+    const truth = model.createBody();
+    truth.shape = Float32Array.from({ length: 10 }, (_, i) => Math.sin(3 * i + 1));
+    truth.setNamedPose('arms_raised');
+    const fitter = model.createFitter({ shapeCount: 10 });
+    fitter.addLandmarks(model.landmarkNames, truth.landmarks);
+    const report = fitter.solve();
+    const v = fitter.vertices, t = truth.vertices;
+    let sum = 0;
+    for (let i = 0; i < v.length; i += 3) sum += Math.hypot(v[i] - t[i], v[i + 1] - t[i + 1], v[i + 2] - t[i + 2]);
+    let refused = '';
+    try { fitter.addLandmarks(['no_such_landmark'], [0, 0, 0]); } catch (e) { refused = e.code; }
+    fitter.close();
+    truth.close();
+    return { converged: report.converged, rms: report.landmarkRms, seconds: report.seconds, error: sum / (v.length / 3), refused };
+  });
+  check(fit.converged && fit.error < 0.005 && fit.refused === 'SSC_ERROR_NOT_FOUND',
+    `fitting to 73 landmarks in the page: converged in ${(fit.seconds * 1000).toFixed(0)} ms, landmark RMS ${(fit.rms * 1000).toFixed(2)} mm, ` +
+    `mean vertex error ${(fit.error * 1000).toFixed(2)} mm; an unknown landmark name: ${fit.refused}`);
+
   // The WebAssembly results against the native library's, for the same parameters: the page's body
   // as the controls left it, and random ones.
   const cases = await page.evaluate(() => {

@@ -1,6 +1,6 @@
 // Compiled (not run) by the web_package_types test: the browser package's declarations type-check
 // as a page would use them (tsc --strict).
-import { loadRuntime, SscapeError, type Model, type Body, type Slider, type Level } from '../../bindings/web/index';
+import { loadRuntime, SscapeError, type Model, type Body, type Slider, type Level, type FitReport } from '../../bindings/web/index';
 
 async function configure(): Promise<Uint8Array> {
   const sscape = await loadRuntime({ wasm: 'sscape_runtime.wasm' });
@@ -18,6 +18,10 @@ async function configure(): Promise<Uint8Array> {
   } catch (e) {
     if (e instanceof SscapeError) console.log(e.code, e.status, stature);
   }
+  const fitter = model.createFitter({ shapeCount: 10 });
+  fitter.addLandmarks(model.landmarkNames, body.landmarks);
+  const report: FitReport = fitter.solve();
+  if (!report.converged) throw new Error(String(report.problem));
   return body.toGLB({ level: 'all', morphs: 'sliders' });
 }
 void configure();

@@ -37,6 +37,9 @@ const SLIDER_INFO = { size: 28, name: 4, unit: 8, description: 12, mean: 16, min
 const LEVEL_INFO = { size: 20, name: 4, vertexCount: 8, triangleCount: 12, uvCount: 16 };
 const EXPORT_DEF = { size: 20, format: 4, level: 8, morphs: 12, morphCount: 16 };
 const MADE_TO_MEASURE_DEF = { size: 20, sex: 4, age: 8 };
+const FITTER_DEF = { size: 44, shapeCount: 4, maxIterations: 12, seed: 36, jointLimits: 40 };
+const FIT_REPORT = { size: 60, iterations: 4, converged: 8, landmarkRms: 24, pointMean: 28, seconds: 36, restarts: 40,
+  unexplainedFraction: 44, implausible: 48, problem: 52 };
 const BATCH_DESC = { size: 48, bodyCount: 4, shapes: 8, shapeCount: 12, poses: 20, translations: 24, vertices: 28,
   verticesCapacity: 32, normals: 36, normalsCapacity: 40, level: 44 };
 
@@ -246,6 +249,20 @@ export class Model extends Handle {
     return names;
   }
 
+  /** Landmark names (the CAESAR names for the default model), in the order of Body.landmarks. */
+  get landmarkNames() {
+    const rt = this._rt;
+    const names = [];
+    const count = rt._m._ssc_model_landmark_count(this.handle);
+    rt._scratch(4, (p) => {
+      for (let i = 0; i < count; ++i) {
+        rt._check(rt._m._ssc_model_get_landmark_name(this.handle, i, p), 'ssc_model_get_landmark_name');
+        names.push(rt._string(rt._u32(p)));
+      }
+    });
+    return names;
+  }
+
   /** Each shape component's standard deviation (the body's shape is in these units). */
   get shapeStddevs() {
     const rt = this._rt;
@@ -353,6 +370,25 @@ export class Model extends Handle {
     return result;
   }
 
+  /**
+   * A fitter: shape and pose from landmarks and scan points (options: shapeCount, maxIterations, seed,
+   * jointLimits as ssc_fitter_def; the rest of the defaults as the library's).
+   */
+  createFitter({ shapeCount, maxIterations, seed, jointLimits } = {}) {
+    const rt = this._rt;
+    const handle = rt._scratch(FITTER_DEF.size + 4, (d) => {
+      rt._m._ssc_fitter_def_init(d, FITTER_DEF.size);
+      if (shapeCount !== undefined) rt._setU32(d + FITTER_DEF.shapeCount, shapeCount);
+      if (maxIterations !== undefined) rt._setU32(d + FITTER_DEF.maxIterations, maxIterations);
+      if (seed !== undefined) rt._setU32(d + FITTER_DEF.seed, seed);
+      if (jointLimits !== undefined) rt._setU32(d + FITTER_DEF.jointLimits, jointLimits ? 1 : 0);
+      const out = d + FITTER_DEF.size;
+      rt._check(rt._m._ssc_fitter_create(this.handle, d, out), 'ssc_fitter_create');
+      return rt._u32(out);
+    });
+    return new Fitter(this, handle);
+  }
+
   /** A body of this model: the mean shape in the rest pose. */
   createBody() {
     const rt = this._rt;
@@ -449,6 +485,12 @@ export class Body extends Handle {
   levelVertices(level) { return this._vertexArray({ level: 'ssc_body_get_level_vertices' }, level); }
   levelNormals(level) { return this._vertexArray({ level: 'ssc_body_get_level_normals' }, level); }
 
+  /** The posed landmarks (Model.landmarkNames order), 3 floats each. */
+  get landmarks() {
+    const rt = this._rt, n = rt._m._ssc_model_landmark_count(this.model.handle);
+    return rt._floatsOut(n * 3, (p) => rt._check(rt._m._ssc_body_get_landmarks(this.handle, p, n, 12), 'ssc_body_get_landmarks'));
+  }
+
   /** Every measurement, in the order of Runtime.measurements(). */
   measureAll() {
     const rt = this._rt, n = rt._m._ssc_measurement_count();
@@ -484,5 +526,62 @@ export class Body extends Handle {
       }
       rt._check(rt._m._ssc_body_export(this.handle, path, d), 'ssc_body_export');
     }));
+  }
+}
+
+/** Fits shape and pose to landmarks and scan points (one frame). */
+export class Fitter extends Handle {
+  constructor(model, handle) {
+    super(model._rt, handle, 'ssc_fitter_destroy');
+    this.model = model;
+  }
+
+  /** Landmarks by name (Model.landmarkNames) at positions (3 per name, metres, any frame of reference). */
+  addLandmarks(names, positions) {
+    const rt = this._rt, m = rt._m;
+    const xyz = floats(positions, names.length * 3, 'positions');
+    const strings = names.map((n) => {
+      const size = m.lengthBytesUTF8(String(n)) + 1, p = m._malloc(size);
+      m.stringToUTF8(String(n), p, size);
+      return p;
+    });
+    try {
+      rt._withBytes(Uint32Array.from(strings), (pn) => rt._withBytes(xyz, (pp) =>
+        rt._check(m._ssc_fitter_add_landmarks_by_name(this.handle, 0, pn, pp, 0, names.length), 'ssc_fitter_add_landmarks_by_name')));
+    } finally {
+      strings.forEach((p) => m._free(p));
+    }
+  }
+
+  /** Scan points (3 floats each, metres). */
+  addPoints(points) {
+    const rt = this._rt, xyz = floats(points);
+    if (xyz.length % 3 !== 0) throw new RangeError('sscape: points hold 3 floats each');
+    rt._withBytes(xyz, (p) => rt._check(rt._m._ssc_fitter_add_points(this.handle, 0, p, 0, 0, xyz.length / 3, 12), 'ssc_fitter_add_points'));
+  }
+
+  /** Solves; returns { iterations, converged, landmarkRms, pointMean, seconds, restarts, unexplainedFraction, implausible, problem }. */
+  solve() {
+    const rt = this._rt;
+    return rt._scratch(FIT_REPORT.size, (r) => {
+      rt._setU32(r, FIT_REPORT.size);
+      rt._check(rt._m._ssc_fitter_solve(this.handle, 0, 0, r), 'ssc_fitter_solve');
+      return { iterations: rt._u32(r + FIT_REPORT.iterations), converged: rt._u32(r + FIT_REPORT.converged) !== 0,
+        landmarkRms: rt._f32(r + FIT_REPORT.landmarkRms), pointMean: rt._f32(r + FIT_REPORT.pointMean), seconds: rt._f32(r + FIT_REPORT.seconds),
+        restarts: rt._u32(r + FIT_REPORT.restarts), unexplainedFraction: rt._f32(r + FIT_REPORT.unexplainedFraction),
+        implausible: rt._u32(r + FIT_REPORT.implausible) !== 0, problem: rt._u32(r + FIT_REPORT.problem) };
+    });
+  }
+
+  /** The fitted shape (shapeCount coefficients). */
+  get shape() {
+    const rt = this._rt, n = this.model.shapeCount;
+    return rt._floatsOut(n, (p) => rt._check(rt._m._ssc_fitter_get_shape(this.handle, p, n), 'ssc_fitter_get_shape'));
+  }
+
+  /** The fitted surface's vertices (full mesh, as placed on the data). */
+  get vertices() {
+    const rt = this._rt, n = this.model.vertexCount;
+    return rt._floatsOut(n * 3, (p) => rt._check(rt._m._ssc_fitter_get_vertices(this.handle, 0, p, n, 12), 'ssc_fitter_get_vertices'));
   }
 }
