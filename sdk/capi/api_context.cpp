@@ -78,6 +78,9 @@ ssc_status ssc_context_create(const ssc_context_def* def, ssc_context** out) {
         unsigned workers = d.worker_count;
         if (workers == 0) workers = std::max(1u, std::thread::hardware_concurrency());
         SSC_REQUIRE_ARG(workers <= 1024, "worker_count is larger than 1024");
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+        workers = 1;  // WebAssembly without threads (the browser runtime): everything on the caller's thread
+#endif
         Allocator a{d.alloc, d.free, d.alloc_user};
         ssc_context* ctx = make<ssc_context>(a, workers);
         ctx->allocator = a;

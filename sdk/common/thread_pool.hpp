@@ -17,12 +17,7 @@ class ThreadPool {
 public:
     // thread_count includes the caller: 1 = run inline. Threads start on the first parallel_for,
     // so a context that never runs a batch costs no threads.
-    // WebAssembly without threads (the browser runtime) runs everything inline.
-#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
-    explicit ThreadPool(unsigned) : thread_count_(1) {}
-#else
     explicit ThreadPool(unsigned thread_count) : thread_count_(thread_count ? thread_count : 1) {}
-#endif
     ~ThreadPool();
     ThreadPool(const ThreadPool&) = delete;
     ThreadPool& operator=(const ThreadPool&) = delete;

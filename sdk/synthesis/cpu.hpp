@@ -11,8 +11,6 @@
 // never raises it past what the CPU supports): for tests of the fallback paths, and to time them.
 #pragma once
 
-#include <cmath>
-
 // Everything between SSC_TARGET_AVX2_BEGIN and SSC_TARGET_END (functions, templates, lambdas) is
 // compiled for AVX2 + FMA; callers check active_isa() first. GCC and clang spell it differently.
 #if defined(__clang__)
@@ -33,16 +31,5 @@ Isa supported_isa();
 Isa active_isa();
 // "baseline", "avx2" or "avx512".
 const char* isa_name(Isa isa);
-
-// a * b + c as the kernels compute it: fused, rounded once, on every native path (one instruction
-// with FMA, exact in libm without); WebAssembly has no fused multiply-add and libm's exact one is
-// done in software, many times slower, so the browser runtime rounds twice (docs/web.md).
-[[gnu::always_inline]] inline float madd(float a, float b, float c) {
-#if defined(__wasm__)
-    return a * b + c;
-#else
-    return std::fma(a, b, c);
-#endif
-}
 
 }  // namespace ssc::kernels

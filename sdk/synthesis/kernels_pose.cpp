@@ -7,6 +7,7 @@
 // [W_j | p_j], and skinning uses G_j * bind_j^-1, which is the identity in the zero pose.
 #include "cpu.hpp"
 #include "kernels.hpp"
+#include "madd.hpp"
 #include "model.hpp"
 
 #include <Eigen/Geometry>

@@ -14,6 +14,7 @@
 // instruction sets by target pragmas and chosen per call (cpu.hpp).
 #include "cpu.hpp"
 #include "kernels.hpp"
+#include "madd.hpp"
 #include "model.hpp"
 
 #include <algorithm>

@@ -41,10 +41,12 @@
 #include "paths.hpp"
 
 #include "anatomy/hand_closure.hpp"
+#include "anatomy/joint_roles.hpp"
 #include "anatomy/named_poses.hpp"
 #include "common/rigid.hpp"
 #include "fitting/fitter.hpp"
 #include "fitting/interpenetration.hpp"
+#include "fitting/judgement.hpp"
 #include "fitting/nearest.hpp"
 #include "registration/registration_quality.hpp"
 #include "render/body_sheet.hpp"
@@ -55,6 +57,7 @@
 #include "sscape_format/model_io.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -166,6 +169,36 @@ std::string region_list(const registration::BodyRegions& regions, const std::vec
         s += buf;
     }
     return s;
+}
+
+// How much of each hand (left, right) lies within `reach` of another part of the body (the trunk,
+// the head, the legs, the other arm and hand; not its own arm): a hand in contact, where a scan
+// cannot tell one surface from the other.
+std::array<double, 2> hand_contact(const fitting::LinearModel& lin, const std::vector<Eigen::Vector3d>& vertices, double reach) {
+    std::array<double, 2> share{};
+    const std::vector<uint8_t> regions = fitting::vertex_regions(lin);
+    std::array<std::vector<uint32_t>, 2> hand;
+    for (uint32_t v = 0; v < lin.V; v += 2) {
+        const uint32_t j = fitting::dominant_joint(lin.model.data(), v);
+        if (j < lin.roles.size() && lin.roles[j].part == anatomy::BodyPart::Hand && lin.roles[j].side != anatomy::Side::Centre)
+            hand[lin.roles[j].side == anatomy::Side::Left ? 0 : 1].push_back(v);
+    }
+    for (int h = 0; h < 2; ++h) {
+        const uint8_t own_arm = uint8_t(h == 0 ? fitting::BodyRegion::LeftArm : fitting::BodyRegion::RightArm);
+        std::vector<Eigen::Vector3d> others;
+        for (uint32_t v = 0; v < lin.V; v += 2)
+            if (regions[v] < fitting::kBodyRegionCount && regions[v] != own_arm) others.push_back(vertices[v]);
+        for (uint32_t v : hand[1 - h]) others.push_back(vertices[v]);
+        const fitting::PointIndex index(others);
+        std::size_t near = 0;
+        for (uint32_t v : hand[h]) {
+            double d2 = 0;
+            index.nearest(vertices[v], &d2);
+            near += d2 < reach * reach;
+        }
+        share[std::size_t(h)] = hand[h].empty() ? 0.0 : double(near) / double(hand[h].size());
+    }
+    return share;
 }
 
 // Mean distance from the truth's vertices (every third) to the fitted surface, metres: what a scan
@@ -763,6 +796,9 @@ int main(int argc, char** argv) {
                         return in.limb < 0 ? std::string() : std::string(" (") + fitting::region_name(fitting::BodyRegion(in.limb)) + " in " +
                                                                  fitting::region_name(fitting::BodyRegion(in.part)) + ")";
                     };
+                    const auto contact_fit = hand_contact(lin, fv, 0.015), contact_truth = hand_contact(lin, truth.vertices, 0.015);
+                    std::printf("  %s trial %d: hands in contact (fit) %.2f %.2f (truth) %.2f %.2f\n", lp.name.c_str(), t, contact_fit[0], contact_fit[1],
+                                contact_truth[0], contact_truth[1]);
                     std::printf("  %s trial %d: %u points, error %.2f mm (floor %.2f; %s; surface %.2f), %u restarts, unexplained %.3f, joint %.0f deg past, off scan %.2f, "
                                 "loose %.3f, coverage %.2f, inside truth %.2f%s fit %.2f%s, converged %d%s%s\n",
                                 lp.name.c_str(), t, cloud_points, error * 1e3, floor_t * 1e3, region_list(regions, region_errors(regions, fv, truth.vertices)).c_str(),

@@ -230,8 +230,19 @@ void BM_LoadDefaultModel(benchmark::State& state) {
     }
 }
 
+// The same model from its file on disk: what the built-in one is compared with (issue 51).
+void BM_LoadDefaultFile(benchmark::State& state) {
+    for (auto _ : state) {
+        ssc_model* m = nullptr;
+        if (ssc_model_load_file(nullptr, SSCAPE_DEFAULT_MODEL_FILE, &m) != SSC_OK) state.SkipWithError(ssc_last_error());
+        benchmark::DoNotOptimize(m);
+        ssc_model_release(m);
+    }
+}
+
 BENCHMARK(BM_Load)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LoadDefaultModel)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LoadDefaultFile)->Unit(benchmark::kMillisecond);
 // Arg 0: the procedural benchmark model; arg 1: the shipped default model (real skin weights).
 BENCHMARK(BM_PoseOnly)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PoseOnlyLevel)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
