@@ -137,8 +137,56 @@ void skin_run_scalar(const SkinLayout& m, const SkinLayout::Run& run, const floa
 
 #ifdef SSC_SKIN_AVX2
 SSC_TARGET_AVX2_BEGIN
+// Whether every slot of a one-joint run has weight 1 (a normalized skin's vertices on a single joint:
+// half of the default model's). Then w M = M exactly, and the run's matrix elements are broadcast
+// once for the whole run instead of once per block.
+bool unit_weights_avx2(const SkinLayout& m, const SkinLayout::Run& run) {
+    const __m256 one = _mm256_set1_ps(1.f);
+    const float* w = m.weights[0].data();
+    for (uint32_t b = run.begin; b < run.end; b += SkinLayout::kBlock)
+        if (_mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(w + b), one, _CMP_NEQ_UQ)) != 0) return false;
+    return true;
+}
+
+// A one-joint run of weight 1: the arithmetic of skin_run_avx2<1> below with blend(e) = M[e], so the
+// same bits, with the twelve broadcasts made once.
+void skin_run_unit_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
+    const RunArrays<1> a = arrays<1>(m, run, mats, rest, out);
+    const float* M = a.M[0];
+    __m256 k[15];  // elements 0..14 of the column-major 4x4 (row 3 unused)
+    for (int e = 0; e < 15; ++e) k[e] = _mm256_broadcast_ss(M + e);
+    const uint32_t* vid = m.vertices.data();
+    auto row = [&](const int* e, __m256 x, __m256 y, __m256 z) {
+        return _mm256_add_ps(_mm256_fmadd_ps(k[e[2]], z, _mm256_mul_ps(k[e[0]], x)), _mm256_fmadd_ps(k[e[1]], y, k[e[3]]));
+    };
+    for (uint32_t b = run.begin; b < run.end; b += SkinLayout::kBlock) {
+        const uint32_t v0 = vid[b];
+        if (m.contiguous[b / SkinLayout::kBlock]) {
+            const __m256 x = _mm256_loadu_ps(a.xs + v0), y = _mm256_loadu_ps(a.ys + v0), z = _mm256_loadu_ps(a.zs + v0);
+            _mm256_storeu_ps(a.ox + v0, row(kRowX, x, y, z));
+            _mm256_storeu_ps(a.oy + v0, row(kRowY, x, y, z));
+            _mm256_storeu_ps(a.oz + v0, row(kRowZ, x, y, z));
+        } else {
+            const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(vid + b));
+            const __m256 x = _mm256_i32gather_ps(a.xs, idx, 4), y = _mm256_i32gather_ps(a.ys, idx, 4), z = _mm256_i32gather_ps(a.zs, idx, 4);
+            alignas(32) float tx[8], ty[8], tz[8];
+            _mm256_store_ps(tx, row(kRowX, x, y, z));
+            _mm256_store_ps(ty, row(kRowY, x, y, z));
+            _mm256_store_ps(tz, row(kRowZ, x, y, z));
+            for (int l = 0; l < 8; ++l) {
+                const uint32_t v = vid[b + l];
+                a.ox[v] = tx[l];
+                a.oy[v] = ty[l];
+                a.oz[v] = tz[l];
+            }
+        }
+    }
+}
+
 template <int N>
 void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
+    if constexpr (N == 1)
+        if (unit_weights_avx2(m, run)) return skin_run_unit_avx2(m, run, mats, rest, out);
     const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
     const float *xs = a.xs, *ys = a.ys, *zs = a.zs;
     float *ox = a.ox, *oy = a.oy, *oz = a.oz;

@@ -259,11 +259,52 @@ void shape_joints(const Model& m, std::size_t count, const float* const* scaled,
     shape_joints_body(m, count, scaled, joints);
 }
 
+#ifdef SSC_SHAPE_AVX2
+namespace {
+SSC_TARGET_AVX2_BEGIN
+// 8 vertices per step: the SSE steps below on both 128-bit lanes at once (lane 0 vertices 0-3, lane 1
+// vertices 4-7), then the six 16-byte results put in output order by lane swaps. Returns the
+// vertices done (a multiple of 8).
+uint32_t planar_to_xyz_avx2(const float* xs, const float* ys, const float* zs, uint32_t n, float* out, bool streaming) {
+    uint32_t v = 0;
+    for (; v + 8 <= n; v += 8) {
+        const __m256 x = _mm256_loadu_ps(xs + v), y = _mm256_loadu_ps(ys + v), z = _mm256_loadu_ps(zs + v);
+        const __m256 xy01 = _mm256_unpacklo_ps(x, y);
+        const __m256 xy23 = _mm256_unpackhi_ps(x, y);
+        const __m256 z0z1 = _mm256_shuffle_ps(z, z, _MM_SHUFFLE(1, 1, 0, 0));
+        const __m256 a = _mm256_shuffle_ps(xy01, _mm256_shuffle_ps(z0z1, xy01, _MM_SHUFFLE(2, 2, 0, 0)), _MM_SHUFFLE(2, 0, 1, 0));
+        const __m256 b = _mm256_shuffle_ps(_mm256_shuffle_ps(xy01, z, _MM_SHUFFLE(1, 1, 3, 3)), xy23, _MM_SHUFFLE(1, 0, 2, 0));
+        const __m256 c = _mm256_shuffle_ps(_mm256_shuffle_ps(z, xy23, _MM_SHUFFLE(2, 2, 2, 2)), _mm256_shuffle_ps(xy23, z, _MM_SHUFFLE(3, 3, 3, 3)),
+                                           _MM_SHUFFLE(2, 0, 2, 0));
+        // a = [x0 y0 z0 x1 | x4 y4 z4 x5], b = [y1 z1 x2 y2 | y5 z5 x6 y6], c = [z2 x3 y3 z3 | z6 x7 y7 z7]
+        const __m256 o0 = _mm256_permute2f128_ps(a, b, 0x20), o1 = _mm256_permute2f128_ps(c, a, 0x30), o2 = _mm256_permute2f128_ps(b, c, 0x31);
+        float* o = out + 3 * std::size_t(v);
+        if (streaming) {
+            _mm256_stream_ps(o, o0);
+            _mm256_stream_ps(o + 8, o1);
+            _mm256_stream_ps(o + 16, o2);
+        } else {
+            _mm256_storeu_ps(o, o0);
+            _mm256_storeu_ps(o + 8, o1);
+            _mm256_storeu_ps(o + 16, o2);
+        }
+    }
+    return v;
+}
+SSC_TARGET_END
+}  // namespace
+#endif
+
 void planar_to_xyz(const float* planar, uint32_t n, float* out, std::size_t stride, bool streaming) {
     const float* xs = planar;
     const float* ys = planar + n;
     const float* zs = planar + 2 * std::size_t(n);
     uint32_t v = 0;
+#ifdef SSC_SHAPE_AVX2
+    // (Streaming stores of 32 bytes need 32-byte alignment: otherwise the SSE path's 16.)
+    if (stride == 12 && active_isa() != Isa::Baseline && (!streaming || reinterpret_cast<std::uintptr_t>(out) % 32 == 0))
+        v = planar_to_xyz_avx2(xs, ys, zs, n, out, streaming);
+#endif
 #if defined(__SSE2__)
     // SSE2 is part of x86-64 itself. Streaming (non-temporal) stores skip reading the destination
     // into cache first: they halve the memory traffic of large batch outputs that the caller will
@@ -293,8 +334,8 @@ void planar_to_xyz(const float* planar, uint32_t n, float* out, std::size_t stri
                 _mm_storeu_ps(o + 8, out2);
             }
         }
-        if (streaming) _mm_sfence();
     }
+    if (streaming) _mm_sfence();
 #else
     (void)streaming;
 #endif
