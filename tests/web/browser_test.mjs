@@ -150,6 +150,12 @@ try {
   });
   check(refused.every((c) => c === 'SSC_ERROR_MODEL_CORRUPT' || c === 'SSC_ERROR_INVALID_ARGUMENT'),
     `damaged model bytes refused: ${refused.join(', ')}`);
+  // The module has no built-in model: the C API says so (the page fetches the file).
+  const builtin = await page.evaluate(() => {
+    const { sscape } = window.sscapeApp;
+    return sscape._scratch(4, (out) => ({ status: sscape._m._ssc_model_load_default(0, out), message: sscape._string(sscape._m._ssc_last_error()) }));
+  });
+  check(builtin.status === -7 && builtin.message.includes('no built-in model'), `ssc_model_load_default in the browser: ${builtin.status}, "${builtin.message}"`);
 
   // A batch equals the bodies made one by one; OBJ text comes out of the in-memory file system.
   const batch = await page.evaluate(() => {
