@@ -148,84 +148,25 @@ bool unit_weights_avx2(const SkinLayout& m, const SkinLayout::Run& run) {
     return true;
 }
 
-// A one-joint run of weight 1: the arithmetic of skin_run_avx2<1> below with blend(e) = M[e], so the
-// same bits, with the twelve broadcasts made once.
-void skin_run_unit_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
-    const RunArrays<1> a = arrays<1>(m, run, mats, rest, out);
-    const float* M = a.M[0];
-    __m256 k[15];  // elements 0..14 of the column-major 4x4 (row 3 unused)
-    for (int e = 0; e < 15; ++e) k[e] = _mm256_broadcast_ss(M + e);
+// The blocks of a run: each block's 8 rest positions loaded (consecutive vertices) or gathered,
+// skin(b, x, y, z, px, py, pz) computing the posed ones, stored or scattered back.
+template <class Skin>
+[[gnu::always_inline]] inline void each_block_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* rest, float* out, Skin&& skin) {
+    const uint32_t V = m.vertex_count;
+    const float *xs = rest, *ys = rest + V, *zs = rest + 2 * std::size_t(V);
+    float *ox = out, *oy = out + V, *oz = out + 2 * std::size_t(V);
     const uint32_t* vid = m.vertices.data();
-    auto row = [&](const int* e, __m256 x, __m256 y, __m256 z) {
-        return _mm256_add_ps(_mm256_fmadd_ps(k[e[2]], z, _mm256_mul_ps(k[e[0]], x)), _mm256_fmadd_ps(k[e[1]], y, k[e[3]]));
-    };
     for (uint32_t b = run.begin; b < run.end; b += SkinLayout::kBlock) {
         const uint32_t v0 = vid[b];
+        __m256 px, py, pz;
         if (m.contiguous[b / SkinLayout::kBlock]) {
-            const __m256 x = _mm256_loadu_ps(a.xs + v0), y = _mm256_loadu_ps(a.ys + v0), z = _mm256_loadu_ps(a.zs + v0);
-            _mm256_storeu_ps(a.ox + v0, row(kRowX, x, y, z));
-            _mm256_storeu_ps(a.oy + v0, row(kRowY, x, y, z));
-            _mm256_storeu_ps(a.oz + v0, row(kRowZ, x, y, z));
-        } else {
-            const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(vid + b));
-            const __m256 x = _mm256_i32gather_ps(a.xs, idx, 4), y = _mm256_i32gather_ps(a.ys, idx, 4), z = _mm256_i32gather_ps(a.zs, idx, 4);
-            alignas(32) float tx[8], ty[8], tz[8];
-            _mm256_store_ps(tx, row(kRowX, x, y, z));
-            _mm256_store_ps(ty, row(kRowY, x, y, z));
-            _mm256_store_ps(tz, row(kRowZ, x, y, z));
-            for (int l = 0; l < 8; ++l) {
-                const uint32_t v = vid[b + l];
-                a.ox[v] = tx[l];
-                a.oy[v] = ty[l];
-                a.oz[v] = tz[l];
-            }
-        }
-    }
-}
-
-template <int N>
-void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
-    if constexpr (N == 1)
-        if (unit_weights_avx2(m, run)) return skin_run_unit_avx2(m, run, mats, rest, out);
-    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
-    const float *xs = a.xs, *ys = a.ys, *zs = a.zs;
-    float *ox = a.ox, *oy = a.oy, *oz = a.oz;
-    const float* const* M = a.M;
-    const float* const* W = a.W;
-    const uint32_t* vid = m.vertices.data();
-    for (uint32_t b = run.begin; b < run.end; b += SkinLayout::kBlock) {
-        const bool contiguous = m.contiguous[b / SkinLayout::kBlock];
-        const uint32_t v0 = vid[b];
-        __m256 x, y, z;
-        __m256i idx = _mm256_setzero_si256();
-        if (contiguous) {
-            x = _mm256_loadu_ps(xs + v0);
-            y = _mm256_loadu_ps(ys + v0);
-            z = _mm256_loadu_ps(zs + v0);
-        } else {
-            idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(vid + b));
-            x = _mm256_i32gather_ps(xs, idx, 4);
-            y = _mm256_i32gather_ps(ys, idx, 4);
-            z = _mm256_i32gather_ps(zs, idx, 4);
-        }
-        __m256 w[N];
-        for (int i = 0; i < N; ++i) w[i] = _mm256_loadu_ps(W[i] + b);
-        auto blend = [&](int e) {
-            __m256 acc = _mm256_mul_ps(w[0], _mm256_broadcast_ss(M[0] + e));
-            for (int i = 1; i < N; ++i) acc = _mm256_fmadd_ps(w[i], _mm256_broadcast_ss(M[i] + e), acc);
-            return acc;
-        };
-        auto row = [&](const int* e) {
-            const __m256 a = _mm256_fmadd_ps(blend(e[2]), z, _mm256_mul_ps(blend(e[0]), x));
-            const __m256 c = _mm256_fmadd_ps(blend(e[1]), y, blend(e[3]));
-            return _mm256_add_ps(a, c);
-        };
-        const __m256 px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
-        if (contiguous) {
+            skin(b, _mm256_loadu_ps(xs + v0), _mm256_loadu_ps(ys + v0), _mm256_loadu_ps(zs + v0), px, py, pz);
             _mm256_storeu_ps(ox + v0, px);
             _mm256_storeu_ps(oy + v0, py);
             _mm256_storeu_ps(oz + v0, pz);
         } else {
+            const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(vid + b));
+            skin(b, _mm256_i32gather_ps(xs, idx, 4), _mm256_i32gather_ps(ys, idx, 4), _mm256_i32gather_ps(zs, idx, 4), px, py, pz);
             alignas(32) float tx[8], ty[8], tz[8];
             alignas(32) uint32_t ti[8];
             _mm256_store_ps(tx, px);
@@ -240,12 +181,50 @@ void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float*
         }
     }
 }
+
+// A one-joint run of weight 1: the arithmetic of skin_run_avx2<1> below with blend(e) = M[e], so the
+// same bits, with the twelve broadcasts made once.
+void skin_run_unit_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
+    const float* M = mats + run.offsets[0];
+    __m256 k[15];  // elements 0..14 of the column-major 4x4 (row 3 unused)
+    for (int e = 0; e < 15; ++e) k[e] = _mm256_broadcast_ss(M + e);
+    each_block_avx2(m, run, rest, out, [&](uint32_t, __m256 x, __m256 y, __m256 z, __m256& px, __m256& py, __m256& pz) {
+        auto row = [&](const int* e) {
+            return _mm256_add_ps(_mm256_fmadd_ps(k[e[2]], z, _mm256_mul_ps(k[e[0]], x)), _mm256_fmadd_ps(k[e[1]], y, k[e[3]]));
+        };
+        px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
+    });
+}
+
+template <int N>
+void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
+    if constexpr (N == 1)
+        if (unit_weights_avx2(m, run)) return skin_run_unit_avx2(m, run, mats, rest, out);
+    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
+    const float* const* M = a.M;
+    const float* const* W = a.W;
+    each_block_avx2(m, run, rest, out, [&](uint32_t b, __m256 x, __m256 y, __m256 z, __m256& px, __m256& py, __m256& pz) {
+        __m256 w[N];
+        for (int i = 0; i < N; ++i) w[i] = _mm256_loadu_ps(W[i] + b);
+        auto blend = [&](int e) {
+            __m256 acc = _mm256_mul_ps(w[0], _mm256_broadcast_ss(M[0] + e));
+            for (int i = 1; i < N; ++i) acc = _mm256_fmadd_ps(w[i], _mm256_broadcast_ss(M[i] + e), acc);
+            return acc;
+        };
+        auto row = [&](const int* e) {
+            const __m256 p = _mm256_fmadd_ps(blend(e[2]), z, _mm256_mul_ps(blend(e[0]), x));
+            const __m256 c = _mm256_fmadd_ps(blend(e[1]), y, blend(e[3]));
+            return _mm256_add_ps(p, c);
+        };
+        px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
+    });
+}
 SSC_TARGET_END
 #endif
 
 #if defined(__wasm_simd128__)
 // WebAssembly SIMD (the browser runtime): the AVX2 path's blocks as two 4-lane halves, a multiply
-// and an add where it fuses them (see madd in cpu.hpp).
+// and an add where it fuses them (see madd.hpp).
 template <int N>
 void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
     const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);

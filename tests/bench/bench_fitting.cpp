@@ -173,33 +173,43 @@ std::string region_list(const registration::BodyRegions& regions, const std::vec
 
 // How much of each hand (left, right) lies within `reach` of another part of the body (the trunk,
 // the head, the legs, the other arm and hand; not its own arm): a hand in contact, where a scan
-// cannot tell one surface from the other.
-std::array<double, 2> hand_contact(const fitting::LinearModel& lin, const std::vector<Eigen::Vector3d>& vertices, double reach) {
-    std::array<double, 2> share{};
-    const std::vector<uint8_t> regions = fitting::vertex_regions(lin);
-    std::array<std::vector<uint32_t>, 2> hand;
-    for (uint32_t v = 0; v < lin.V; v += 2) {
-        const uint32_t j = fitting::dominant_joint(lin.model.data(), v);
-        if (j < lin.roles.size() && lin.roles[j].part == anatomy::BodyPart::Hand && lin.roles[j].side != anatomy::Side::Centre)
-            hand[lin.roles[j].side == anatomy::Side::Left ? 0 : 1].push_back(v);
-    }
-    for (int h = 0; h < 2; ++h) {
-        const uint8_t own_arm = uint8_t(h == 0 ? fitting::BodyRegion::LeftArm : fitting::BodyRegion::RightArm);
-        std::vector<Eigen::Vector3d> others;
-        for (uint32_t v = 0; v < lin.V; v += 2)
-            if (regions[v] < fitting::kBodyRegionCount && regions[v] != own_arm) others.push_back(vertices[v]);
-        for (uint32_t v : hand[1 - h]) others.push_back(vertices[v]);
-        const fitting::PointIndex index(others);
-        std::size_t near = 0;
-        for (uint32_t v : hand[h]) {
-            double d2 = 0;
-            index.nearest(vertices[v], &d2);
-            near += d2 < reach * reach;
+// cannot tell one surface from the other. Which vertices are which, found once from the skin.
+class HandContact {
+public:
+    explicit HandContact(const fitting::LinearModel& lin) {
+        const std::vector<uint8_t> regions = fitting::vertex_regions(lin);
+        std::array<std::vector<uint32_t>, 2> own_arm;
+        for (uint32_t v = 0; v < lin.V; v += 2) {
+            const uint32_t j = fitting::dominant_joint(lin.model.data(), v);
+            if (j < lin.roles.size() && lin.roles[j].part == anatomy::BodyPart::Hand && lin.roles[j].side != anatomy::Side::Centre)
+                hand_[lin.roles[j].side == anatomy::Side::Left ? 0 : 1].push_back(v);
+            else if (regions[v] < fitting::kBodyRegionCount)
+                for (int h = 0; h < 2; ++h)
+                    if (regions[v] != uint8_t(h == 0 ? fitting::BodyRegion::LeftArm : fitting::BodyRegion::RightArm)) others_[std::size_t(h)].push_back(v);
         }
-        share[std::size_t(h)] = hand[h].empty() ? 0.0 : double(near) / double(hand[h].size());
+        for (int h = 0; h < 2; ++h) others_[std::size_t(h)].insert(others_[std::size_t(h)].end(), hand_[std::size_t(1 - h)].begin(), hand_[std::size_t(1 - h)].end());
     }
-    return share;
-}
+
+    std::array<double, 2> measure(const std::vector<Eigen::Vector3d>& vertices, double reach) const {
+        std::array<double, 2> share{};
+        for (std::size_t h = 0; h < 2; ++h) {
+            std::vector<Eigen::Vector3d> others;
+            for (uint32_t v : others_[h]) others.push_back(vertices[v]);
+            const fitting::PointIndex index(others);
+            std::size_t near = 0;
+            for (uint32_t v : hand_[h]) {
+                double d2 = 0;
+                index.nearest(vertices[v], &d2);
+                near += d2 < reach * reach;
+            }
+            share[h] = hand_[h].empty() ? 0.0 : double(near) / double(hand_[h].size());
+        }
+        return share;
+    }
+
+private:
+    std::array<std::vector<uint32_t>, 2> hand_, others_;  // every other vertex of each hand; of the parts it may touch
+};
 
 // Mean distance from the truth's vertices (every third) to the fitted surface, metres: what a scan
 // can show of a fit. Low beside a high vertex error, the surface is right and the vertices lie
@@ -724,6 +734,7 @@ int main(int argc, char** argv) {
         std::vector<std::vector<float>> sheet;
         std::vector<std::string> captions;
         std::uniform_int_distribution<uint32_t> point_count(20000, 60000);
+        const HandContact hand_contact(lin);
         for (const simulation::LibraryPose& lp : simulation::pose_library()) {
             // --pose: the other poses are drawn and scanned, not fitted, so each trial of this
             // one is the same person, pose and scan as in the run of every pose.
@@ -796,7 +807,7 @@ int main(int argc, char** argv) {
                         return in.limb < 0 ? std::string() : std::string(" (") + fitting::region_name(fitting::BodyRegion(in.limb)) + " in " +
                                                                  fitting::region_name(fitting::BodyRegion(in.part)) + ")";
                     };
-                    const auto contact_fit = hand_contact(lin, fv, 0.015), contact_truth = hand_contact(lin, truth.vertices, 0.015);
+                    const auto contact_fit = hand_contact.measure(fv, 0.015), contact_truth = hand_contact.measure(truth.vertices, 0.015);
                     std::printf("  %s trial %d: hands in contact (fit) %.2f %.2f (truth) %.2f %.2f\n", lp.name.c_str(), t, contact_fit[0], contact_fit[1],
                                 contact_truth[0], contact_truth[1]);
                     std::printf("  %s trial %d: %u points, error %.2f mm (floor %.2f; %s; surface %.2f), %u restarts, unexplained %.3f, joint %.0f deg past, off scan %.2f, "

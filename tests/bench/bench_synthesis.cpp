@@ -92,18 +92,24 @@ void BM_PoseOnly(benchmark::State& state) {
     }
 }
 
+// A level's description, or the benchmark skipped for a level the model lacks.
+bool level_info(benchmark::State& state, const ssc_model* m, uint32_t level, ssc_level_info& info) {
+    if (level >= ssc_model_level_count(m)) {
+        state.SkipWithError("the default model has no such level");
+        return false;
+    }
+    info.struct_size = sizeof info;
+    ssc_model_get_level_info(m, level, &info);
+    return true;
+}
+
 // Pose-only synthesis of one level of detail of the shipped default model (0: the full mesh), its
 // vertices copied out: what an engine pays per frame for a far body.
 void BM_PoseOnlyLevel(benchmark::State& state) {
     OneBody f(true);
     const uint32_t level = uint32_t(state.range(0));
-    if (level >= ssc_model_level_count(f.m)) {
-        state.SkipWithError("the default model has no such level");
-        return;
-    }
     ssc_level_info info{};
-    info.struct_size = sizeof info;
-    ssc_model_get_level_info(f.m, level, &info);
+    if (!level_info(state, f.m, level, info)) return;
     ssc_body_set_shape(f.b, f.p.shapes[0].data(), f.K);
     ssc_body_get_level_vertices(f.b, level, f.out.data(), info.vertex_count, 0);  // shape stage done once
     std::size_t i = 0;
@@ -146,13 +152,8 @@ void BM_ShapeAndPose(benchmark::State& state) {
 void BM_ShapeAndPoseLevel(benchmark::State& state) {
     OneBody f(true);
     const uint32_t level = uint32_t(state.range(0));
-    if (level >= ssc_model_level_count(f.m)) {
-        state.SkipWithError("the default model has no such level");
-        return;
-    }
     ssc_level_info info{};
-    info.struct_size = sizeof info;
-    ssc_model_get_level_info(f.m, level, &info);
+    if (!level_info(state, f.m, level, info)) return;
     std::size_t i = 0;
     for (auto _ : state) {
         ssc_body_set_shape(f.b, f.p.shapes[i % f.p.shapes.size()].data(), f.K);

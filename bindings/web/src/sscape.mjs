@@ -237,12 +237,15 @@ export class Model extends Handle {
   }
 
   /** Joint names, in joint order. */
-  get jointNames() {
+  get jointNames() { return this._names('ssc_model_get_joint_name', this.jointCount); }
+
+  // The names fn(model, index, &name) gives for index < count.
+  _names(fn, count) {
     const rt = this._rt;
     const names = [];
     rt._scratch(4, (p) => {
-      for (let j = 0; j < this.jointCount; ++j) {
-        rt._check(rt._m._ssc_model_get_joint_name(this.handle, j, p), 'ssc_model_get_joint_name');
+      for (let i = 0; i < count; ++i) {
+        rt._check(rt._m[`_${fn}`](this.handle, i, p), fn);
         names.push(rt._string(rt._u32(p)));
       }
     });
@@ -250,18 +253,7 @@ export class Model extends Handle {
   }
 
   /** Landmark names (the CAESAR names for the default model), in the order of Body.landmarks. */
-  get landmarkNames() {
-    const rt = this._rt;
-    const names = [];
-    const count = rt._m._ssc_model_landmark_count(this.handle);
-    rt._scratch(4, (p) => {
-      for (let i = 0; i < count; ++i) {
-        rt._check(rt._m._ssc_model_get_landmark_name(this.handle, i, p), 'ssc_model_get_landmark_name');
-        names.push(rt._string(rt._u32(p)));
-      }
-    });
-    return names;
-  }
+  get landmarkNames() { return this._names('ssc_model_get_landmark_name', this._rt._m._ssc_model_landmark_count(this.handle)); }
 
   /** Each shape component's standard deviation (the body's shape is in these units). */
   get shapeStddevs() {
@@ -472,18 +464,18 @@ export class Body extends Handle {
     return { converged: converged !== 0, achieved: Object.fromEntries(all.map((m, i) => [m.name, achieved[i]])) };
   }
 
+  // fn(body, level, out, capacity, stride) of a level (level 0 is the full mesh in the C API).
   _vertexArray(fn, level) {
     const rt = this._rt, l = this.model.level(level);
-    return rt._floatsOut(l.vertexCount * 3, (p) => rt._check(l.index === 0 && fn.full ? rt._m[`_${fn.full}`](this.handle, p, l.vertexCount, 12)
-      : rt._m[`_${fn.level}`](this.handle, l.index, p, l.vertexCount, 12), fn.level));
+    return rt._floatsOut(l.vertexCount * 3, (p) => rt._check(rt._m[`_${fn}`](this.handle, l.index, p, l.vertexCount, 12), fn));
   }
   /** The posed vertices (vertexCount * 3 floats, metres). */
-  get vertices() { return this._vertexArray({ full: 'ssc_body_get_vertices', level: 'ssc_body_get_level_vertices' }, 0); }
+  get vertices() { return this._vertexArray('ssc_body_get_level_vertices', 0); }
   /** Unit vertex normals. */
-  get normals() { return this._vertexArray({ full: 'ssc_body_get_normals', level: 'ssc_body_get_level_normals' }, 0); }
+  get normals() { return this._vertexArray('ssc_body_get_level_normals', 0); }
   /** A level of detail's posed vertices (index or name). */
-  levelVertices(level) { return this._vertexArray({ level: 'ssc_body_get_level_vertices' }, level); }
-  levelNormals(level) { return this._vertexArray({ level: 'ssc_body_get_level_normals' }, level); }
+  levelVertices(level) { return this._vertexArray('ssc_body_get_level_vertices', level); }
+  levelNormals(level) { return this._vertexArray('ssc_body_get_level_normals', level); }
 
   /** The posed landmarks (Model.landmarkNames order), 3 floats each. */
   get landmarks() {
