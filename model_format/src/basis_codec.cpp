@@ -92,12 +92,26 @@ std::vector<uint32_t> mirror_twins(uint32_t n, const float* p, double tolerance)
     return nearest;
 }
 
-// The prediction of position i's value in one row (component k, axis a), from earlier positions.
-inline int64_t prediction(const int32_t* value, uint32_t i, const uint32_t* predictor, const uint32_t* mirror, int sign) {
-    const uint32_t p = predictor[i];
-    if (p == i) return 0;
-    if (!mirror || sign == 0 || mirror[i] == i) return value[p];
-    return int64_t(sign) * value[mirror[i]] + value[p] - int64_t(sign) * value[mirror[p]];
+// Where position i's value in one row (component k, axis a) is predicted from: its tree parent p,
+// and with a mirror twin m coded earlier, the twin's and the parent's twin's values (mp). A source
+// that is missing points at position n, which holds 0, so every prediction is one expression
+// without branches (decoding a model predicts some 2 million values).
+struct Sources {
+    uint32_t p, m, mp;
+};
+std::vector<Sources> prediction_sources(uint32_t n, const uint32_t* predictor, const uint32_t* mirror) {
+    std::vector<Sources> from(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t p = predictor[i];
+        const bool twin = mirror && mirror[i] != i;
+        from[i] = {p == i ? n : p, twin ? mirror[i] : n, twin ? mirror[p] : n};
+    }
+    return from;
+}
+// The prediction from earlier positions' values (n + 1 of them, value[n] = 0): the parent's value
+// plus, with a twin, sign times the twin's value less the parent's twin's.
+inline int64_t prediction(const int32_t* value, const Sources& f, int64_t sign) {
+    return value[f.p] + sign * (int64_t(value[f.m]) - value[f.mp]);
 }
 
 }  // namespace
@@ -153,7 +167,8 @@ EncodedBasis encode_basis(const QuantizedBasis& b, uint32_t n, const PredictionT
     const uint32_t* mirror = tree.mirror.empty() ? nullptr : tree.mirror.data();
     EncodedBasis out;
     out.planes.resize(4 * count);
-    std::vector<int32_t> value(n);  // by position, one row at a time
+    const std::vector<Sources> from = prediction_sources(n, tree.predictor.data(), mirror);
+    std::vector<int32_t> value(std::size_t(n) + 1, 0);  // by position, one row at a time; value[n] stays 0
     auto row_values = [&](std::size_t row) {
         const int16_t* q = b.q.data() + row * n;
         for (uint32_t i = 0; i < n; ++i) value[i] = q[tree.order[i]];
@@ -169,7 +184,7 @@ EncodedBasis encode_basis(const QuantizedBasis& b, uint32_t n, const PredictionT
                     row_values(3 * std::size_t(k) + a);
                     const int sign = a == 0 ? -s : s;
                     for (uint32_t i = 0; i < n; ++i)
-                        bits += std::log2(1.0 + double(std::llabs(value[i] - prediction(value.data(), i, tree.predictor.data(), mirror, sign))));
+                        bits += std::log2(1.0 + double(std::llabs(value[i] - prediction(value.data(), from[i], sign))));
                 }
                 if (s == 0 || bits < best) best = bits, out.signs[k] = static_cast<int8_t>(s);
             }
@@ -180,7 +195,7 @@ EncodedBasis encode_basis(const QuantizedBasis& b, uint32_t n, const PredictionT
         row_values(row);
         const int s = mirror ? out.signs[row / 3] : 0, sign = row % 3 == 0 ? -s : s;
         for (uint32_t i = 0; i < n; ++i, ++at) {
-            const auto r = static_cast<int32_t>(value[i] - prediction(value.data(), i, tree.predictor.data(), mirror, sign));
+            const auto r = static_cast<int32_t>(value[i] - prediction(value.data(), from[i], sign));
             const uint32_t z = (static_cast<uint32_t>(r) << 1) ^ static_cast<uint32_t>(r >> 31);
             for (int k = 0; k < 4; ++k) out.planes[k * count + at] = static_cast<uint8_t>(z >> (8 * k));
         }
@@ -207,18 +222,7 @@ void decode_residuals(const uint8_t* planes, std::size_t plane_bytes, uint32_t n
     for (uint32_t k = 0; signs && k < components; ++k)
         SSC_REQUIRE_MODEL(signs[k] >= -1 && signs[k] <= 1, "shape.mirror_signs[" + std::to_string(k) + "] is not -1, 0 or 1");
     q.resize(count);
-    // prediction() without its branches (loading a model decodes some 2 million values: this loop was
-    // two fifths of the load): each position's three source positions, a missing one pointing at a
-    // slot past the end that holds 0, so the prediction is value[p] + sign (value[m] - value[mp]).
-    struct Sources {
-        uint32_t p, m, mp;
-    };
-    std::vector<Sources> from(n);
-    for (uint32_t i = 0; i < n; ++i) {
-        const uint32_t p = predictor[i];
-        const bool twin = mirror && mirror[i] != i;
-        from[i] = {p == i ? n : p, twin ? mirror[i] : n, twin ? mirror[p] : n};
-    }
+    const std::vector<Sources> from = prediction_sources(n, predictor, mirror);
     std::vector<int32_t> value(std::size_t(n) + 1, 0);  // by position, one row at a time; value[n] stays 0
     std::size_t in = 0;
     for (std::size_t row = 0; row < static_cast<std::size_t>(components) * 3; ++row) {
@@ -230,8 +234,7 @@ void decode_residuals(const uint8_t* planes, std::size_t plane_bytes, uint32_t n
             const uint32_t z = uint32_t(planes[in]) | uint32_t(planes[count + in]) << 8 |
                                uint32_t(planes[2 * count + in]) << 16 | uint32_t(planes[3 * count + in]) << 24;
             const int64_t r = static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
-            const Sources& f = from[i];
-            const int64_t v = r + value[f.p] + sign * (int64_t(value[f.m]) - value[f.mp]);
+            const int64_t v = r + prediction(value.data(), from[i], sign);
             in_range &= v >= -32768 && v <= 32767;
             value[i] = static_cast<int32_t>(v);
             out[order[i]] = static_cast<int16_t>(v);
