@@ -2,6 +2,7 @@
 #include "support.hpp"
 
 #include "capi/handles.hpp"
+#include "common/files.hpp"
 #include "common/thread_pool.hpp"
 #include "synthesis/body.hpp"
 
@@ -280,6 +281,129 @@ TEST_CASE("a body split over a pool's threads gives what one thread gives", "[sy
     ssc_model_release(handle);
 }
 
+TEST_CASE("synthesis keeps the bits it had: vertices, normals, landmarks, matrices, a level and a batch", "[synthesis][isa]") {
+    // A digest of what the default model synthesizes for fixed shapes and poses, recorded when the
+    // kernels were last changed on purpose. Speed work must keep it (issue 51: every CPU path gives
+    // the same bits as before): a change here means results that users have stored would move.
+    // It holds for this platform's libm (sines and cosines of axis-angle poses).
+    ssc_model* m = nullptr;
+    REQUIRE(ssc_model_load_default(nullptr, &m) == SSC_OK);
+    ssc_body* b = nullptr;
+    REQUIRE(ssc_body_create(m, nullptr, &b) == SSC_OK);
+    const uint32_t V = ssc_model_vertex_count(m), J = ssc_model_joint_count(m), K = ssc_model_shape_count(m), L = ssc_model_landmark_count(m);
+    std::vector<float> bytes, out(3ull * V), shape(K), pose(3ull * J), mats(48ull * J);
+    auto keep = [&](const float* p, std::size_t n) { bytes.insert(bytes.end(), p, p + n); };
+    for (int s = 0; s < 2; ++s) {
+        for (uint32_t i = 0; i < K; ++i) shape[i] = 1.5f * std::sin(float(i) * 1.3f + float(s));
+        REQUIRE(ssc_body_set_shape(b, shape.data(), K) == SSC_OK);
+        for (int p = 0; p < 3; ++p) {  // the first posing of a shape in vertex order, the others in slot order
+            for (uint32_t j = 0; j < 3 * J; ++j) pose[j] = 0.4f * std::sin(float(j) * 0.7f + float(p) * 2.1f + float(s));
+            REQUIRE(ssc_body_set_pose_axis_angle(b, pose.data(), J, nullptr) == SSC_OK);
+            REQUIRE(ssc_body_get_vertices(b, out.data(), V, 0) == SSC_OK);
+            keep(out.data(), 3ull * V);
+            REQUIRE(ssc_body_get_normals(b, out.data(), V, 0) == SSC_OK);
+            keep(out.data(), 3ull * V);
+            REQUIRE(ssc_body_get_landmarks(b, out.data(), L, 0) == SSC_OK);
+            keep(out.data(), 3ull * L);
+            REQUIRE(ssc_body_get_joint_transforms(b, mats.data(), J) == SSC_OK);
+            REQUIRE(ssc_body_get_inverse_bind_matrices(b, mats.data() + 16ull * J, J) == SSC_OK);
+            REQUIRE(ssc_body_get_skinning_matrices(b, mats.data() + 32ull * J, J) == SSC_OK);
+            keep(mats.data(), mats.size());
+            ssc_level_info info{};
+            info.struct_size = sizeof info;
+            REQUIRE(ssc_model_get_level_info(m, ssc_model_level_count(m) - 1, &info) == SSC_OK);
+            REQUIRE(ssc_body_get_level_vertices(b, ssc_model_level_count(m) - 1, out.data(), info.vertex_count, 0) == SSC_OK);
+            keep(out.data(), 3ull * info.vertex_count);
+        }
+    }
+    const uint32_t n = 9;
+    std::vector<float> shapes(std::size_t(n) * K), poses(std::size_t(n) * 3 * J), verts(std::size_t(n) * 3 * V);
+    for (std::size_t i = 0; i < shapes.size(); ++i) shapes[i] = std::sin(float(i) * 0.37f);
+    for (std::size_t i = 0; i < poses.size(); ++i) poses[i] = 0.3f * std::sin(float(i) * 0.11f);
+    ssc_batch_desc d;
+    ssc_batch_desc_init(&d, sizeof d);
+    d.body_count = n, d.shapes = shapes.data(), d.shape_count = K, d.pose_format = SSC_ROTATION_AXIS_ANGLE, d.poses = poses.data();
+    d.vertices = verts.data(), d.vertices_capacity = std::size_t(n) * V;
+    REQUIRE(ssc_model_synthesize_batch(m, &d) == SSC_OK);
+    keep(verts.data(), verts.size());
+    INFO("active kernels: " << ssc::kernels::isa_name(ssc::kernels::active_isa()));
+    CHECK(ssc::content_digest(bytes.data(), 4 * bytes.size()) == "ca2ea78e13549c3e");
+    ssc_body_destroy(b);
+    ssc_model_release(m);
+}
+
+TEST_CASE("a body posed again skins in slot order with the same bits, on every instruction set and thread count", "[synthesis][isa]") {
+    // The first posing of a shape skins in vertex order; later ones keep the rest in the skin
+    // layout's slot order (Body::posed_slots) and convert on the way out. Both must give exactly
+    // what skin_slots gives, through posed() and through the xyz output, whichever is asked first.
+    ssc_model* handle = nullptr;
+    REQUIRE(ssc_model_load_default(nullptr, &handle) == SSC_OK);
+    const ssc::Model& m = handle->model;
+    namespace k = ssc::kernels;
+    const uint32_t K = m.component_count(), J = m.joint_count(), V = m.vertex_count();
+    const ssc::SkinLayout& layout = m.skin_layout();
+    for (uint32_t v = 0; v < V; ++v) REQUIRE(layout.vertices[layout.first_slot[v]] == v);
+    auto quats_for = [&](float phase) {
+        std::vector<float> q4(4ull * J);
+        for (uint32_t j = 0; j < J; ++j) {
+            const Eigen::Quaternionf q(Eigen::AngleAxisf(0.6f * std::sin(phase + 1.3f * float(j)), Eigen::Vector3f(0.2f, 1, std::cos(float(j))).normalized()));
+            q4[4 * j] = q.x(), q4[4 * j + 1] = q.y(), q4[4 * j + 2] = q.z(), q4[4 * j + 3] = q.w();
+        }
+        return q4;
+    };
+    std::vector<float> shape(K);
+    for (uint32_t i = 0; i < K; ++i) shape[i] = float(1.5 * std::cos(0.7 * double(i)));
+    ssc::ThreadPool pool(3);
+    for (const bool threaded : {false, true})
+        for (const bool xyz_first : {false, true}) {
+            ssc::Body body(m, nullptr);
+            if (threaded) body.set_pool(&pool);
+            body.set_shape(shape.data(), K);
+            for (int posing = 0; posing < 4; ++posing) {
+                const std::vector<float> q = quats_for(0.9f * float(posing));
+                const float t[3] = {0.1f * float(posing), -0.2f, 0.05f};
+                body.set_pose(q.data(), t);
+                std::vector<float> expected(3ull * V, -1.f);
+                k::skin_slots(m, body.rest_planar(), body.skinning(), expected.data(), 0, k::skin_slot_count(m), k::Isa::Baseline);
+                std::vector<float> xyz(3ull * V, -1.f), planar;
+                if (xyz_first) body.posed_xyz(xyz.data(), 12);
+                planar.assign(body.posed(), body.posed() + 3ull * V);
+                if (!xyz_first) body.posed_xyz(xyz.data(), 12);
+                INFO("posing " << posing << (threaded ? ", 3 threads" : ", 1 thread") << (xyz_first ? ", xyz first" : ", planar first"));
+                CHECK(planar == expected);
+                bool same = true;
+                for (uint32_t v = 0; v < V; ++v)
+                    for (int c = 0; c < 3; ++c) same = same && xyz[3 * v + c] == expected[c * std::size_t(V) + v];
+                CHECK(same);
+                // Strided output (16 bytes a vertex) through the scalar path.
+                std::vector<float> strided(4ull * V, -7.f);
+                body.set_pose(q.data(), t);
+                body.posed_xyz(strided.data(), 16);
+                bool strided_same = true;
+                for (uint32_t v = 0; v < V; ++v)
+                    for (int c = 0; c < 3; ++c) strided_same = strided_same && strided[4 * v + c] == expected[c * std::size_t(V) + v];
+                CHECK(strided_same);
+            }
+        }
+    // The slot-order kernels themselves on every instruction set.
+    ssc::Body body(m, nullptr);
+    body.set_shape(shape.data(), K);
+    const std::vector<float> q = quats_for(0.4f);
+    body.set_pose(q.data(), nullptr);
+    const uint32_t S = layout.slot_count();
+    std::vector<float> rest_slots(3ull * S), expected(3ull * V);
+    k::to_slot_order(layout, body.rest_planar(), rest_slots.data(), 0, S);
+    k::skin_slots(m, body.rest_planar(), body.skinning(), expected.data(), 0, k::skin_slot_count(m), k::Isa::Baseline);
+    for (int isa = 0; isa < 3; ++isa) {
+        INFO("isa " << k::isa_name(k::Isa(isa)));
+        std::vector<float> slots(3ull * S, -1.f), planar(3ull * V, -1.f);
+        k::skin_slots_in_slot_order(layout, rest_slots.data(), body.skinning(), slots.data(), 0, S, k::Isa(isa));
+        k::from_slot_order(layout, slots.data(), planar.data(), 0, V);
+        CHECK(planar == expected);
+    }
+    ssc_model_release(handle);
+}
+
 TEST_CASE("every instruction set's shape and skinning kernels give the baseline's bits", "[synthesis][isa]") {
     // The library is built for plain x86-64 and picks AVX2 or AVX-512 kernels at run time; the
     // plain kernels are what an older CPU runs. Paths the CPU lacks fall back (and are reported).
@@ -326,5 +450,18 @@ TEST_CASE("every instruction set's shape and skinning kernels give the baseline'
     CHECK(posed[1] == posed[0]);
     CHECK(posed[2] == posed[0]);
     CHECK(std::vector<float>(body.posed(), body.posed() + 3ull * V) == posed[0]);  // what the body itself gives
+    // The levels of detail's layouts (short runs: the AVX-512 path's half-width last steps).
+    for (uint32_t l = 0; l < m.level_count(); ++l) {
+        const ssc::SkinLayout& layout = m.level_skin(l);
+        const float* rest = body.level_rest(l);
+        std::vector<float> level_posed[3];
+        for (int isa = 0; isa < 3; ++isa) {
+            level_posed[isa].assign(3ull * layout.vertex_count, -1.f);
+            k::skin_slots(layout, rest, body.skinning(), level_posed[isa].data(), 0, layout.slot_count(), k::Isa(isa));
+        }
+        INFO("level " << l);
+        CHECK(level_posed[1] == level_posed[0]);
+        CHECK(level_posed[2] == level_posed[0]);
+    }
     ssc_model_release(handle);
 }

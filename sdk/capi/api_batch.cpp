@@ -48,13 +48,11 @@ ssc_status ssc_model_synthesize_batch(const ssc_model* model, const ssc_batch_de
         if (d.translations)
             for (std::size_t i = 0; i < 3 * n; ++i)
                 SSC_REQUIRE_ARG(std::isfinite(d.translations[i]), "translations[" + std::to_string(i) + "] is not finite");
-        std::vector<float> quats;
-        if (d.poses) {
-            quats.resize(n * 4ull * J);
+        if (d.poses) {  // every pose checked before any body is made; converted on the workers
             const std::size_t width = d.pose_format == SSC_ROTATION_QUATERNION ? 4 : 3;
             for (std::size_t b = 0; b < n; ++b) {
                 std::string error;
-                if (!to_unit_quaternions(d.pose_format, d.poses + b * width * J, J, &quats[b * 4ull * J], error))
+                if (!check_rotations(d.pose_format, d.poses + b * width * J, J, error))
                     fail(SSC_ERROR_INVALID_ARGUMENT, "body " + std::to_string(b) + ": " + error);
             }
         }
@@ -62,7 +60,8 @@ ssc_status ssc_model_synthesize_batch(const ssc_model* model, const ssc_batch_de
         job.count = n;
         job.shapes = d.shapes;
         job.shape_count = d.shape_count;
-        job.quats = d.poses ? quats.data() : nullptr;
+        job.poses = d.poses;
+        job.pose_format = d.pose_format;
         job.translations = d.translations;
         job.vertices = d.vertices;
         job.normals = d.normals;

@@ -143,7 +143,7 @@ ssc_status ssc_body_get_vertices(ssc_body* body, float* out, uint32_t capacity, 
         need(body, "body");
         const uint32_t V = body->body.model().vertex_count();
         stride = check_output(out, capacity, V, stride, 12);
-        kernels::planar_to_xyz(body->body.posed(), V, out, stride);
+        body->body.posed_xyz(out, stride);
     });
 }
 

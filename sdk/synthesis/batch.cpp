@@ -2,6 +2,7 @@
 
 #include "kernels.hpp"
 #include "levels.hpp"
+#include "rotation.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -20,11 +21,12 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
     const std::size_t groups = (job.count + kGroup - 1) / kGroup;
     std::vector<float> identity(4ull * J, 0.f);
     for (uint32_t j = 0; j < J; ++j) identity[4 * j + 3] = 1.f;
+    const std::size_t pose_width = job.pose_format == SSC_ROTATION_QUATERNION ? 4 : 3;
 
     // Scratch per thread, allocated before any output is written: an allocation failure leaves
     // the caller's buffers untouched.
     struct Scratch {
-        std::vector<float> coeffs, rest, joints, skeleton, faces, posed, level_rest;
+        std::vector<float> coeffs, rest, joints, skeleton, faces, posed, level_rest, quats;
         std::vector<kernels::SkinMatrix> skinning;
     };
     std::vector<Scratch> scratch(pool.size());
@@ -33,6 +35,7 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
         s.rest.resize(kGroup * m.padded_rows());
         s.joints.resize(kGroup * 3ull * J);
         s.skinning.resize(J);
+        s.quats.resize(4ull * J);
         s.posed.resize(3ull * V);
         s.skeleton.resize(kernels::kSkeletonScratch * J);
         if (job.normals) s.faces.resize(3ull * (level ? level->triangle_count() : m.triangle_count()));
@@ -57,7 +60,13 @@ void synthesize_batch(const Model& m, ThreadPool& pool, const BatchJob& job) {
         const float zero[3] = {0, 0, 0};
         for (std::size_t g = 0; g < n; ++g) {
             const std::size_t b = first + g;
-            const float* q = job.quats ? job.quats + b * 4ull * J : identity.data();
+            // On the worker: the poses' sines and cosines are a few percent of a batch's time.
+            const float* q = identity.data();
+            if (job.poses) {
+                std::string unused;  // checked before the batch began
+                to_unit_quaternions(job.pose_format, job.poses + b * pose_width * J, J, s.quats.data(), unused);
+                q = s.quats.data();
+            }
             const float* t = job.translations ? job.translations + 3 * b : zero;
             kernels::skeleton(m, jp[g], q, t, s.skeleton.data(), nullptr, nullptr, s.skinning.data());
             if (level) {

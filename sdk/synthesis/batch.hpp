@@ -5,13 +5,16 @@
 #include "common/thread_pool.hpp"
 #include "model.hpp"
 
+#include <sscape/sscape.h>
+
 namespace ssc {
 
 struct BatchJob {
     std::size_t count = 0;
     const float* shapes = nullptr;   // count * shape_count, or null
     uint32_t shape_count = 0;
-    const float* quats = nullptr;    // count * 4J unit quaternions, or null (rest pose)
+    const float* poses = nullptr;    // count * J rotations of pose_format (checked: rotation.hpp), or null (rest pose)
+    ssc_rotation_format pose_format = SSC_ROTATION_QUATERNION;
     const float* translations = nullptr;  // count * 3, or null
     float* vertices = nullptr;       // count * 3V
     float* normals = nullptr;        // count * 3V, or null

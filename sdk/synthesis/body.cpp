@@ -18,6 +18,8 @@ Body::Body(const Model& model, const Allocator* a)
       normals_(3ull * model.vertex_count(), 0.f, CAlloc<float>(a)),
       scratch_(kernels::kSkeletonScratch * model.joint_count(), 0.f, CAlloc<float>(a)),
       face_normals_(3ull * model.triangle_count(), 0.f, CAlloc<float>(a)),
+      rest_slots_(3ull * model.skin_layout().slot_count(), 0.f, CAlloc<float>(a)),
+      posed_slots_(3ull * model.skin_layout().slot_count(), 0.f, CAlloc<float>(a)),
       skinning_(model.joint_count(), kernels::SkinMatrix{}, CAlloc<kernels::SkinMatrix>(a)),
       alloc_(a),
       levels_(model.level_count()) {
@@ -27,7 +29,7 @@ Body::Body(const Model& model, const Allocator* a)
 void Body::set_shape(const float* coeffs, uint32_t count) {
     std::copy(coeffs, coeffs + count, coeffs_.begin());
     std::fill(coeffs_.begin() + count, coeffs_.end(), 0.f);
-    rest_ok_ = skeleton_ok_ = posed_ok_ = normals_ok_ = false;
+    rest_ok_ = skeleton_ok_ = posed_ok_ = normals_ok_ = rest_slots_ok_ = posed_slots_ok_ = rest_posed_ = rest_frames_ok_ = false;
     for (LevelState& l : levels_) l.rest_ok = l.posed_ok = l.normals_ok = false;
 }
 
@@ -37,14 +39,14 @@ void Body::set_segment_shape(uint32_t segment, const float* coeffs, uint32_t cou
     std::copy(coeffs, coeffs + count, c);
     std::fill(c + count, c + s.components, 0.f);
     any_segment_ = std::any_of(segment_coeffs_.begin(), segment_coeffs_.end(), [](float x) { return x != 0.f; });
-    rest_ok_ = skeleton_ok_ = posed_ok_ = normals_ok_ = false;
+    rest_ok_ = skeleton_ok_ = posed_ok_ = normals_ok_ = rest_slots_ok_ = posed_slots_ok_ = rest_posed_ = rest_frames_ok_ = false;
     for (LevelState& l : levels_) l.rest_ok = l.posed_ok = l.normals_ok = false;
 }
 
 void Body::set_pose(const float* unit_quats, const float* translation) {
     std::copy(unit_quats, unit_quats + quats_.size(), quats_.begin());
     for (int a = 0; a < 3; ++a) translation_[a] = translation ? translation[a] : 0.f;
-    skeleton_ok_ = posed_ok_ = normals_ok_ = false;
+    skeleton_ok_ = posed_ok_ = normals_ok_ = posed_slots_ok_ = false;
     for (LevelState& l : levels_) l.posed_ok = l.normals_ok = false;
 }
 
@@ -76,8 +78,13 @@ void Body::update_rest() {
 void Body::update_skeleton() {
     if (skeleton_ok_) return;
     update_rest();
-    kernels::skeleton(model_, joints_.data(), quats_.data(), translation_, scratch_.data(), world_.data(), inverse_bind_.data(),
-                      skinning_.data());
+    float* rest_frames = scratch_.data();
+    if (!rest_frames_ok_) {  // once per shape
+        kernels::skeleton_rest(model_, joints_.data(), rest_frames, inverse_bind_.data());
+        rest_frames_ok_ = true;
+    }
+    kernels::skeleton_pose(model_, rest_frames, quats_.data(), translation_, rest_frames + kernels::kSkeletonRest * model_.joint_count(),
+                           world_.data(), skinning_.data());
     skeleton_ok_ = true;
 }
 
@@ -91,15 +98,55 @@ const float* Body::rest_joints() {
     return joints_.data();
 }
 
+const float* Body::posed_slots() {
+    if (!posed_slots_ok_) {
+        update_skeleton();
+        const SkinLayout& layout = model_.skin_layout();
+        if (!rest_slots_ok_) {  // once per shape: an animation re-poses the same rest positions
+            split(layout.slot_count(), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
+                kernels::to_slot_order(layout, rest_.data(), rest_slots_.data(), uint32_t(first), uint32_t(end));
+            });
+            rest_slots_ok_ = true;
+        }
+        const kernels::Isa isa = kernels::active_isa();
+        split(layout.slot_count(), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
+            kernels::skin_slots_in_slot_order(layout, rest_slots_.data(), skinning_.data(), posed_slots_.data(), uint32_t(first), uint32_t(end), isa);
+        });
+        posed_slots_ok_ = true;
+    }
+    return posed_slots_.data();
+}
+
+// A rest shape's first posing skins in vertex order (gathering and scattering inside the skinning);
+// from its second posing on (an animation), the rest is put in slot order once and each posing
+// reads and writes whole blocks, paying the gathers once on the way out. Putting a rest in slot
+// order costs about what the vertex-order skinning's gathers do, so a shape posed once (a batch
+// of variants) would only pay it twice.
+bool Body::skin_in_slot_order() const { return rest_slots_ok_ || rest_posed_; }
+
 const float* Body::posed() {
     if (!posed_ok_) {
-        update_skeleton();
-        split(kernels::skin_slot_count(model_), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
-            kernels::skin_slots(model_, rest_.data(), skinning_.data(), posed_.data(), uint32_t(first), uint32_t(end));
-        });
+        if (skin_in_slot_order()) {
+            const float* slots = posed_slots();
+            split(model_.vertex_count(), SkinLayout::kBlock, [&](std::size_t first, std::size_t end) {
+                kernels::from_slot_order(model_.skin_layout(), slots, posed_.data(), uint32_t(first), uint32_t(end));
+            });
+        } else {
+            update_skeleton();
+            split(kernels::skin_slot_count(model_), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
+                kernels::skin_slots(model_, rest_.data(), skinning_.data(), posed_.data(), uint32_t(first), uint32_t(end));
+            });
+            rest_posed_ = true;
+        }
         posed_ok_ = true;
     }
     return posed_.data();
+}
+
+void Body::posed_xyz(float* out, std::size_t stride) {
+    const uint32_t V = model_.vertex_count();
+    if (!posed_ok_ && skin_in_slot_order()) return kernels::slots_to_xyz(model_.skin_layout(), posed_slots(), out, stride, 0, V);
+    kernels::planar_to_xyz(posed(), V, out, stride);
 }
 
 const float* Body::normals() {

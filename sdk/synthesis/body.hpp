@@ -29,6 +29,9 @@ public:
     const float* rest_planar();     // 3V: x block, y block, z block
     const float* rest_joints();     // 3J
     const float* posed();           // 3V planar: x block, y block, z block
+    // The posed vertices as xyz at stride bytes (vertex v at out + v * stride): what posed() holds,
+    // without making it when only this is asked for (the skinning's slot order converted once).
+    void posed_xyz(float* out, std::size_t stride);
     const float* normals();         // 3V, xyz
     const float* world();           // 16J column-major
     const float* inverse_bind();    // 16J column-major
@@ -44,6 +47,10 @@ public:
 private:
     void update_rest();
     void update_skeleton();
+    // The full mesh skinned in its skin layout's slot order (kernels::skin_slots_in_slot_order):
+    // 3 blocks of slot_count() floats, from the rest positions in that order.
+    const float* posed_slots();
+    bool skin_in_slot_order() const;
     struct LevelState {
         Vec<float> rest, posed, normals, faces;
         bool rest_ok = false, posed_ok = false, normals_ok = false;
@@ -56,12 +63,14 @@ private:
 
     const Model& model_;
     ThreadPool* pool_ = nullptr;
-    Vec<float> coeffs_, segment_coeffs_, scaled_, rest_, joints_, quats_, world_, inverse_bind_, posed_, normals_, scratch_, face_normals_;
+    Vec<float> coeffs_, segment_coeffs_, scaled_, rest_, joints_, quats_, world_, inverse_bind_, posed_, normals_, scratch_, face_normals_,
+        rest_slots_, posed_slots_;
     Vec<kernels::SkinMatrix> skinning_;
     const Allocator* alloc_;
     std::vector<LevelState> levels_;  // per model level, buffers empty until used
     float translation_[3] = {0, 0, 0};
-    bool any_segment_ = false, rest_ok_ = false, skeleton_ok_ = false, posed_ok_ = false, normals_ok_ = false;
+    bool any_segment_ = false, rest_ok_ = false, skeleton_ok_ = false, posed_ok_ = false, normals_ok_ = false, rest_slots_ok_ = false,
+         posed_slots_ok_ = false, rest_posed_ = false, rest_frames_ok_ = false;
 };
 
 }  // namespace ssc

@@ -43,14 +43,20 @@ struct SkinMatrix {
     alignas(32) float m[16];
 };
 
-// Floats of scratch that skeleton() needs per joint.
-inline constexpr std::size_t kSkeletonScratch = 21;
+// Floats per joint of skeleton_rest()'s frames, of skeleton_pose()'s scratch and of skeleton()'s.
+inline constexpr std::size_t kSkeletonRest = 27, kSkeletonPoseScratch = 12, kSkeletonScratch = kSkeletonRest + kSkeletonPoseScratch;
 
 // quats: 4J unit quaternions xyzw (pose, in each joint's rest frame); translation: 3 floats;
 // scratch: kSkeletonScratch * J floats. Outputs (any may be null): world and inverse bind as
 // column-major 4x4, skinning matrices. Allocates nothing.
 void skeleton(const Model& m, const float* joints_rest, const float* quats, const float* translation, float* scratch,
               float* world16, float* inverse_bind16, SkinMatrix* skinning);
+// skeleton() in its two halves, with the same bits: what depends on the shape only (rest_frames,
+// kSkeletonRest * J floats, and the inverse bind), once per shape; then each pose (scratch:
+// kSkeletonPoseScratch * J floats).
+void skeleton_rest(const Model& m, const float* joints_rest, float* rest_frames, float* inverse_bind16);
+void skeleton_pose(const Model& m, const float* rest_frames, const float* quats, const float* translation, float* scratch, float* world16,
+                   SkinMatrix* skinning);
 
 // Posed vertex v = sum_i w_i * skinning[j_i] * rest(v). rest and out are planar (x block, y block,
 // z block; 3V floats, out must not alias rest).
@@ -65,6 +71,18 @@ void skin_slots(const Model& m, const float* rest_planar, const SkinMatrix* skin
 // The same for any mesh's layout (a level of detail's: Model::level_skin), planar over its vertices.
 void skin_slots(const SkinLayout& layout, const float* rest_planar, const SkinMatrix* skinning, float* out_planar, uint32_t first,
                 uint32_t end, Isa isa);
+
+// Skinning with positions in the layout's slot order (skin_layout.hpp): rest_slots and out_slots
+// hold an x, a y and a z block of layout.slot_count() floats, slot s holding vertex
+// layout.vertices[s]. The same bits as skin_slots, with every block read and written whole.
+void skin_slots_in_slot_order(const SkinLayout& layout, const float* rest_slots, const SkinMatrix* skinning, float* out_slots, uint32_t first,
+                              uint32_t end, Isa isa);
+// Planar vertex order (blocks of layout.vertex_count) to slot order, slots [first, end).
+void to_slot_order(const SkinLayout& layout, const float* planar, float* slots, uint32_t first, uint32_t end);
+// Slot order back to planar vertex order, vertices [first, end).
+void from_slot_order(const SkinLayout& layout, const float* slots, float* planar, uint32_t first, uint32_t end);
+// Slot order to xyz at stride bytes (vertex v at out + v * stride), vertices [first, end).
+void slots_to_xyz(const SkinLayout& layout, const float* slots, float* out, std::size_t stride, uint32_t first, uint32_t end);
 
 // Area-weighted unit normals of the mesh with planar vertices into out (packed xyz).
 // scratch: 3 floats per triangle. Allocates nothing.

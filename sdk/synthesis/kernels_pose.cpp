@@ -43,41 +43,83 @@ void store16(const Matrix3f& r, const Vector3f& t, float* out) {
 
 }  // namespace
 
-void skeleton(const Model& m, const float* joints_rest, const float* quats, const float* translation, float* scratch,
-              float* world16, float* inverse_bind16, SkinMatrix* skinning) {
+// Per joint in rest_frames (kSkeletonRest floats): R (the normalized rest local orientation), W
+// (the rest world rotation), o (the offset from the parent in its frame), bt (the bind inverse's
+// translation -W^T p) and p (the rest world position): everything that depends on the shape
+// only, so a body computes it once per shape and each posing does the rest.
+namespace {
+using Map3 = Eigen::Map<Matrix3f>;
+using MapV = Eigen::Map<Vector3f>;
+struct RestFrame {
+    float* f;
+    Map3 R() const { return Map3(f); }
+    Map3 W() const { return Map3(f + 9); }
+    MapV o() const { return MapV(f + 18); }
+    MapV bt() const { return MapV(f + 21); }
+    MapV p() const { return MapV(f + 24); }
+};
+}  // namespace
+
+void skeleton_rest(const Model& m, const float* joints_rest, float* rest_frames, float* inverse_bind16) {
     const uint32_t J = m.joint_count();
     const auto& sk = m.data().skeleton;
-    // Per joint: rest world rotation W, posed world rotation G and translation Gt (9 + 9 + 3 floats).
-    using Map3 = Eigen::Map<Matrix3f>;
-    using MapV = Eigen::Map<Vector3f>;
-    auto W = [&](uint32_t j) { return Map3(scratch + 21 * std::size_t(j)); };
-    auto G = [&](uint32_t j) { return Map3(scratch + 21 * std::size_t(j) + 9); };
-    auto Gt = [&](uint32_t j) { return MapV(scratch + 21 * std::size_t(j) + 18); };
+    auto frame = [&](uint32_t j) { return RestFrame{rest_frames + kSkeletonRest * std::size_t(j)}; };
     for (uint32_t j = 0; j < J; ++j) {
+        const RestFrame f = frame(j);
         const float* rq = &sk.rest_orientations[4 * j];
-        const Matrix3f R = Eigen::Quaternionf(rq[3], rq[0], rq[1], rq[2]).normalized().toRotationMatrix();
-        const float* pq = quats + 4 * j;
-        const Matrix3f P = Eigen::Quaternionf(pq[3], pq[0], pq[1], pq[2]).toRotationMatrix();
+        f.R() = Eigen::Quaternionf(rq[3], rq[0], rq[1], rq[2]).normalized().toRotationMatrix();
         const Vector3f p(joints_rest + 3 * j);
+        f.p() = p;
         const int32_t parent = sk.parents[j];
         if (parent < 0) {
-            W(j) = R;
+            f.W() = f.R();
+            f.o().setZero();
+        } else {
+            const RestFrame up = frame(static_cast<uint32_t>(parent));
+            f.o() = up.W().transpose() * (p - Vector3f(joints_rest + 3 * std::size_t(parent)));
+            f.W() = up.W() * f.R();
+        }
+        // Bind inverse: [W^T | -W^T p].
+        const Matrix3f Wt = f.W().transpose();
+        f.bt() = -(Wt * p);
+        if (inverse_bind16) store16(Wt, f.bt(), inverse_bind16 + 16 * j);
+    }
+}
+
+void skeleton_pose(const Model& m, const float* rest_frames, const float* quats, const float* translation, float* scratch, float* world16,
+                   SkinMatrix* skinning) {
+    const uint32_t J = m.joint_count();
+    const auto& sk = m.data().skeleton;
+    // Per joint: posed world rotation G and translation Gt (9 + 3 floats).
+    auto G = [&](uint32_t j) { return Map3(scratch + 12 * std::size_t(j)); };
+    auto Gt = [&](uint32_t j) { return MapV(scratch + 12 * std::size_t(j) + 9); };
+    for (uint32_t j = 0; j < J; ++j) {
+        const RestFrame f{const_cast<float*>(rest_frames) + kSkeletonRest * std::size_t(j)};
+        const float* pq = quats + 4 * j;
+        const Matrix3f P = Eigen::Quaternionf(pq[3], pq[0], pq[1], pq[2]).toRotationMatrix();
+        const Matrix3f R = f.R();
+        const int32_t parent = sk.parents[j];
+        if (parent < 0) {
             G(j) = R * P;
-            Gt(j) = p + Vector3f(translation);
+            Gt(j) = f.p() + Vector3f(translation);
         } else {
             const auto up = static_cast<uint32_t>(parent);
-            const Vector3f offset = W(up).transpose() * (p - Vector3f(joints_rest + 3 * up));
-            W(j) = W(up) * R;
+            const Vector3f offset = f.o();
             G(j) = G(up) * (R * P);
             Gt(j) = G(up) * offset + Gt(up);
         }
-        // Bind inverse: [W^T | -W^T p].
-        const Matrix3f Wt = W(j).transpose();
-        const Vector3f bt = -(Wt * p);
+        const Matrix3f Wt = f.W().transpose();
+        const Vector3f bt = f.bt();
         if (world16) store16(G(j), Gt(j), world16 + 16 * j);
-        if (inverse_bind16) store16(Wt, bt, inverse_bind16 + 16 * j);
         if (skinning) store16(G(j) * Wt, G(j) * bt + Gt(j), skinning[j].m);
     }
+}
+
+void skeleton(const Model& m, const float* joints_rest, const float* quats, const float* translation, float* scratch, float* world16,
+              float* inverse_bind16, SkinMatrix* skinning) {
+    float* rest_frames = scratch;
+    skeleton_rest(m, joints_rest, rest_frames, inverse_bind16);
+    skeleton_pose(m, rest_frames, quats, translation, scratch + kSkeletonRest * std::size_t(m.joint_count()), world16, skinning);
 }
 
 namespace {
@@ -90,6 +132,11 @@ constexpr int kRowX[4] = {0, 4, 8, 12}, kRowY[4] = {1, 5, 9, 13}, kRowZ[4] = {2,
 // p = (m0 x + m8 z) + (m4 y + m12) per row, the same order in the SIMD and the scalar path.
 // What a run reads and writes: planar rest and output coordinates, and per influence its matrix
 // and its weights.
+//
+// The planar positions are in vertex order (blocks of the mesh's vertex_count: slot s is vertex
+// vertices[s], a block loaded whole where its vertices are consecutive, else gathered and
+// scattered) or, with `slots`, in the layout's own slot order (blocks of slot_count(): slot s at
+// s, every block whole; see skin_slots_in_slot_order).
 template <int N>
 struct RunArrays {
     const float* xs;
@@ -103,8 +150,8 @@ struct RunArrays {
 };
 
 template <int N>
-RunArrays<N> arrays(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
-    const uint32_t V = m.vertex_count;
+RunArrays<N> arrays(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+    const uint32_t V = slots ? m.slot_count() : m.vertex_count;
     RunArrays<N> a{rest, rest + V, rest + 2 * std::size_t(V), out, out + V, out + 2 * std::size_t(V), {}, {}};
     for (int i = 0; i < N; ++i) {
         a.M[i] = mats + run.offsets[i];
@@ -114,13 +161,13 @@ RunArrays<N> arrays(const SkinLayout& m, const SkinLayout::Run& run, const float
 }
 
 template <int N>
-void skin_run_scalar(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
-    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
+void skin_run_scalar(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out, slots);
     const float* const* M = a.M;
     const float* const* W = a.W;
     const uint32_t* vid = m.vertices.data();
     for (uint32_t s = run.begin; s < run.end; ++s) {
-        const uint32_t v = vid[s];
+        const uint32_t v = slots ? s : vid[s];
         auto blend = [&](int e) {
             float acc = W[0][s] * M[0][e];
             for (int i = 1; i < N; ++i) acc = madd(W[i][s], M[i][e], acc);
@@ -151,15 +198,16 @@ bool unit_weights_avx2(const SkinLayout& m, const SkinLayout::Run& run) {
 // The blocks of a run: each block's 8 rest positions loaded (consecutive vertices) or gathered,
 // skin(b, x, y, z, px, py, pz) computing the posed ones, stored or scattered back.
 template <class Skin>
-[[gnu::always_inline]] inline void each_block_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* rest, float* out, Skin&& skin) {
-    const uint32_t V = m.vertex_count;
+[[gnu::always_inline]] inline void each_block_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* rest, float* out, bool slots,
+                                                  Skin&& skin) {
+    const uint32_t V = slots ? m.slot_count() : m.vertex_count;
     const float *xs = rest, *ys = rest + V, *zs = rest + 2 * std::size_t(V);
     float *ox = out, *oy = out + V, *oz = out + 2 * std::size_t(V);
     const uint32_t* vid = m.vertices.data();
     for (uint32_t b = run.begin; b < run.end; b += SkinLayout::kBlock) {
-        const uint32_t v0 = vid[b];
+        const uint32_t v0 = slots ? b : vid[b];
         __m256 px, py, pz;
-        if (m.contiguous[b / SkinLayout::kBlock]) {
+        if (slots || m.contiguous[b / SkinLayout::kBlock]) {
             skin(b, _mm256_loadu_ps(xs + v0), _mm256_loadu_ps(ys + v0), _mm256_loadu_ps(zs + v0), px, py, pz);
             _mm256_storeu_ps(ox + v0, px);
             _mm256_storeu_ps(oy + v0, py);
@@ -184,11 +232,11 @@ template <class Skin>
 
 // A one-joint run of weight 1: the arithmetic of skin_run_avx2<1> below with blend(e) = M[e], so the
 // same bits, with the twelve broadcasts made once.
-void skin_run_unit_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
+void skin_run_unit_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
     const float* M = mats + run.offsets[0];
     __m256 k[15];  // elements 0..14 of the column-major 4x4 (row 3 unused)
     for (int e = 0; e < 15; ++e) k[e] = _mm256_broadcast_ss(M + e);
-    each_block_avx2(m, run, rest, out, [&](uint32_t, __m256 x, __m256 y, __m256 z, __m256& px, __m256& py, __m256& pz) {
+    each_block_avx2(m, run, rest, out, slots, [&](uint32_t, __m256 x, __m256 y, __m256 z, __m256& px, __m256& py, __m256& pz) {
         auto row = [&](const int* e) {
             return _mm256_add_ps(_mm256_fmadd_ps(k[e[2]], z, _mm256_mul_ps(k[e[0]], x)), _mm256_fmadd_ps(k[e[1]], y, k[e[3]]));
         };
@@ -197,13 +245,13 @@ void skin_run_unit_avx2(const SkinLayout& m, const SkinLayout::Run& run, const f
 }
 
 template <int N>
-void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
+void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
     if constexpr (N == 1)
-        if (unit_weights_avx2(m, run)) return skin_run_unit_avx2(m, run, mats, rest, out);
-    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
+        if (unit_weights_avx2(m, run)) return skin_run_unit_avx2(m, run, mats, rest, out, slots);
+    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out, slots);
     const float* const* M = a.M;
     const float* const* W = a.W;
-    each_block_avx2(m, run, rest, out, [&](uint32_t b, __m256 x, __m256 y, __m256 z, __m256& px, __m256& py, __m256& pz) {
+    each_block_avx2(m, run, rest, out, slots, [&](uint32_t b, __m256 x, __m256 y, __m256 z, __m256& px, __m256& py, __m256& pz) {
         __m256 w[N];
         for (int i = 0; i < N; ++i) w[i] = _mm256_loadu_ps(W[i] + b);
         auto blend = [&](int e) {
@@ -220,14 +268,103 @@ void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float*
     });
 }
 SSC_TARGET_END
+
+// AVX-512: two blocks of a run per step (16 lanes), a run's odd last block in the low 8 lanes under
+// a mask. Lane for lane the same operations as skin_run_avx2, so the same bits.
+#pragma GCC push_options
+#pragma GCC target("avx2,fma,avx512f")
+
+bool unit_weights_avx512(const SkinLayout& m, const SkinLayout::Run& run) {
+    const __m512 one = _mm512_set1_ps(1.f);
+    const float* w = m.weights[0].data();
+    for (uint32_t b = run.begin; b < run.end; b += SkinLayout::kBlock)
+        if (_mm512_mask_cmp_ps_mask(0x00FF, _mm512_maskz_loadu_ps(0x00FF, w + b), one, _CMP_NEQ_UQ) != 0) return false;
+    return true;
+}
+
+// The 16-slot steps of a run: rest positions loaded (16 consecutive vertices) or
+// gathered, skin(b, mask, x, y, z, px, py, pz) computing the posed ones, stored or scattered back.
+template <class Skin>
+[[gnu::always_inline]] inline void each_block_avx512(const SkinLayout& m, const SkinLayout::Run& run, const float* rest, float* out, bool slots,
+                                                    Skin&& skin) {
+    const uint32_t V = slots ? m.slot_count() : m.vertex_count;
+    const float *xs = rest, *ys = rest + V, *zs = rest + 2 * std::size_t(V);
+    float *ox = out, *oy = out + V, *oz = out + 2 * std::size_t(V);
+    const uint32_t* vid = m.vertices.data();
+    const uint8_t* contiguous = m.contiguous.data();
+    for (uint32_t b = run.begin; b < run.end; b += 2 * SkinLayout::kBlock) {
+        const bool two = b + 2 * SkinLayout::kBlock <= run.end;
+        const __mmask16 k = two ? __mmask16(0xFFFF) : __mmask16(0x00FF);
+        const uint32_t v0 = slots ? b : vid[b], blk = b / SkinLayout::kBlock;
+        __m512 px, py, pz;
+        if (slots || (contiguous[blk] && (!two || (contiguous[blk + 1] && vid[b + SkinLayout::kBlock] == v0 + SkinLayout::kBlock)))) {
+            if (two) {
+            skin(b, k, _mm512_loadu_ps(xs + v0), _mm512_loadu_ps(ys + v0), _mm512_loadu_ps(zs + v0), px, py, pz);
+            _mm512_storeu_ps(ox + v0, px);
+            _mm512_storeu_ps(oy + v0, py);
+            _mm512_storeu_ps(oz + v0, pz);
+            } else {
+            skin(b, k, _mm512_maskz_loadu_ps(k, xs + v0), _mm512_maskz_loadu_ps(k, ys + v0), _mm512_maskz_loadu_ps(k, zs + v0), px, py, pz);
+            _mm512_mask_storeu_ps(ox + v0, k, px);
+            _mm512_mask_storeu_ps(oy + v0, k, py);
+            _mm512_mask_storeu_ps(oz + v0, k, pz);
+            }
+        } else {
+            const __m512i idx = _mm512_maskz_loadu_epi32(k, vid + b);
+            const __m512 zero = _mm512_setzero_ps();
+            skin(b, k, _mm512_mask_i32gather_ps(zero, k, idx, xs, 4), _mm512_mask_i32gather_ps(zero, k, idx, ys, 4),
+                 _mm512_mask_i32gather_ps(zero, k, idx, zs, 4), px, py, pz);
+            _mm512_mask_i32scatter_ps(ox, k, idx, px, 4);
+            _mm512_mask_i32scatter_ps(oy, k, idx, py, 4);
+            _mm512_mask_i32scatter_ps(oz, k, idx, pz, 4);
+        }
+    }
+}
+
+void skin_run_unit_avx512(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+    const float* M = mats + run.offsets[0];
+    __m512 k[15];
+    for (int e = 0; e < 15; ++e) k[e] = _mm512_set1_ps(M[e]);
+    each_block_avx512(m, run, rest, out, slots, [&](uint32_t, __mmask16, __m512 x, __m512 y, __m512 z, __m512& px, __m512& py, __m512& pz) {
+        auto row = [&](const int* e) {
+            return _mm512_add_ps(_mm512_fmadd_ps(k[e[2]], z, _mm512_mul_ps(k[e[0]], x)), _mm512_fmadd_ps(k[e[1]], y, k[e[3]]));
+        };
+        px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
+    });
+}
+
+template <int N>
+void skin_run_avx512(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+    if constexpr (N == 1)
+        if (unit_weights_avx512(m, run)) return skin_run_unit_avx512(m, run, mats, rest, out, slots);
+    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out, slots);
+    const float* const* M = a.M;
+    const float* const* W = a.W;
+    each_block_avx512(m, run, rest, out, slots, [&](uint32_t b, __mmask16 k, __m512 x, __m512 y, __m512 z, __m512& px, __m512& py, __m512& pz) {
+        __m512 w[N];
+        for (int i = 0; i < N; ++i) w[i] = _mm512_maskz_loadu_ps(k, W[i] + b);
+        auto blend = [&](int e) {
+            __m512 acc = _mm512_mul_ps(w[0], _mm512_set1_ps(M[0][e]));
+            for (int i = 1; i < N; ++i) acc = _mm512_fmadd_ps(w[i], _mm512_set1_ps(M[i][e]), acc);
+            return acc;
+        };
+        auto row = [&](const int* e) {
+            const __m512 p = _mm512_fmadd_ps(blend(e[2]), z, _mm512_mul_ps(blend(e[0]), x));
+            const __m512 c = _mm512_fmadd_ps(blend(e[1]), y, blend(e[3]));
+            return _mm512_add_ps(p, c);
+        };
+        px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
+    });
+}
+#pragma GCC pop_options
 #endif
 
 #if defined(__wasm_simd128__)
 // WebAssembly SIMD (the browser runtime): the AVX2 path's blocks as two 4-lane halves, a multiply
 // and an add where it fuses them (see madd.hpp).
 template <int N>
-void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out) {
-    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out);
+void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out, slots);
     const float *xs = a.xs, *ys = a.ys, *zs = a.zs;
     float *ox = a.ox, *oy = a.oy, *oz = a.oz;
     const float* const* M = a.M;
@@ -235,13 +372,14 @@ void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float*
     const uint32_t* vid = m.vertices.data();
     auto madd4 = [](v128_t x, v128_t y, v128_t z) { return wasm_f32x4_add(wasm_f32x4_mul(x, y), z); };
     for (uint32_t b = run.begin; b < run.end; b += 4) {
-        const bool contiguous = m.contiguous[b / SkinLayout::kBlock];
+        const bool contiguous = slots || m.contiguous[b / SkinLayout::kBlock];
         const uint32_t* id = vid + b;
+        const uint32_t v0 = slots ? b : id[0];
         v128_t x, y, z;
         if (contiguous) {
-            x = wasm_v128_load(xs + id[0]);
-            y = wasm_v128_load(ys + id[0]);
-            z = wasm_v128_load(zs + id[0]);
+            x = wasm_v128_load(xs + v0);
+            y = wasm_v128_load(ys + v0);
+            z = wasm_v128_load(zs + v0);
         } else {
             x = wasm_f32x4_make(xs[id[0]], xs[id[1]], xs[id[2]], xs[id[3]]);
             y = wasm_f32x4_make(ys[id[0]], ys[id[1]], ys[id[2]], ys[id[3]]);
@@ -259,9 +397,9 @@ void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float*
         };
         const v128_t px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
         if (contiguous) {
-            wasm_v128_store(ox + id[0], px);
-            wasm_v128_store(oy + id[0], py);
-            wasm_v128_store(oz + id[0], pz);
+            wasm_v128_store(ox + v0, px);
+            wasm_v128_store(oy + v0, py);
+            wasm_v128_store(oz + v0, pz);
         } else {
             alignas(16) float tx[4], ty[4], tz[4];
             wasm_v128_store(tx, px);
@@ -274,15 +412,34 @@ void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float*
 #endif
 
 template <int N>
-void skin_run(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, Isa isa) {
+void skin_run(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, Isa isa, bool slots) {
 #ifdef SSC_SKIN_AVX2
-    if (isa != Isa::Baseline) return skin_run_avx2<N>(m, run, mats, rest, out);
+    if (isa == Isa::Avx512) return skin_run_avx512<N>(m, run, mats, rest, out, slots);
+    if (isa != Isa::Baseline) return skin_run_avx2<N>(m, run, mats, rest, out, slots);
 #endif
 #if defined(__wasm_simd128__)
-    return skin_run_wasm<N>(m, run, mats, rest, out);
+    return skin_run_wasm<N>(m, run, mats, rest, out, slots);
 #endif
     (void)isa;
-    skin_run_scalar<N>(m, run, mats, rest, out);
+    skin_run_scalar<N>(m, run, mats, rest, out, slots);
+}
+
+void skin_runs(const SkinLayout& layout, const float* rest, const SkinMatrix* skinning, float* out, uint32_t first, uint32_t end, Isa isa,
+               bool slots) {
+    if (int(isa) > int(supported_isa())) isa = supported_isa();
+    const float* mats = skinning[0].m;
+    for (const auto& full : layout.runs) {
+        if (full.end <= first || full.begin >= end) continue;
+        SkinLayout::Run run = full;
+        run.begin = std::max(run.begin, first);
+        run.end = std::min(run.end, end);
+        switch (run.influences) {
+            case 1: skin_run<1>(layout, run, mats, rest, out, isa, slots); break;
+            case 2: skin_run<2>(layout, run, mats, rest, out, isa, slots); break;
+            case 3: skin_run<3>(layout, run, mats, rest, out, isa, slots); break;
+            default: skin_run<4>(layout, run, mats, rest, out, isa, slots); break;
+        }
+    }
 }
 
 }  // namespace
@@ -302,20 +459,12 @@ void skin_slots(const Model& m, const float* rest, const SkinMatrix* skinning, f
 }
 
 void skin_slots(const SkinLayout& layout, const float* rest, const SkinMatrix* skinning, float* out, uint32_t first, uint32_t end, Isa isa) {
-    if (int(isa) > int(supported_isa())) isa = supported_isa();
-    const float* mats = skinning[0].m;
-    for (const auto& full : layout.runs) {
-        if (full.end <= first || full.begin >= end) continue;
-        SkinLayout::Run run = full;
-        run.begin = std::max(run.begin, first);
-        run.end = std::min(run.end, end);
-        switch (run.influences) {
-            case 1: skin_run<1>(layout, run, mats, rest, out, isa); break;
-            case 2: skin_run<2>(layout, run, mats, rest, out, isa); break;
-            case 3: skin_run<3>(layout, run, mats, rest, out, isa); break;
-            default: skin_run<4>(layout, run, mats, rest, out, isa); break;
-        }
-    }
+    skin_runs(layout, rest, skinning, out, first, end, isa, /*slots=*/false);
+}
+
+void skin_slots_in_slot_order(const SkinLayout& layout, const float* rest_slots, const SkinMatrix* skinning, float* out_slots, uint32_t first,
+                              uint32_t end, Isa isa) {
+    skin_runs(layout, rest_slots, skinning, out_slots, first, end, isa, /*slots=*/true);
 }
 
 void normals(const Model& m, const float* planar, float* face, float* out) {

@@ -4,23 +4,43 @@
 
 namespace ssc {
 
+namespace {
+
+// Whether joint j's rotation r can be used; if not, why, in error.
+bool usable(ssc_rotation_format format, const float* r, uint32_t j, std::string& error) {
+    const int width = format == SSC_ROTATION_QUATERNION ? 4 : 3;
+    for (int i = 0; i < width; ++i)
+        if (!std::isfinite(r[i])) {
+            error = "rotation of joint " + std::to_string(j) + " is not finite";
+            return false;
+        }
+    if (format == SSC_ROTATION_QUATERNION) {
+        const double n = std::sqrt(double(r[0]) * r[0] + double(r[1]) * r[1] + double(r[2]) * r[2] + double(r[3]) * r[3]);
+        if (!(n > 1e-12) || !std::isfinite(n)) {
+            error = "quaternion of joint " + std::to_string(j) + " has zero length";
+            return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+bool check_rotations(ssc_rotation_format format, const float* in, uint32_t count, std::string& error) {
+    const int width = format == SSC_ROTATION_QUATERNION ? 4 : 3;
+    for (uint32_t j = 0; j < count; ++j)
+        if (!usable(format, in + std::size_t(width) * j, j, error)) return false;
+    return true;
+}
+
 bool to_unit_quaternions(ssc_rotation_format format, const float* in, uint32_t count, float* out, std::string& error) {
     const int width = format == SSC_ROTATION_QUATERNION ? 4 : 3;
     for (uint32_t j = 0; j < count; ++j) {
         const float* r = in + std::size_t(width) * j;
-        for (int i = 0; i < width; ++i) {
-            if (!std::isfinite(r[i])) {
-                error = "rotation of joint " + std::to_string(j) + " is not finite";
-                return false;
-            }
-        }
+        if (!usable(format, r, j, error)) return false;
         double q[4];
         if (format == SSC_ROTATION_QUATERNION) {
             const double n = std::sqrt(double(r[0]) * r[0] + double(r[1]) * r[1] + double(r[2]) * r[2] + double(r[3]) * r[3]);
-            if (!(n > 1e-12) || !std::isfinite(n)) {
-                error = "quaternion of joint " + std::to_string(j) + " has zero length";
-                return false;
-            }
             for (int i = 0; i < 4; ++i) q[i] = r[i] / n;
         } else {
             const double angle = std::sqrt(double(r[0]) * r[0] + double(r[1]) * r[1] + double(r[2]) * r[2]);

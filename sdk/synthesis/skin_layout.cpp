@@ -41,6 +41,7 @@ SkinLayout build_skin_layout(uint32_t V, const uint16_t* joints, const float* we
     s.vertices = Vec<uint32_t>(CAlloc<uint32_t>(alloc));
     for (auto& w : s.weights) w = Vec<float>(CAlloc<float>(alloc));
     s.contiguous = Vec<uint8_t>(CAlloc<uint8_t>(alloc));
+    s.first_slot = Vec<uint32_t>(V, 0u, CAlloc<uint32_t>(alloc));
     for (std::size_t first = 0; first < entries.size();) {
         std::size_t last = first + 1;
         while (last < entries.size() && !key_less(entries[first], entries[last])) ++last;
@@ -63,6 +64,7 @@ SkinLayout build_skin_layout(uint32_t V, const uint16_t* joints, const float* we
         for (uint32_t i = 1; i < SkinLayout::kBlock; ++i) contiguous &= s.vertices[b + i] == s.vertices[b] + i;
         s.contiguous.push_back(contiguous);
     }
+    for (uint32_t slot = s.slot_count(); slot-- > 0;) s.first_slot[s.vertices[slot]] = slot;
     return s;
 }
 

@@ -4,6 +4,10 @@
 // constants, so 8 vertices are skinned at once from structure-of-arrays weights; a block of 8
 // consecutive vertex indices loads and stores positions directly, any other block gathers and
 // scatters. Built once at load (Model) and read by kernels::skin_slots.
+//
+// Positions may also be kept in slot order (a block of slot_count() per coordinate, slot s at s):
+// then every block is read and written whole, which is how a body skins its full mesh
+// (kernels::skin_slots_in_slot_order); first_slot maps the result back to vertex order.
 #pragma once
 
 #include "common/alloc.hpp"
@@ -25,6 +29,7 @@ struct SkinLayout {
     Vec<uint32_t> vertices;      // per slot
     Vec<float> weights[4];       // per slot, influence i
     Vec<uint8_t> contiguous;     // per block
+    Vec<uint32_t> first_slot;    // per vertex: the first slot holding it
 
     uint32_t slot_count() const { return runs.empty() ? 0 : runs.back().end; }
 };
