@@ -18,8 +18,8 @@ Body::Body(const Model& model, const Allocator* a)
       normals_(3ull * model.vertex_count(), 0.f, CAlloc<float>(a)),
       scratch_(kernels::kSkeletonScratch * model.joint_count(), 0.f, CAlloc<float>(a)),
       face_normals_(3ull * model.triangle_count(), 0.f, CAlloc<float>(a)),
-      rest_slots_(3ull * model.skin_layout().slot_count(), 0.f, CAlloc<float>(a)),
-      posed_slots_(3ull * model.skin_layout().slot_count(), 0.f, CAlloc<float>(a)),
+      rest_slots_(CAlloc<float>(a)),
+      posed_slots_(CAlloc<float>(a)),
       skinning_(model.joint_count(), kernels::SkinMatrix{}, CAlloc<kernels::SkinMatrix>(a)),
       alloc_(a),
       levels_(model.level_count()) {
@@ -102,6 +102,10 @@ const float* Body::posed_slots() {
     if (!posed_slots_ok_) {
         update_skeleton();
         const SkinLayout& layout = model_.skin_layout();
+        if (rest_slots_.empty()) {  // on a body's first re-posed shape: a body posed once never pays the memory
+            rest_slots_.resize(3ull * layout.slot_count());
+            posed_slots_.resize(3ull * layout.slot_count());
+        }
         if (!rest_slots_ok_) {  // once per shape: an animation re-poses the same rest positions
             split(layout.slot_count(), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
                 kernels::to_slot_order(layout, rest_.data(), rest_slots_.data(), uint32_t(first), uint32_t(end));

@@ -1,7 +1,9 @@
 // Runtime benchmarks on a procedural model of the default model's size (13,380 vertices,
 // 53 joints, 50 components). Targets on the 2-core dev machine: load <= 20 ms, pose-only
 // <= 30 us, shape + pose <= 150 us (one thread), batch >= 15,000 bodies/s.
+#include "capi/handles.hpp"
 #include "sscape_format/model_io.hpp"
+#include "synthesis/kernels.hpp"
 #include "testing/synthetic_model.hpp"
 
 #include <sscape/sscape.h>
@@ -14,6 +16,10 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 namespace {
 
@@ -209,6 +215,66 @@ void BM_Batch(benchmark::State& state) {
 
 // The memory floor of one shape update: only reading a 16-bit basis of the benchmark model's size
 // (3V x K values, 4.0 MB, larger than L2), with no arithmetic.
+#if defined(__x86_64__)
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
+// One 3x4 matrix applied to contiguous planar positions, in and out: the memory floor of any
+// skinning over these arrays on this machine (AVX2).
+[[gnu::noinline]] void transform_stream(const float* rest, float* out, uint32_t V, const float* M) {
+    __m256 k[15];
+    for (int e = 0; e < 15; ++e) k[e] = _mm256_broadcast_ss(M + e);
+    auto row = [&](__m256 x, __m256 y, __m256 z, int a, int b, int c, int d) {
+        return _mm256_add_ps(_mm256_fmadd_ps(k[c], z, _mm256_mul_ps(k[a], x)), _mm256_fmadd_ps(k[b], y, k[d]));
+    };
+    for (uint32_t v = 0; v + 8 <= V; v += 8) {
+        const __m256 x = _mm256_loadu_ps(rest + v), y = _mm256_loadu_ps(rest + V + v), z = _mm256_loadu_ps(rest + 2 * V + v);
+        _mm256_storeu_ps(out + v, row(x, y, z, 0, 4, 8, 12));
+        _mm256_storeu_ps(out + V + v, row(x, y, z, 1, 5, 9, 13));
+        _mm256_storeu_ps(out + 2 * V + v, row(x, y, z, 2, 6, 10, 14));
+    }
+}
+#pragma GCC pop_options
+#endif
+
+// The stages of a posed body's vertices, alone, on the default model (issue 51's profile; see
+// docs/speed.md): 0 skinning in vertex order (a shape's first posing), 1 the rest put in slot
+// order (once per shape), 2 skinning in slot order (every later posing), 3 slot order to the
+// caller's xyz, 4 planar vertex order to xyz, 5 the memory floor (transform_stream).
+void BM_PoseStage(benchmark::State& state) {
+    namespace k = ssc::kernels;
+    OneBody f(true);
+    ssc_body_set_shape(f.b, f.p.shapes[0].data(), f.K);
+    ssc_body_set_pose_axis_angle(f.b, f.p.poses[1].data(), f.J, nullptr);
+    ssc_body_get_vertices(f.b, f.out.data(), f.V, 0);
+    ssc::Body& body = f.b->body;
+    const ssc::SkinLayout& layout = f.m->model.skin_layout();
+    const uint32_t S = layout.slot_count(), V = f.V;
+    const float* rest = body.rest_planar();
+    const k::SkinMatrix* skinning = body.skinning();
+    std::vector<float> rest_slots(3ull * S), slots(3ull * S), planar(3ull * V);
+    k::to_slot_order(layout, rest, rest_slots.data(), 0, S);
+    k::skin_slots_in_slot_order(layout, rest_slots.data(), skinning, slots.data(), 0, S, k::active_isa());
+    const int stage = int(state.range(0));
+    static const char* names[] = {"skin, vertex order", "rest to slot order", "skin, slot order", "slot order to xyz", "planar to xyz",
+                                  "one matrix, contiguous (floor)"};
+    for (auto _ : state) {
+        switch (stage) {
+            case 0: k::skin_slots(layout, rest, skinning, planar.data(), 0, S, k::active_isa()); break;
+            case 1: k::to_slot_order(layout, rest, rest_slots.data(), 0, S); break;
+            case 2: k::skin_slots_in_slot_order(layout, rest_slots.data(), skinning, slots.data(), 0, S, k::active_isa()); break;
+            case 3: k::slots_to_xyz(layout, slots.data(), f.out.data(), 12, 0, V); break;
+            case 4: k::planar_to_xyz(planar.data(), V, f.out.data(), 12); break;
+            default:
+#if defined(__x86_64__)
+                transform_stream(rest, planar.data(), V, skinning[3].m);
+#endif
+                break;
+        }
+        benchmark::ClobberMemory();
+    }
+    state.SetLabel(names[stage]);
+}
+
 void BM_BasisReadFloor(benchmark::State& state) {
     const std::size_t n = 13380ull * 3 * 50;
     std::vector<uint16_t> q(n, 1);
@@ -223,6 +289,7 @@ void BM_BasisReadFloor(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_BasisReadFloor)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PoseStage)->DenseRange(0, 5)->Unit(benchmark::kMicrosecond);
 void BM_LoadDefaultModel(benchmark::State& state) {
     for (auto _ : state) {
         ssc_model* m = load_default();
