@@ -124,8 +124,8 @@ const float* Body::posed_slots() {
 // A rest shape's first posing skins in vertex order (gathering and scattering inside the skinning);
 // from its second posing on (an animation), the rest is put in slot order once and each posing
 // reads and writes whole blocks, paying the gathers once on the way out. Putting a rest in slot
-// order costs about what the vertex-order skinning's gathers do, so a shape posed once (a batch
-// of variants) would only pay it twice.
+// order costs about what the vertex-order skinning's gathers do, so a shape posed only once (a
+// batch of variants) would pay for both (docs/speed.md).
 bool Body::skin_in_slot_order() const { return rest_slots_ok_ || rest_posed_; }
 
 const float* Body::posed() {
