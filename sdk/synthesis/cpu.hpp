@@ -11,13 +11,16 @@
 // never raises it past what the CPU supports): for tests of the fallback paths, and to time them.
 #pragma once
 
-// Everything between SSC_TARGET_AVX2_BEGIN and SSC_TARGET_END (functions, templates, lambdas) is
-// compiled for AVX2 + FMA; callers check active_isa() first. GCC and clang spell it differently.
+// Everything between SSC_TARGET_AVX2_BEGIN (or SSC_TARGET_AVX512_BEGIN) and SSC_TARGET_END
+// (functions, templates, lambdas) is compiled for AVX2 + FMA (and AVX-512F); callers check
+// active_isa() first. GCC and clang spell it differently.
 #if defined(__clang__)
 #define SSC_TARGET_AVX2_BEGIN _Pragma("clang attribute push (__attribute__((target(\"avx2,fma\"))), apply_to = function)")
+#define SSC_TARGET_AVX512_BEGIN _Pragma("clang attribute push (__attribute__((target(\"avx2,fma,avx512f\"))), apply_to = function)")
 #define SSC_TARGET_END _Pragma("clang attribute pop")
 #else
 #define SSC_TARGET_AVX2_BEGIN _Pragma("GCC push_options") _Pragma("GCC target(\"avx2,fma\")")
+#define SSC_TARGET_AVX512_BEGIN _Pragma("GCC push_options") _Pragma("GCC target(\"avx2,fma,avx512f\")")
 #define SSC_TARGET_END _Pragma("GCC pop_options")
 #endif
 

@@ -271,8 +271,7 @@ SSC_TARGET_END
 
 // AVX-512: two blocks of a run per step (16 lanes), a run's odd last block in the low 8 lanes under
 // a mask. Lane for lane the same operations as skin_run_avx2, so the same bits.
-#pragma GCC push_options
-#pragma GCC target("avx2,fma,avx512f")
+SSC_TARGET_AVX512_BEGIN
 
 bool unit_weights_avx512(const SkinLayout& m, const SkinLayout::Run& run) {
     const __m512 one = _mm512_set1_ps(1.f);
@@ -356,7 +355,7 @@ void skin_run_avx512(const SkinLayout& m, const SkinLayout::Run& run, const floa
         px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
     });
 }
-#pragma GCC pop_options
+SSC_TARGET_END
 #endif
 
 #if defined(__wasm_simd128__)

@@ -3,6 +3,7 @@
 // <= 30 us, shape + pose <= 150 us (one thread), batch >= 15,000 bodies/s.
 #include "capi/handles.hpp"
 #include "sscape_format/model_io.hpp"
+#include "synthesis/cpu.hpp"
 #include "synthesis/kernels.hpp"
 #include "testing/synthetic_model.hpp"
 
@@ -217,8 +218,7 @@ void BM_Batch(benchmark::State& state) {
 // The memory floor of one shape update: only reading a 16-bit basis of the benchmark model's size
 // (3V x K values, 4.0 MB, larger than L2), with no arithmetic.
 #if defined(__x86_64__)
-#pragma GCC push_options
-#pragma GCC target("avx2,fma")
+SSC_TARGET_AVX2_BEGIN
 // One 3x4 matrix applied to contiguous planar positions, in and out: the memory floor of any
 // skinning over these arrays on this machine (AVX2).
 [[gnu::noinline]] void transform_stream(const float* rest, float* out, uint32_t V, const float* M) {
@@ -234,7 +234,7 @@ void BM_Batch(benchmark::State& state) {
         _mm256_storeu_ps(out + 2 * V + v, row(x, y, z, 2, 6, 10, 14));
     }
 }
-#pragma GCC pop_options
+SSC_TARGET_END
 #endif
 
 // The stages of a posed body's vertices, alone, on the default model (issue 51's profile; see
