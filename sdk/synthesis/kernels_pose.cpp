@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #include <immintrin.h>
@@ -50,14 +51,19 @@ void store16(const Matrix3f& r, const Vector3f& t, float* out) {
 namespace {
 using Map3 = Eigen::Map<Matrix3f>;
 using MapV = Eigen::Map<Vector3f>;
-struct RestFrame {
-    float* f;
-    Map3 R() const { return Map3(f); }
-    Map3 W() const { return Map3(f + 9); }
-    MapV o() const { return MapV(f + 18); }
-    MapV bt() const { return MapV(f + 21); }
-    MapV p() const { return MapV(f + 24); }
+// A joint's rest frame in rest_frames: writable (Float = float) or read-only (const float).
+template <class Float>
+struct RestFrameOf {
+    template <class M>
+    using MapOf = Eigen::Map<std::conditional_t<std::is_const_v<Float>, const M, M>>;
+    Float* f;
+    MapOf<Matrix3f> R() const { return MapOf<Matrix3f>(f); }
+    MapOf<Matrix3f> W() const { return MapOf<Matrix3f>(f + 9); }
+    MapOf<Vector3f> o() const { return MapOf<Vector3f>(f + 18); }
+    MapOf<Vector3f> bt() const { return MapOf<Vector3f>(f + 21); }
+    MapOf<Vector3f> p() const { return MapOf<Vector3f>(f + 24); }
 };
+using RestFrame = RestFrameOf<float>;
 }  // namespace
 
 void skeleton_rest(const Model& m, const float* joints_rest, float* rest_frames, float* inverse_bind16) {
@@ -94,7 +100,7 @@ void skeleton_pose(const Model& m, const float* rest_frames, const float* quats,
     auto G = [&](uint32_t j) { return Map3(scratch + 12 * std::size_t(j)); };
     auto Gt = [&](uint32_t j) { return MapV(scratch + 12 * std::size_t(j) + 9); };
     for (uint32_t j = 0; j < J; ++j) {
-        const RestFrame f{const_cast<float*>(rest_frames) + kSkeletonRest * std::size_t(j)};
+        const RestFrameOf<const float> f{rest_frames + kSkeletonRest * std::size_t(j)};
         const float* pq = quats + 4 * j;
         const Matrix3f P = Eigen::Quaternionf(pq[3], pq[0], pq[1], pq[2]).toRotationMatrix();
         const Matrix3f R = f.R();
