@@ -240,7 +240,8 @@ SSC_TARGET_END
 // The stages of a posed body's vertices, alone, on the default model (issue 51's profile; see
 // docs/speed.md): 0 skinning in vertex order (a shape's first posing), 1 the rest put in slot
 // order (once per shape), 2 skinning in slot order (every later posing), 3 slot order to the
-// caller's xyz, 4 planar vertex order to xyz, 5 the memory floor (transform_stream).
+// caller's xyz, 4 planar vertex order to xyz, 5 the memory floor (transform_stream), 6 the shape
+// stage's rows for one body (against BM_BasisReadFloor).
 void BM_PoseStage(benchmark::State& state) {
     namespace k = ssc::kernels;
     OneBody f(true);
@@ -257,7 +258,12 @@ void BM_PoseStage(benchmark::State& state) {
     k::skin_slots_in_slot_order(layout, rest_slots.data(), skinning, slots.data(), 0, S, k::active_isa());
     const int stage = int(state.range(0));
     static const char* names[] = {"skin, vertex order", "rest to slot order", "skin, slot order", "slot order to xyz", "planar to xyz",
-                                  "one matrix, contiguous (floor)"};
+                                  "one matrix, contiguous (floor)", "shape rows, one body"};
+    const ssc::Model& model = f.m->model;
+    std::vector<float> scaled(model.component_count()), shaped(model.padded_rows());
+    k::scale_coefficients(model, f.p.shapes[0].data(), scaled.data());
+    const float* scaled_rows = scaled.data();
+    float* shaped_rows = shaped.data();
     for (auto _ : state) {
         switch (stage) {
             case 0: k::skin_slots(layout, rest, skinning, planar.data(), 0, S, k::active_isa()); break;
@@ -265,6 +271,7 @@ void BM_PoseStage(benchmark::State& state) {
             case 2: k::skin_slots_in_slot_order(layout, rest_slots.data(), skinning, slots.data(), 0, S, k::active_isa()); break;
             case 3: k::slots_to_xyz(layout, slots.data(), f.out.data(), 12, 0, V); break;
             case 4: k::planar_to_xyz(planar.data(), V, f.out.data(), 12); break;
+            case 6: k::shape_rows(model, 1, &scaled_rows, &shaped_rows, 0, model.padded_rows() / ssc::Model::kChunk); break;
             default:
 #if defined(__x86_64__)
                 transform_stream(rest, planar.data(), V, skinning[3].m);
@@ -290,7 +297,7 @@ void BM_BasisReadFloor(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_BasisReadFloor)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PoseStage)->DenseRange(0, 5)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PoseStage)->DenseRange(0, 6)->Unit(benchmark::kMicrosecond);
 void BM_LoadDefaultModel(benchmark::State& state) {
     for (auto _ : state) {
         ssc_model* m = load_default();
