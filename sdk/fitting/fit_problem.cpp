@@ -371,6 +371,21 @@ double FitProblem::share_beyond(uint32_t f, double distance, bool every_vertex) 
     return double(far) / double(n);
 }
 
+double FitProblem::mean_scan_distance(uint32_t f, double cap) {
+    const auto& fd = frames_[f];
+    if (fd.points.empty()) return 0;
+    kin_[f].update(states_[f], false);
+    pose_frame(f, true);
+    dense_grid_.build(posed_);
+    double sum = 0;
+    for (const Vector3d& p : fd.points) {
+        double d2 = cap * cap;
+        dense_grid_.nearest(p, cap, &d2);
+        sum += std::sqrt(d2);
+    }
+    return sum / double(fd.points.size());
+}
+
 const std::vector<Vector3d>& FitProblem::posed_sample(uint32_t f) {
     kin_[f].update(states_[f], false);
     pose_frame(f, false);

@@ -100,6 +100,9 @@ public:
     // The share of frame f's scan sample farther than `distance` from the posed model (every
     // vertex, or the vertex sample) and on a surface; unexplained_share is 5 cm from the sample.
     double share_beyond(uint32_t f, double distance, bool every_vertex = true);
+    // The mean distance of frame f's scan points to the nearest posed vertex (every vertex), each
+    // capped at `cap` metres: how closely the fit lies on the scan, to compare two fits of it.
+    double mean_scan_distance(uint32_t f, double cap);
     // Frame f's posed vertex sample (vertex_sample() order) and each sample's body region
     // (judgement.hpp), for judging a fit.
     const std::vector<Vector3d>& posed_sample(uint32_t f);

@@ -35,6 +35,9 @@ constexpr double kResweep = 0.3;
 // Start candidates that get a short coarse fit at most (the best two always; more while those end
 // implausible).
 constexpr std::size_t kMaxShortFits = 8;
+// Metres: scan points farther than this from a fit count this much in the check of a turned head
+// (FitProblem::mean_scan_distance), so a limb off its points elsewhere does not swamp the head's.
+constexpr double kHeadCheckCap = 0.02;
 // The extremity start (extremities.hpp): extremities picked on the scan, labellings tried (each a
 // short fit), and how closely the tip stage draws the template's tips to them (metres).
 constexpr std::size_t kExtremityPicks = 6, kTipLabellings = 2;
@@ -166,11 +169,19 @@ private:
             // The head's turn likewise (head_search.hpp), in fits from the automatic start as the
             // restarts: from a given start (a sequence's tracked frames) it turned heads wrong and
             // the frames after them followed (capture benchmark: 78 -> 70 of 100 frames good).
-            // (Both searches run: | of ints, not ||.)
-            if (si == Schedule::kFine && !cancelled && (int(o_.hand_search && search_hands()) | int(F_ == 1 && searched_frames_ == 1 && search_head()))) {
+            // A turned head is checked against the fit before it (keep_head_if_closer).
+            if (si == Schedule::kFine && !cancelled) {
+                const bool fine_converged = converged;
+                const std::vector<double> shape_fitted = p_.shape();
+                const std::vector<FitState> fitted = p_.states();
+                const bool hands = o_.hand_search && search_hands();
+                const std::vector<FitState> hands_set = p_.states();
+                const bool turned = F_ == 1 && searched_frames_ == 1 && search_head();
                 Stage again = stages[Schedule::kFine];
                 again.iterations = std::max<uint32_t>(2, again.iterations / 2);
-                converged = p_.run_stage(again, kAllFrames, &progress, iteration, cancelled);
+                if (hands || turned) converged = p_.run_stage(again, kAllFrames, &progress, iteration, cancelled);
+                if (turned && !cancelled) keep_head_if_closer(shape_fitted, fitted, hands ? &hands_set : nullptr, again, fine_converged, progress,
+                                                              iteration, cancelled, converged);
             }
             // Between the coarse and the fine stage: limbs the coarse stage could not reach, each
             // search settled by a short coarse stage when a limb moved. Limbs are searched one after
@@ -191,6 +202,33 @@ private:
             }
         }
         return converged;
+    }
+
+    // After the head search turned the head and the fine stage ran again: the turn is kept only
+    // when the fit now lies closer to the scan (FitProblem::mean_scan_distance, single frame);
+    // else the fit from before the turn comes back (with the hand search's closures, fitted again).
+    // The head's own measure cannot always tell a turn (a round head on a scan with holes): on the
+    // pose library a wrong turn left the whole fit farther from its points (docs/fitting.md).
+    void keep_head_if_closer(const std::vector<double>& shape_before, const std::vector<FitState>& before,
+                             const std::vector<FitState>* hands_set, const Stage& again, bool converged_before, const FitProgress& progress,
+                             uint32_t& iteration, bool& cancelled, bool& converged) {
+        const double turned_distance = p_.mean_scan_distance(0, kHeadCheckCap);
+        std::vector<double> shape_turned = std::move(p_.shape());
+        std::vector<FitState> turned = std::move(p_.states());
+        p_.shape() = shape_before;
+        p_.states() = before;
+        if (turned_distance <= p_.mean_scan_distance(0, kHeadCheckCap)) {
+            p_.shape() = std::move(shape_turned);
+            p_.states() = std::move(turned);
+        } else {
+            converged = converged_before;
+            if (hands_set) {
+                for (uint32_t f = 0; f < F_; ++f)
+                    std::copy((*hands_set)[f].hand_closure, (*hands_set)[f].hand_closure + 2, p_.states()[f].hand_closure);
+                converged = p_.run_stage(again, kAllFrames, &progress, iteration, cancelled);
+            }
+        }
+        p_.update_kinematics();
     }
 
     // What restart_if_implausible() accepts of a frame: judgement.hpp's verdict.
