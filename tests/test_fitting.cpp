@@ -12,6 +12,7 @@
 #include "fitting/fit_problem.hpp"
 #include "fitting/grid_index.hpp"
 #include "fitting/head_search.hpp"
+#include "fitting/wrist_search.hpp"
 #include "fitting/nearest.hpp"
 #include "fitting/normal_equations.hpp"
 #include "fitting/robust.hpp"
@@ -478,7 +479,7 @@ TEST_CASE("the head search turns back a head the fit left turned away and keeps 
     const double truth_distance = problem.mean_scan_distance(0, 0.02);
     // A head that is right: the search may propose a small turn (a 2 % gain of the head's own
     // measure), which leaves the fit farther from the scan, so the solver's check
-    // (keep_head_if_closer) takes it back.
+    // (keep_if_closer) takes it back.
     if (fitting::search_head(problem.kin(0), problem.body(), state, problem.cloud_view(0), problem.vertex_sample(), problem.pool())) {
         problem.update_kinematics();
         const double proposed_distance = problem.mean_scan_distance(0, 0.02);
@@ -506,6 +507,74 @@ TEST_CASE("the head search turns back a head the fit left turned away and keeps 
                          << truth_distance * 1e3 << " mm the truth");
     CHECK(turned_distance < ahead_distance);
     CHECK(truth_distance <= turned_distance);
+}
+
+TEST_CASE("the wrist search turns back a forearm the fit left turned over", "[fitting][wrists]") {
+    // Fits of hands behind the head, on the knees or at the throat ended with the forearm turned
+    // over or the wrist bent the wrong way while the hand lay on its points (hands 30 to 150 mm off).
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    const std::vector<anatomy::JointLimit>& limits = lin.limits;
+    const int64_t elbow = m.find_joint("lowerarm_l"), wrist = m.find_joint("hand_l");
+    REQUIRE(elbow >= 0);
+    REQUIRE(wrist >= 0);
+    const std::size_t je = std::size_t(elbow), jw = std::size_t(wrist);
+    std::vector<uint8_t> in_hands(m.vertex_count(), 0);
+    for (const auto& set : m.data().vertex_sets)
+        if (set.name == "hands")
+            for (uint32_t v : set.vertices) in_hands[v] = 1;
+    std::mt19937 rng(61);
+    std::vector<float> pose = simulation::random_pose(m, rng, 0.3);
+    auto set_joint = [&](std::vector<float>& p, std::size_t j, const Eigen::Quaterniond& q) {
+        float* out = &p[4 * j];
+        out[0] = float(q.x()), out[1] = float(q.y()), out[2] = float(q.z()), out[3] = float(q.w());
+    };
+    auto quat = [&](const std::vector<float>& p, std::size_t j) { return Eigen::Quaterniond(p[4 * j + 3], p[4 * j], p[4 * j + 1], p[4 * j + 2]).normalized(); };
+    // The arm held out sideways, the forearm turned 60 degrees one way and the wrist bent 30.
+    const int64_t shoulder = m.find_joint("upperarm_l");
+    REQUIRE(shoulder >= 0);
+    set_joint(pose, std::size_t(shoulder), anatomy::rotation_from_angles(limits[std::size_t(shoulder)], Eigen::Vector3d(-0.3, 0, -0.8)));
+    const Eigen::Vector3d e = anatomy::anatomical_angles(limits[je], quat(pose, je));
+    set_joint(pose, je, anatomy::rotation_from_angles(limits[je], Eigen::Vector3d(e[0], 60 * M_PI / 180, e[2])));
+    set_joint(pose, jw, anatomy::rotation_from_angles(limits[jw], Eigen::Vector3d(30 * M_PI / 180, 0, 0)));
+    const std::vector<float> shape = simulation::random_shape(m, rng);
+    const auto truth = simulation::make_body(m, shape, pose, Eigen::Vector3d::Zero());
+    fitting::Frame frame;
+    simulation::CloudSpec spec;
+    spec.points = 30000;
+    spec.missing = 0;  // the hand scanned (20 round holes can swallow it)
+    frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
+    fitting::FitProblem problem(lin, {frame}, fitting::FitOptions{}, nullptr);
+    fitting::FitState& state = problem.states()[0];
+    state.shape.assign(shape.begin(), shape.end());
+    state.shape.resize(problem.shape().size(), 0.0);
+    problem.shape() = state.shape;
+    for (uint32_t j = 0; j < m.joint_count(); ++j) state.pose[j] = quat(pose, j);
+    auto hand_error = [&](const fitting::FitState& s) {
+        const auto fitted = simulation::fitted_vertices(m, s);
+        double sum = 0;
+        std::size_t n = 0;
+        for (uint32_t v = 0; v < m.vertex_count(); ++v)
+            if (in_hands[v]) sum += (fitted[v] - truth.vertices[v]).norm(), ++n;
+        return sum / double(n);
+    };
+    REQUIRE(hand_error(state) < 1e-4);  // the state is the truth
+    problem.update_kinematics();
+    const double truth_distance = problem.mean_scan_distance(0, 0.02);
+    // Turned over the other way, the wrist straight: the search turns it back, and the fit then
+    // lies closer to the scan (the solver keeps it).
+    state.pose[je] = anatomy::rotation_from_angles(limits[je], Eigen::Vector3d(e[0], -60 * M_PI / 180, e[2]));
+    state.pose[jw] = Eigen::Quaterniond::Identity();
+    problem.update_kinematics();
+    const double before = hand_error(state), before_distance = problem.mean_scan_distance(0, 0.02);
+    CHECK(fitting::search_wrists(problem.kin(0), problem.body(), state, problem.cloud_view(0), problem.vertex_sample(), problem.pool()));
+    problem.update_kinematics();
+    const double after = hand_error(state), after_distance = problem.mean_scan_distance(0, 0.02);
+    INFO("hand vertices " << before * 1e3 << " mm off turned over, " << after * 1e3 << " mm after the search; scan to fit " << before_distance * 1e3
+                          << " -> " << after_distance * 1e3 << " mm (the truth " << truth_distance * 1e3 << ")");
+    CHECK(before > 0.02);
+    CHECK(after < 0.25 * before);
+    CHECK(after_distance < before_distance);
 }
 
 TEST_CASE("booth scans with landmarks of people folded or crouching are fitted in the landmarks' pose", "[fitting][landmarks]") {

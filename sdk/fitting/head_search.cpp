@@ -21,7 +21,7 @@ constexpr double kCap = 0.05, kModelCap = 0.02;
 // degrees wrong gained 6.5 to 26 %, most good fits' heads 0.3 to 2 %; with 0.3 % three in four
 // fits ran the fine stage again (a fifth more CPU time) for a few tenths of a millimetre, and
 // small turns settled by the polish alone made lying fits 1 to 4 mm worse. The solver now keeps a
-// turn only when the fit then lies closer to the scan (keep_head_if_closer in solver.cpp), which
+// turn only when the fit then lies closer to the scan (keep_if_closer in solver.cpp), which
 // let the gain come down to 2 %: 4 trials of the library, 71 -> 74 % success, silent failures 9 -> 8.
 constexpr double kMinGain = 0.02;
 // Scan and model points scored (a prefix of the frame's random samples). Half of the 3000, with

@@ -6,6 +6,7 @@
 #include "fitting/extremities.hpp"
 #include "fitting/hand_search.hpp"
 #include "fitting/head_search.hpp"
+#include "fitting/wrist_search.hpp"
 #include "fitting/judgement.hpp"
 #include "fitting/limb_search.hpp"
 #include "fitting/rigid_start.hpp"
@@ -169,7 +170,7 @@ private:
             // The head's turn likewise (head_search.hpp), in fits from the automatic start as the
             // restarts: from a given start (a sequence's tracked frames) it turned heads wrong and
             // the frames after them followed (capture benchmark: 78 -> 70 of 100 frames good).
-            // A turned head is checked against the fit before it (keep_head_if_closer).
+            // A turned head is checked against the fit before it (keep_if_closer).
             if (si == Schedule::kFine && !cancelled) {
                 const bool fine_converged = converged;
                 const std::vector<double> shape_fitted = p_.shape();
@@ -180,8 +181,19 @@ private:
                 Stage again = stages[Schedule::kFine];
                 again.iterations = std::max<uint32_t>(2, again.iterations / 2);
                 if (hands || turned) converged = p_.run_stage(again, kAllFrames, &progress, iteration, cancelled);
-                if (turned && !cancelled) keep_head_if_closer(shape_fitted, fitted, hands ? &hands_set : nullptr, again, fine_converged, progress,
+                if (turned && !cancelled) keep_if_closer(shape_fitted, fitted, hands ? &hands_set : nullptr, again, fine_converged, progress,
                                                               iteration, cancelled, converged);
+                // Then the forearms' turns and the wrists (wrist_search.hpp), checked the same way.
+                if (F_ == 1 && searched_frames_ == 1 && !cancelled) {
+                    const bool settled_converged = converged;
+                    const std::vector<double> shape_settled = p_.shape();
+                    const std::vector<FitState> settled = p_.states();
+                    if (fitting::search_wrists(p_.kin(0), p_.body(), p_.states()[0], p_.cloud_view(0), p_.vertex_sample(), p_.pool())) {
+                        p_.update_kinematics();
+                        converged = p_.run_stage(again, kAllFrames, &progress, iteration, cancelled);
+                        if (!cancelled) keep_if_closer(shape_settled, settled, nullptr, again, settled_converged, progress, iteration, cancelled, converged);
+                    }
+                }
             }
             // Between the coarse and the fine stage: limbs the coarse stage could not reach, each
             // search settled by a short coarse stage when a limb moved. Limbs are searched one after
@@ -204,12 +216,13 @@ private:
         return converged;
     }
 
-    // After the head search turned the head and the fine stage ran again: the turn is kept only
-    // when the fit now lies closer to the scan (FitProblem::mean_scan_distance, single frame);
-    // else the fit from before the turn comes back (with the hand search's closures, fitted again).
-    // The head's own measure cannot always tell a turn (a round head on a scan with holes): on the
-    // pose library a wrong turn left the whole fit farther from its points (docs/fitting.md).
-    void keep_head_if_closer(const std::vector<double>& shape_before, const std::vector<FitState>& before,
+    // After the head or the wrist search moved a part and the fine stage ran again: the move is
+    // kept only when the fit now lies closer to the scan (FitProblem::mean_scan_distance, single
+    // frame); else the fit from before it comes back (with the hand search's closures, fitted
+    // again). A part's own measure cannot always tell a turn (a round head on a scan with holes, a
+    // hand that differs from the model's by 18 mm): on the pose library a wrong turn left the whole
+    // fit farther from its points (docs/fitting.md).
+    void keep_if_closer(const std::vector<double>& shape_before, const std::vector<FitState>& before,
                              const std::vector<FitState>* hands_set, const Stage& again, bool converged_before, const FitProgress& progress,
                              uint32_t& iteration, bool& cancelled, bool& converged) {
         const double turned_distance = p_.mean_scan_distance(0, kHeadCheckCap);

@@ -1,0 +1,113 @@
+#include "fitting/wrist_search.hpp"
+
+#include "anatomy/joint_limits.hpp"
+#include "anatomy/joint_roles.hpp"
+#include "fitting/posed_surface.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace ssc::fitting {
+
+namespace {
+
+// Caps of the measure (metres), the head search's: scan points up to 5 cm, the forearm's and
+// hand's own vertices up to 2 cm (fingers often lie in a scan's holes).
+constexpr double kCap = 0.05, kModelCap = 0.02;
+// A pose must lower the measure by this fraction to replace the fit's. Library of poses,
+// MakeHuman people, 4 trials, each kept only when the fit then lies closer to the scan: at 5 %
+// no fit ended worse; at 3 % and 2 % hands behind the head went from 8.3 to 14.6 mm.
+constexpr double kMinGain = 0.05;
+constexpr std::size_t kSamples = 1500;
+
+}  // namespace
+
+bool search_wrists(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
+                   ThreadPool& pool) {
+    const LinearModel& lin = kin.linear();
+    const std::vector<anatomy::JointLimit>& limits = lin.limits;
+    const std::vector<anatomy::JointRole>& roles = lin.roles;
+    bool moved = false;
+    for (const anatomy::Side side : {anatomy::Side::Left, anatomy::Side::Right}) {
+        const int64_t elbow = anatomy::find_limb_joint(roles, anatomy::BodyPart::Arm, side, anatomy::LimbJoint::Middle);
+        if (elbow < 0) continue;
+        const std::size_t je = std::size_t(elbow);
+        std::size_t jw = lin.J;  // the wrist: the hand joint on the elbow
+        for (uint32_t j = 0; j < lin.J; ++j)
+            if (roles[j].part == anatomy::BodyPart::Hand && lin.chains[j].size() > 1 && lin.chains[j][1] == je) jw = j;
+        if (jw == lin.J || !limits[je].limited || !limits[jw].limited) continue;
+        const anatomy::JointLimit &le = limits[je], &lw = limits[jw];
+        kin.update(state, false);
+        std::vector<Vector3d> posed, posed_normals;
+        posed_surface(body, state, posed, &posed_normals);
+        struct Worker {
+            FitState state;
+            Kinematics kin;
+            LimbScore score;
+        };
+        const LimbScore arm_score(kin, cloud, vertex_sample, posed, posed_normals, uint32_t(je), kCap, kModelCap,
+                                  std::min<std::size_t>(vertex_sample.size(), kSamples));
+        std::vector<Worker> workers(pool.size(), Worker{state, kin, arm_score});
+        const Vector3d e0 = anatomy::anatomical_angles(le, state.pose[je]), w0 = anatomy::anatomical_angles(lw, state.pose[jw]);
+        // The forearm's turn (the elbow's axial angle), then the wrist's three angles; the elbow's
+        // bend and sideways angle stay the fit's.
+        using Angles = std::array<double, 4>;
+        auto score = [&](unsigned w, const Angles& a, double bound) {
+            Worker& k = workers[w];
+            k.state.pose[je] = anatomy::rotation_from_angles(le, Vector3d(e0[0], a[0], e0[2]));
+            k.state.pose[jw] = anatomy::rotation_from_angles(lw, Vector3d(a[1], a[2], a[3]));
+            k.kin.update(k.state, false);
+            return k.score(k.kin, bound);
+        };
+        struct Candidate {
+            Angles a;
+            double score;
+        };
+        const Angles start{e0[1], w0[0], w0[1], w0[2]};
+        const double current = score(0, start, std::numeric_limits<double>::infinity());
+        std::vector<Candidate> grid{{start, current}};
+        const double mid_w = 0.5 * (lw.lo[0] + lw.hi[0]), half_w = 0.5 * (lw.hi[0] - lw.lo[0]);
+        for (double t : {-1.0, -2.0 / 3, -1.0 / 3, 0.0, 1.0 / 3, 2.0 / 3, 1.0})
+            for (double b : {0.0, -0.5, 0.5})
+                grid.push_back({{0.5 * (le.lo[1] + le.hi[1]) + t * 0.5 * (le.hi[1] - le.lo[1]), mid_w + b * half_w, 0.5 * (lw.lo[1] + lw.hi[1]),
+                                 0.5 * (lw.lo[2] + lw.hi[2])},
+                                0});
+        pool.parallel_for(grid.size() - 1, [&](std::size_t i, unsigned w) { grid[i + 1].score = score(w, grid[i + 1].a, 2 * current); });
+        std::stable_sort(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
+        grid.resize(std::min<std::size_t>(grid.size(), 2));
+        constexpr double d = M_PI / 180;
+        auto bounds = [&](std::size_t c, double& lo, double& hi) {
+            if (c == 0) lo = le.lo[1], hi = le.hi[1];
+            else lo = lw.lo[c - 1], hi = lw.hi[c - 1];
+        };
+        auto refine = [&](Candidate& x, double step, unsigned w) {
+            for (bool improved = true; improved;) {
+                improved = false;
+                for (std::size_t c = 0; c < 4; ++c)
+                    for (double sign : {1.0, -1.0}) {
+                        Candidate y = x;
+                        double lo = 0, hi = 0;
+                        bounds(c, lo, hi);
+                        y.a[c] = std::clamp(y.a[c] + sign * step, lo, hi);
+                        if (y.a[c] == x.a[c]) continue;
+                        y.score = score(w, y.a, x.score);
+                        if (y.score < x.score) x = y, improved = true;
+                    }
+            }
+        };
+        pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) {
+            for (double step : {10 * d, 5 * d, 2.5 * d}) refine(grid[i], step, w);
+        });
+        const Candidate best = *std::min_element(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
+        if (current - best.score < kMinGain * current) continue;
+        state.pose[je] = anatomy::rotation_from_angles(le, Vector3d(e0[0], best.a[0], e0[2]));
+        state.pose[jw] = anatomy::rotation_from_angles(lw, Vector3d(best.a[1], best.a[2], best.a[3]));
+        moved = true;
+    }
+    kin.update(state, false);
+    return moved;
+}
+
+}  // namespace ssc::fitting
