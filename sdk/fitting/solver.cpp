@@ -6,10 +6,10 @@
 #include "fitting/extremities.hpp"
 #include "fitting/hand_search.hpp"
 #include "fitting/head_search.hpp"
-#include "fitting/wrist_search.hpp"
 #include "fitting/judgement.hpp"
 #include "fitting/limb_search.hpp"
 #include "fitting/rigid_start.hpp"
+#include "fitting/wrist_search.hpp"
 
 #include "common/error.hpp"
 #include "synthesis/shape_range.hpp"
@@ -37,8 +37,8 @@ constexpr double kResweep = 0.3;
 // implausible).
 constexpr std::size_t kMaxShortFits = 8;
 // Metres: scan points farther than this from a fit count this much in the check of a turned head
-// (FitProblem::mean_scan_distance), so a limb off its points elsewhere does not swamp the head's.
-constexpr double kHeadCheckCap = 0.02;
+// or wrist (keep_if_closer), so a limb off its points elsewhere does not swamp the part's.
+constexpr double kMoveCheckCap = 0.02;
 // The extremity start (extremities.hpp): extremities picked on the scan, labellings tried (each a
 // short fit), and how closely the tip stage draws the template's tips to them (metres).
 constexpr std::size_t kExtremityPicks = 6, kTipLabellings = 2;
@@ -170,7 +170,7 @@ private:
             // The head's turn likewise (head_search.hpp), in fits from the automatic start as the
             // restarts: from a given start (a sequence's tracked frames) it turned heads wrong and
             // the frames after them followed (capture benchmark: 78 -> 70 of 100 frames good).
-            // A turned head is checked against the fit before it (keep_if_closer).
+            // A turned head is checked against the fit before it (keep_if_closer); then the wrists.
             if (si == Schedule::kFine && !cancelled) {
                 const bool fine_converged = converged;
                 const std::vector<double> shape_fitted = p_.shape();
@@ -181,8 +181,8 @@ private:
                 Stage again = stages[Schedule::kFine];
                 again.iterations = std::max<uint32_t>(2, again.iterations / 2);
                 if (hands || turned) converged = p_.run_stage(again, kAllFrames, &progress, iteration, cancelled);
-                if (turned && !cancelled) keep_if_closer(shape_fitted, fitted, hands ? &hands_set : nullptr, again, fine_converged, progress,
-                                                              iteration, cancelled, converged);
+                if (turned && !cancelled)
+                    keep_if_closer(shape_fitted, fitted, hands ? &hands_set : nullptr, again, fine_converged, progress, iteration, cancelled, converged);
                 // Then the forearms' turns and the wrists (wrist_search.hpp), checked the same way.
                 if (F_ == 1 && searched_frames_ == 1 && !cancelled) {
                     const bool settled_converged = converged;
@@ -191,7 +191,8 @@ private:
                     if (fitting::search_wrists(p_.kin(0), p_.body(), p_.states()[0], p_.cloud_view(0), p_.vertex_sample(), p_.pool())) {
                         p_.update_kinematics();
                         converged = p_.run_stage(again, kAllFrames, &progress, iteration, cancelled);
-                        if (!cancelled) keep_if_closer(shape_settled, settled, nullptr, again, settled_converged, progress, iteration, cancelled, converged);
+                        if (!cancelled)
+                            keep_if_closer(shape_settled, settled, nullptr, again, settled_converged, progress, iteration, cancelled, converged);
                     }
                 }
             }
@@ -222,17 +223,17 @@ private:
     // again). A part's own measure cannot always tell a turn (a round head on a scan with holes, a
     // hand that differs from the model's by 18 mm): on the pose library a wrong turn left the whole
     // fit farther from its points (docs/fitting.md).
-    void keep_if_closer(const std::vector<double>& shape_before, const std::vector<FitState>& before,
-                             const std::vector<FitState>* hands_set, const Stage& again, bool converged_before, const FitProgress& progress,
-                             uint32_t& iteration, bool& cancelled, bool& converged) {
-        const double turned_distance = p_.mean_scan_distance(0, kHeadCheckCap);
-        std::vector<double> shape_turned = std::move(p_.shape());
-        std::vector<FitState> turned = std::move(p_.states());
+    void keep_if_closer(const std::vector<double>& shape_before, const std::vector<FitState>& before, const std::vector<FitState>* hands_set,
+                        const Stage& again, bool converged_before, const FitProgress& progress, uint32_t& iteration, bool& cancelled,
+                        bool& converged) {
+        const double moved_distance = p_.mean_scan_distance(0, kMoveCheckCap);
+        std::vector<double> shape_moved = std::move(p_.shape());
+        std::vector<FitState> moved = std::move(p_.states());
         p_.shape() = shape_before;
         p_.states() = before;
-        if (turned_distance <= p_.mean_scan_distance(0, kHeadCheckCap)) {
-            p_.shape() = std::move(shape_turned);
-            p_.states() = std::move(turned);
+        if (moved_distance <= p_.mean_scan_distance(0, kMoveCheckCap)) {
+            p_.shape() = std::move(shape_moved);
+            p_.states() = std::move(moved);
         } else {
             converged = converged_before;
             if (hands_set) {
