@@ -45,6 +45,45 @@ const DefaultModel& default_model() {
     return m;
 }
 
+// Joint j's rotation in a pose of unit quaternions (x, y, z, w per joint), and setting it.
+Eigen::Quaterniond joint_rotation(const std::vector<float>& pose, std::size_t j) {
+    const float* q = &pose[4 * j];
+    return Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
+}
+
+void set_joint_rotation(std::vector<float>& pose, std::size_t j, const Eigen::Quaterniond& q) {
+    float* out = &pose[4 * j];
+    out[0] = float(q.x()), out[1] = float(q.y()), out[2] = float(q.z()), out[3] = float(q.w());
+}
+
+// Per vertex, whether it is in the model's vertex set `name`.
+std::vector<uint8_t> vertex_set_flags(const Model& m, const std::string& name) {
+    std::vector<uint8_t> flags(m.vertex_count(), 0);
+    for (const auto& set : m.data().vertex_sets)
+        if (set.name == name)
+            for (uint32_t v : set.vertices) flags[v] = 1;
+    return flags;
+}
+
+// Frame 0's state (and the problem's shape) set to the body a scan was made of.
+void set_to_truth(fitting::FitProblem& problem, const Model& m, const std::vector<float>& shape, const std::vector<float>& pose) {
+    fitting::FitState& state = problem.states()[0];
+    state.shape.assign(shape.begin(), shape.end());
+    state.shape.resize(problem.shape().size(), 0.0);
+    problem.shape() = state.shape;
+    for (uint32_t j = 0; j < m.joint_count(); ++j) state.pose[j] = joint_rotation(pose, j);
+}
+
+// The mean distance of the flagged vertices of a state's body from the truth's, metres.
+double flagged_error(const Model& m, const fitting::FitState& s, const std::vector<uint8_t>& flags, const simulation::TrueBody& truth) {
+    const auto fitted = simulation::fitted_vertices(m, s);
+    double sum = 0;
+    std::size_t n = 0;
+    for (uint32_t v = 0; v < m.vertex_count(); ++v)
+        if (flags[v]) sum += (fitted[v] - truth.vertices[v]).norm(), ++n;
+    return sum / double(n);
+}
+
 fitting::FitState random_state(const fitting::Kinematics& kin, const Model& m, std::mt19937& rng) {
     fitting::FitState s = kin.zero_state();
     const auto shape = simulation::random_shape(m, rng);  // the whole body's; segment coefficients stay 0
@@ -437,19 +476,12 @@ TEST_CASE("the head search turns back a head the fit left turned away and keeps 
     const int64_t neck = m.find_joint("neck_01"), head = m.find_joint("head");
     REQUIRE(neck >= 0);
     REQUIRE(head >= 0);
-    std::vector<uint8_t> in_head(m.vertex_count(), 0);
-    for (const auto& set : m.data().vertex_sets)
-        if (set.name == "head")
-            for (uint32_t v : set.vertices) in_head[v] = 1;
+    const std::vector<uint8_t> in_head = vertex_set_flags(m, "head");
     std::mt19937 rng(47);
     std::vector<float> pose = simulation::random_pose(m, rng, 0.3);
-    auto set_joint = [&](std::vector<float>& p, int64_t j, const Eigen::Quaterniond& q) {
-        float* out = &p[4 * std::size_t(j)];
-        out[0] = float(q.x()), out[1] = float(q.y()), out[2] = float(q.z()), out[3] = float(q.w());
-    };
     // Turned and tipped within the joints' ranges: about 45 degrees of turn, 25 of tilt.
-    set_joint(pose, neck, anatomy::rotation_from_angles(limits[std::size_t(neck)], Eigen::Vector3d(0.15, 0.45, 0.25)));
-    set_joint(pose, head, anatomy::rotation_from_angles(limits[std::size_t(head)], Eigen::Vector3d(0.1, 0.35, 0.2)));
+    set_joint_rotation(pose, std::size_t(neck), anatomy::rotation_from_angles(limits[std::size_t(neck)], Eigen::Vector3d(0.15, 0.45, 0.25)));
+    set_joint_rotation(pose, std::size_t(head), anatomy::rotation_from_angles(limits[std::size_t(head)], Eigen::Vector3d(0.1, 0.35, 0.2)));
     const std::vector<float> shape = simulation::random_shape(m, rng);
     const auto truth = simulation::make_body(m, shape, pose, Eigen::Vector3d::Zero());
     fitting::Frame frame;
@@ -457,22 +489,9 @@ TEST_CASE("the head search turns back a head the fit left turned away and keeps 
     spec.points = 30000;
     frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
     fitting::FitProblem problem(lin, {frame}, fitting::FitOptions{}, nullptr);
+    set_to_truth(problem, m, shape, pose);
     fitting::FitState& state = problem.states()[0];
-    state.shape.assign(shape.begin(), shape.end());
-    state.shape.resize(problem.shape().size(), 0.0);
-    problem.shape() = state.shape;
-    for (uint32_t j = 0; j < m.joint_count(); ++j) {
-        const float* q = &pose[4 * std::size_t(j)];
-        state.pose[j] = Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
-    }
-    auto head_error = [&](const fitting::FitState& s) {
-        const auto fitted = simulation::fitted_vertices(m, s);
-        double sum = 0;
-        std::size_t n = 0;
-        for (uint32_t v = 0; v < m.vertex_count(); ++v)
-            if (in_head[v]) sum += (fitted[v] - truth.vertices[v]).norm(), ++n;
-        return sum / double(n);
-    };
+    auto head_error = [&](const fitting::FitState& s) { return flagged_error(m, s, in_head, truth); };
     REQUIRE(head_error(state) < 1e-4);  // the state is the truth
     const fitting::FitState truth_state = state;
     problem.update_kinematics();
@@ -519,24 +538,16 @@ TEST_CASE("the wrist search turns back a forearm the fit left turned over", "[fi
     REQUIRE(elbow >= 0);
     REQUIRE(wrist >= 0);
     const std::size_t je = std::size_t(elbow), jw = std::size_t(wrist);
-    std::vector<uint8_t> in_hands(m.vertex_count(), 0);
-    for (const auto& set : m.data().vertex_sets)
-        if (set.name == "hands")
-            for (uint32_t v : set.vertices) in_hands[v] = 1;
+    const std::vector<uint8_t> in_hands = vertex_set_flags(m, "hands");
     std::mt19937 rng(61);
     std::vector<float> pose = simulation::random_pose(m, rng, 0.3);
-    auto set_joint = [&](std::vector<float>& p, std::size_t j, const Eigen::Quaterniond& q) {
-        float* out = &p[4 * j];
-        out[0] = float(q.x()), out[1] = float(q.y()), out[2] = float(q.z()), out[3] = float(q.w());
-    };
-    auto quat = [&](const std::vector<float>& p, std::size_t j) { return Eigen::Quaterniond(p[4 * j + 3], p[4 * j], p[4 * j + 1], p[4 * j + 2]).normalized(); };
     // The arm held out sideways, the forearm turned 60 degrees one way and the wrist bent 30.
     const int64_t shoulder = m.find_joint("upperarm_l");
     REQUIRE(shoulder >= 0);
-    set_joint(pose, std::size_t(shoulder), anatomy::rotation_from_angles(limits[std::size_t(shoulder)], Eigen::Vector3d(-0.3, 0, -0.8)));
-    const Eigen::Vector3d e = anatomy::anatomical_angles(limits[je], quat(pose, je));
-    set_joint(pose, je, anatomy::rotation_from_angles(limits[je], Eigen::Vector3d(e[0], 60 * M_PI / 180, e[2])));
-    set_joint(pose, jw, anatomy::rotation_from_angles(limits[jw], Eigen::Vector3d(30 * M_PI / 180, 0, 0)));
+    set_joint_rotation(pose, std::size_t(shoulder), anatomy::rotation_from_angles(limits[std::size_t(shoulder)], Eigen::Vector3d(-0.3, 0, -0.8)));
+    const Eigen::Vector3d e = anatomy::anatomical_angles(limits[je], joint_rotation(pose, je));
+    set_joint_rotation(pose, je, anatomy::rotation_from_angles(limits[je], Eigen::Vector3d(e[0], 60 * M_PI / 180, e[2])));
+    set_joint_rotation(pose, jw, anatomy::rotation_from_angles(limits[jw], Eigen::Vector3d(30 * M_PI / 180, 0, 0)));
     const std::vector<float> shape = simulation::random_shape(m, rng);
     const auto truth = simulation::make_body(m, shape, pose, Eigen::Vector3d::Zero());
     fitting::Frame frame;
@@ -545,19 +556,9 @@ TEST_CASE("the wrist search turns back a forearm the fit left turned over", "[fi
     spec.missing = 0;  // the hand scanned (20 round holes can swallow it)
     frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
     fitting::FitProblem problem(lin, {frame}, fitting::FitOptions{}, nullptr);
+    set_to_truth(problem, m, shape, pose);
     fitting::FitState& state = problem.states()[0];
-    state.shape.assign(shape.begin(), shape.end());
-    state.shape.resize(problem.shape().size(), 0.0);
-    problem.shape() = state.shape;
-    for (uint32_t j = 0; j < m.joint_count(); ++j) state.pose[j] = quat(pose, j);
-    auto hand_error = [&](const fitting::FitState& s) {
-        const auto fitted = simulation::fitted_vertices(m, s);
-        double sum = 0;
-        std::size_t n = 0;
-        for (uint32_t v = 0; v < m.vertex_count(); ++v)
-            if (in_hands[v]) sum += (fitted[v] - truth.vertices[v]).norm(), ++n;
-        return sum / double(n);
-    };
+    auto hand_error = [&](const fitting::FitState& s) { return flagged_error(m, s, in_hands, truth); };
     REQUIRE(hand_error(state) < 1e-4);  // the state is the truth
     problem.update_kinematics();
     const double truth_distance = problem.mean_scan_distance(0, 0.02);

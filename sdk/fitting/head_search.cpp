@@ -2,6 +2,7 @@
 
 #include "anatomy/joint_limits.hpp"
 #include "anatomy/joint_roles.hpp"
+#include "fitting/angle_search.hpp"
 #include "fitting/posed_surface.hpp"
 
 #include <algorithm>
@@ -61,15 +62,11 @@ bool search_head(Kinematics& kin, Body& body, FitState& state, const CloudView& 
     };
     const Vector3d n0 = anatomy::anatomical_angles(ln, state.pose[jn]), h0 = anatomy::anatomical_angles(lh, state.pose[jh]);
     const Angles start{n0[0], n0[1], n0[2], h0[0], h0[1], h0[2]};
-    struct Candidate {
-        Angles a;
-        double score;
-    };
     const double current = score(0, start, std::numeric_limits<double>::infinity());
     // The grid: the turn shared by the neck and the head in proportion to their ranges (a head
     // turned 45 degrees is past the neck's range alone), five turns about the neck's axis (where
     // a round head is most ambiguous) by three tilts each way.
-    std::vector<Candidate> grid{{start, current}};
+    std::vector<AngleCandidate<6>> grid{{start, current}};
     for (double f : {0.0, -0.6, 0.6})
         for (double r : {0.0, -0.8, -0.4, 0.4, 0.8})
             for (double l : {0.0, -0.6, 0.6}) {
@@ -81,29 +78,10 @@ bool search_head(Kinematics& kin, Body& body, FitState& state, const CloudView& 
                 }
                 grid.push_back({a, 0});
             }
-    pool.parallel_for(grid.size() - 1, [&](std::size_t i, unsigned w) { grid[i + 1].score = score(w, grid[i + 1].a, 2 * current); });
-    std::stable_sort(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
-    grid.resize(std::min<std::size_t>(grid.size(), 2));
-    // Pattern search over the six angles within their ranges, 10, 5 and 2.5 degrees.
-    constexpr double d = M_PI / 180;
-    auto refine = [&](Candidate& x, double step, unsigned w) {
-        for (bool improved = true; improved;) {
-            improved = false;
-            for (std::size_t c = 0; c < 6; ++c)
-                for (double sign : {1.0, -1.0}) {
-                    Candidate y = x;
-                    const anatomy::JointLimit& l = c < 3 ? ln : lh;
-                    y.a[c] = std::clamp(y.a[c] + sign * step, l.lo[c % 3], l.hi[c % 3]);
-                    if (y.a[c] == x.a[c]) continue;
-                    y.score = score(w, y.a, x.score);
-                    if (y.score < x.score) x = y, improved = true;
-                }
-        }
-    };
-    pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) {
-        for (double step : {10 * d, 5 * d, 2.5 * d}) refine(grid[i], step, w);
-    });
-    const Candidate best = *std::min_element(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
+    // Then a pattern search over the six angles within their ranges.
+    Angles lo{}, hi{};
+    for (std::size_t c = 0; c < 6; ++c) lo[c] = (c < 3 ? ln : lh).lo[c % 3], hi[c] = (c < 3 ? ln : lh).hi[c % 3];
+    const AngleCandidate<6> best = search_angles(std::move(grid), lo, hi, pool, score);
     if (current - best.score < kMinGain * current) {
         kin.update(state, false);
         return false;

@@ -2,6 +2,7 @@
 
 #include "anatomy/joint_limits.hpp"
 #include "anatomy/joint_roles.hpp"
+#include "fitting/angle_search.hpp"
 #include "fitting/posed_surface.hpp"
 
 #include <algorithm>
@@ -61,46 +62,18 @@ bool search_wrists(Kinematics& kin, Body& body, FitState& state, const CloudView
             k.kin.update(k.state, false);
             return k.score(k.kin, bound);
         };
-        struct Candidate {
-            Angles a;
-            double score;
-        };
         const Angles start{e0[1], w0[0], w0[1], w0[2]};
         const double current = score(0, start, std::numeric_limits<double>::infinity());
-        std::vector<Candidate> grid{{start, current}};
+        std::vector<AngleCandidate<4>> grid{{start, current}};
         const double mid_w = 0.5 * (lw.lo[0] + lw.hi[0]), half_w = 0.5 * (lw.hi[0] - lw.lo[0]);
         for (double t : {-1.0, -2.0 / 3, -1.0 / 3, 0.0, 1.0 / 3, 2.0 / 3, 1.0})
             for (double b : {0.0, -0.5, 0.5})
                 grid.push_back({{0.5 * (le.lo[1] + le.hi[1]) + t * 0.5 * (le.hi[1] - le.lo[1]), mid_w + b * half_w, 0.5 * (lw.lo[1] + lw.hi[1]),
                                  0.5 * (lw.lo[2] + lw.hi[2])},
                                 0});
-        pool.parallel_for(grid.size() - 1, [&](std::size_t i, unsigned w) { grid[i + 1].score = score(w, grid[i + 1].a, 2 * current); });
-        std::stable_sort(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
-        grid.resize(std::min<std::size_t>(grid.size(), 2));
-        constexpr double d = M_PI / 180;
-        auto bounds = [&](std::size_t c, double& lo, double& hi) {
-            if (c == 0) lo = le.lo[1], hi = le.hi[1];
-            else lo = lw.lo[c - 1], hi = lw.hi[c - 1];
-        };
-        auto refine = [&](Candidate& x, double step, unsigned w) {
-            for (bool improved = true; improved;) {
-                improved = false;
-                for (std::size_t c = 0; c < 4; ++c)
-                    for (double sign : {1.0, -1.0}) {
-                        Candidate y = x;
-                        double lo = 0, hi = 0;
-                        bounds(c, lo, hi);
-                        y.a[c] = std::clamp(y.a[c] + sign * step, lo, hi);
-                        if (y.a[c] == x.a[c]) continue;
-                        y.score = score(w, y.a, x.score);
-                        if (y.score < x.score) x = y, improved = true;
-                    }
-            }
-        };
-        pool.parallel_for(grid.size(), [&](std::size_t i, unsigned w) {
-            for (double step : {10 * d, 5 * d, 2.5 * d}) refine(grid[i], step, w);
-        });
-        const Candidate best = *std::min_element(grid.begin(), grid.end(), [](const Candidate& x, const Candidate& y) { return x.score < y.score; });
+        // Then a pattern search over the forearm's turn and the wrist's three angles.
+        const Angles lo{le.lo[1], lw.lo[0], lw.lo[1], lw.lo[2]}, hi{le.hi[1], lw.hi[0], lw.hi[1], lw.hi[2]};
+        const AngleCandidate<4> best = search_angles(std::move(grid), lo, hi, pool, score);
         if (current - best.score < kMinGain * current) continue;
         state.pose[je] = anatomy::rotation_from_angles(le, Vector3d(e0[0], best.a[0], e0[2]));
         state.pose[jw] = anatomy::rotation_from_angles(lw, Vector3d(best.a[1], best.a[2], best.a[3]));
