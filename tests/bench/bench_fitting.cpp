@@ -7,7 +7,7 @@
 //
 //   sscape_fit_bench [--trials N] [--scenario landmarks|scan|hands|depth|depth2|robust|poses|frames] [--components K]
 //                    [--max-points N] [--no-joint-limits] [--threads N] [--frames N]
-//                    [--scenario library [--pose NAME] [--makehuman DIR] [--landmarks] [--depth]]
+//                    [--scenario library [--pose NAME] [--makehuman DIR] [--landmarks] [--depth] [--truth-start]]
 // sequence (only when asked): a capture of one person (--makehuman DIR: a MakeHuman body beyond the
 // model) moving through 12 poses of the library in --frames frames, turning and stepping about,
 // each frame scanned all round; fitted as one sequence with a shared shape. Prints the time, the
@@ -36,7 +36,10 @@
 // and a picture of every silent failure and false alarm (with --pose, of every fit); with --trials 0 only the picture.
 // SSCAPE_BENCH_VERBOSE=1 prints a line per fit: its error, also over the head's vertices and over the
 // rest (the head holds a third of the mesh's vertices), and the judgement's figures; in the library,
-// also how much of the head's error is its placement (head_placement).
+// also how much of the head's error is its placement (head_placement). --truth-start (a diagnosis,
+// not a benchmark): each fit starts from the person's best approximation in the truth's pose
+// (truth_start_state), the random heading left out; what the fit moves away from there, its
+// objective prefers.
 // --threads: worker threads lent to the fitter, caller included (default: one per core, as a
 // context's default; 1 = none).
 #include "paths.hpp"
@@ -269,6 +272,36 @@ HeadPlacement head_placement(const registration::BodyRegions& regions, const std
     return h;
 }
 
+// A library fit's start at the answer, as near as the model comes: the shape of the person's best
+// approximation (least squares over the components and a translation, as best_approximation_error),
+// the truth's joint rotations, and the translation that puts its mean on the truth's. The truth must
+// not have been turned after posing (--truth-start skips the random heading).
+fitting::FitState truth_start_state(const Model& model, const fitting::LinearModel& lin, const std::vector<Eigen::Vector3d>& person,
+                                    const simulation::TrueBody& truth) {
+    const uint32_t V = model.vertex_count();
+    const float* mean = model.data().shape.mean.data();
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(3 * Eigen::Index(V), lin.K + 3);
+    Eigen::VectorXd y(3 * Eigen::Index(V));
+    for (uint32_t v = 0; v < V; ++v)
+        for (uint32_t a = 0; a < 3; ++a) {
+            const Eigen::Index row = 3 * Eigen::Index(v) + a;
+            y[row] = person[v][a] - double(mean[3 * std::size_t(v) + a]);
+            for (uint32_t k = 0; k < lin.K; ++k) B(row, k) = lin.basis[(std::size_t(v) * 3 + a) * lin.K + k] * lin.step[k];
+            B(row, lin.K + a) = 1;
+        }
+    const Eigen::VectorXd c = B.colPivHouseholderQr().solve(y);
+    fitting::FitState s;
+    s.shape.assign(c.data(), c.data() + lin.K);
+    s.pose.resize(model.joint_count());
+    for (uint32_t j = 0; j < model.joint_count(); ++j)
+        s.pose[j] = Eigen::Quaterniond(truth.pose[4 * j + 3], truth.pose[4 * j], truth.pose[4 * j + 1], truth.pose[4 * j + 2]).normalized();
+    const auto posed = simulation::fitted_vertices(model, s);
+    Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+    for (std::size_t v = 0; v < posed.size(); ++v) shift += truth.vertices[v] - posed[v];
+    s.translation = shift / double(posed.size());
+    return s;
+}
+
 // A pose varied by another: each joint's rotation followed by the variation's (x y z w per joint).
 std::vector<float> varied(const std::vector<float>& pose, const std::vector<float>& variation) {
     std::vector<float> out(pose.size());
@@ -335,7 +368,7 @@ int main(int argc, char** argv) {
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     int frame_count = 100;
     std::string library_only, makehuman;
-    bool with_landmarks = false, one_depth_camera = false;
+    bool with_landmarks = false, one_depth_camera = false, truth_start = false;
     for (int i = 1; i < argc; ++i) {
         auto value = [&]() { return i + 1 < argc ? argv[++i] : "0"; };
         if (!std::strcmp(argv[i], "--no-joint-limits")) limits = false;
@@ -349,6 +382,7 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--pose")) library_only = value();
         else if (!std::strcmp(argv[i], "--makehuman")) makehuman = value();
         else if (!std::strcmp(argv[i], "--landmarks")) with_landmarks = true;
+        else if (!std::strcmp(argv[i], "--truth-start")) truth_start = true;
         else if (!std::strcmp(argv[i], "--depth")) one_depth_camera = true;
     }
     ThreadPool pool(threads);
@@ -799,7 +833,7 @@ int main(int argc, char** argv) {
                 std::uniform_real_distribution<double> facing(-25.0, 25.0);
                 const Eigen::Matrix3d heading = one_depth_camera ? Eigen::AngleAxisd(facing(rng) * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix()
                                                                  : random_heading(rng);
-                simulation::transform_body(truth, heading * simulation::library_orientation(lp), Eigen::Vector3d::Zero());
+                if (!truth_start) simulation::transform_body(truth, heading * simulation::library_orientation(lp), Eigen::Vector3d::Zero());
                 if (trials == 0) break;
                 fitting::Frame frame;
                 if (one_depth_camera) {
@@ -820,7 +854,20 @@ int main(int argc, char** argv) {
                 const uint32_t cloud_points = uint32_t(frame.clouds[0].points.size());
                 if (with_landmarks) frame.landmarks = simulation::simulate_landmarks(model, truth, 0.005, true, rng);
                 if (skipped) continue;
-                const auto sol = fitting::fit(lin, {frame}, options(), nullptr, {}, &pool);
+                // --truth-start: from the person's best approximation in the truth's pose (a fit that
+                // leaves it shows what the fit's objective prefers, not what its search missed).
+                std::vector<fitting::FitState> starts;
+                fitting::FitOptions fo = options();
+                if (truth_start) {
+                    starts.push_back(truth_start_state(model, lin, person, truth));
+                    fo.auto_start = false;
+                    const auto sv = simulation::fitted_vertices(model, starts[0]);
+                    const HeadPlacement h = head_placement(regions, sv, truth.vertices, triangles);
+                    if (verbose)
+                        std::printf("  %s trial %d: the start %.2f mm, its head %.1f mm (%.1f placed like the truth's)\n", lp.name.c_str(), t,
+                                    simulation::mean_vertex_error(sv, truth.vertices) * 1e3, h.error * 1e3, h.aligned_error * 1e3);
+                }
+                const auto sol = fitting::fit(lin, {frame}, fo, truth_start ? &starts : nullptr, {}, &pool);
                 const auto fv = simulation::fitted_vertices(model, sol.frames[0]);
                 const double error = simulation::mean_vertex_error(fv, truth.vertices);
                 const bool converged = sol.report.converged;
