@@ -578,6 +578,47 @@ TEST_CASE("the wrist search turns back a forearm the fit left turned over", "[fi
     CHECK(after_distance < before_distance);
 }
 
+TEST_CASE("the fitter's segment shape spaces fit proportions the whole body's cannot hold", "[fitting][segments]") {
+    // A body whose head, arms, torso and legs are each shaped beyond what the whole-body
+    // components make of them (each segment's first component at 1.5 to 2 SD): fitted with the
+    // segments (FitOptions::segments, the default) it comes far closer than with the whole body's
+    // components alone, which cannot represent it.
+    const Model& m = default_model().model();
+    REQUIRE(m.segments().size() == 6);
+    std::mt19937 rng(71);
+    Body body(m, nullptr);
+    const std::vector<float> shape = simulation::random_shape(m, rng);
+    body.set_shape(shape.data(), uint32_t(shape.size()));
+    std::uniform_real_distribution<float> sd(1.5f, 2.0f);
+    for (uint32_t g = 0; g < m.segments().size(); ++g) {
+        std::vector<float> c(m.segments()[g].components, 0.f);
+        c[0] = (g % 2 ? -1.f : 1.f) * sd(rng);
+        body.set_segment_shape(g, c.data(), uint32_t(c.size()));
+    }
+    const uint32_t V = m.vertex_count();
+    const float* rest = body.rest_planar();
+    std::vector<Eigen::Vector3d> rest_vertices(V);
+    for (uint32_t v = 0; v < V; ++v) rest_vertices[v] = Eigen::Vector3d(rest[v], rest[V + v], rest[2 * std::size_t(V) + v]);
+    const auto truth = simulation::pose_rest_vertices(m, rest_vertices, simulation::random_pose(m, rng, 0.3), Eigen::Vector3d(0.1, 0, 0.2));
+    simulation::CloudSpec spec;
+    spec.points = 30000;
+    const fitting::PointCloud cloud = simulation::simulate_cloud(m, truth, spec, rng);
+    auto fitted_error = [&](bool segments) {
+        fitting::FitOptions o;
+        o.components = m.component_count();
+        o.segments = segments;
+        fitting::Fitter fitter(m, o);
+        fitter.add_cloud(0, cloud);
+        const fitting::FitReport& report = fitter.solve();
+        CHECK(report.converged);
+        return simulation::mean_vertex_error(fitter.vertices(0), truth.vertices);
+    };
+    const double with = fitted_error(true), without = fitted_error(false);
+    INFO("mean vertex error " << with * 1e3 << " mm with the segments, " << without * 1e3 << " mm without");
+    CHECK(with < 0.6 * without);
+    CHECK(with < 0.006);
+}
+
 TEST_CASE("booth scans with landmarks of people folded or crouching are fitted in the landmarks' pose", "[fitting][landmarks]") {
     // From the landmarks' rigid alignment alone the scan's correspondences started from the rest
     // pose: crouching, bending forward and the squats ended 50 to 370 mm off, reported failed,
@@ -896,8 +937,10 @@ TEST_CASE("the C API fits landmarks by name and reports through ssc_fitter", "[f
     def.landmark_sigma = 0.005f;
     ssc_fitter* fitter = nullptr;
     REQUIRE(ssc_fitter_create(model, &def, &fitter) == SSC_OK);
+    CHECK(def.fit_segments == 1u);  // the model's segment shape spaces join by default
     float out[3];
     CHECK(ssc_fitter_get_shape(fitter, out, 3) == SSC_ERROR_INVALID_ARGUMENT);  // not solved yet
+    CHECK(ssc_fitter_get_segment_shape(fitter, 0, out, 3) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(ssc_fitter_solve(fitter, nullptr, nullptr, nullptr) == SSC_ERROR_INVALID_ARGUMENT);  // no frames
     const char* unknown[1] = {"Left Elbow Tip"};
     CHECK(ssc_fitter_add_landmarks_by_name(fitter, 0, unknown, landmarks.data(), nullptr, 1) == SSC_ERROR_NOT_FOUND);
@@ -938,8 +981,25 @@ TEST_CASE("the C API fits landmarks by name and reports through ssc_fitter", "[f
     err /= V;
     INFO("mean vertex error " << err * 1e3 << " mm; shape[0] " << fitted_shape[0]);
     CHECK(err < 0.01);
-    // The fitted parameters reproduce the fitted surface through a body.
+    // The fitted parameters reproduce the fitted surface through a body: the whole body's shape,
+    // every segment's and the pose.
     REQUIRE(ssc_body_set_shape(body, fitted_shape.data(), K) == SSC_OK);
+    const uint32_t segments = ssc_model_segment_count(model);
+    REQUIRE(segments == 6);
+    ssc_segment_info info;
+    info.struct_size = sizeof info;
+    for (uint32_t g = 0; g < segments; ++g) {
+        REQUIRE(ssc_model_get_segment_info(model, g, &info) == SSC_OK);
+        std::vector<float> coefficients(info.shape_count, -99.f);
+        REQUIRE(ssc_fitter_get_segment_shape(fitter, g, coefficients.data(), info.shape_count) == SSC_OK);
+        CHECK(std::all_of(coefficients.begin(), coefficients.end(), [](float c) { return std::isfinite(c) && std::abs(c) < 10; }));
+        REQUIRE(ssc_body_set_segment_shape(body, g, coefficients.data(), info.shape_count) == SSC_OK);
+    }
+    std::vector<float> segment(info.shape_count);
+    CHECK(ssc_fitter_get_segment_shape(fitter, segments, segment.data(), info.shape_count) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_fitter_get_segment_shape(fitter, 1, segment.data(), info.shape_count - 1) == SSC_ERROR_BUFFER_TOO_SMALL);
+    CHECK(ssc_fitter_get_segment_shape(fitter, 1, nullptr, info.shape_count) == SSC_ERROR_INVALID_ARGUMENT);
+    CHECK(ssc_fitter_get_segment_shape(nullptr, 1, segment.data(), info.shape_count) == SSC_ERROR_INVALID_ARGUMENT);
     REQUIRE(ssc_body_set_pose(body, rotations.data(), J, t) == SSC_OK);
     std::vector<float> again(3 * V);
     REQUIRE(ssc_body_get_vertices(body, again.data(), V, 0) == SSC_OK);

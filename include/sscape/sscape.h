@@ -1023,6 +1023,11 @@ typedef struct ssc_fitter_def {
     uint32_t seed;            /**< Seed of that subset. Default 1. */
     uint32_t joint_limits;    /**< Non-zero: keep joints within anatomical ranges of motion (AAOS averages;
                                    soft walls in the pose prior). Default 1. */
+    uint32_t fit_segments;    /**< Non-zero: the model's segment shape spaces (ssc_model_segment_count), when it
+                                   has them and shape_count is all of its components, join the whole body's
+                                   in the fit's last stages, for people whose proportions the whole body's
+                                   cannot hold (ssc_fitter_get_segment_shape reads them). Default 1; 0: the
+                                   whole body's alone (docs/fitting.md). */
 } ssc_fitter_def;
 
 /** Fills def with defaults; size = sizeof(*def). Threads: any. */
@@ -1252,6 +1257,15 @@ SSC_EXPERIMENTAL ssc_status ssc_fitter_set_frame_callback(ssc_fitter* fitter, ss
 /** The fitted shape (standard deviations); capacity >= ssc_model_shape_count (unused components 0).
  *  @return SSC_ERROR_INVALID_ARGUMENT before a successful solve. Threads: the fitter's thread. */
 SSC_EXPERIMENTAL ssc_status ssc_fitter_get_shape(const ssc_fitter* fitter, float* out, uint32_t capacity);
+
+/**
+ * One segment's fitted coefficients (its shape_count values, ssc_segment_info; zeros when the fit had
+ * no segments: ssc_fitter_def.fit_segments 0 or fewer shape components than the model's). With
+ * ssc_fitter_get_shape and ssc_fitter_get_pose, ssc_body_set_segment_shape rebuilds the fitted body.
+ * @return SSC_ERROR_INVALID_ARGUMENT before a successful solve, for NULL or a bad segment;
+ *         SSC_ERROR_BUFFER_TOO_SMALL for a capacity below its shape_count. Threads: the fitter's thread.
+ */
+SSC_EXPERIMENTAL ssc_status ssc_fitter_get_segment_shape(const ssc_fitter* fitter, uint32_t segment, float* out, uint32_t capacity);
 
 /**
  * The fitted pose of a frame: joint_capacity >= ssc_model_joint_count quaternions (x y z w, each

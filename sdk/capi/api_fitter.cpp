@@ -78,6 +78,7 @@ void ssc_fitter_def_init(ssc_fitter_def* def, size_t size) {
     d.max_points = o.max_points;
     d.seed = o.seed;
     d.joint_limits = o.joint_limits;
+    d.fit_segments = o.segments;
     std::memcpy(def, &d, d.struct_size);
 }
 
@@ -97,6 +98,7 @@ ssc_status ssc_fitter_create(ssc_model* model, const ssc_fitter_def* def, ssc_fi
         o.max_points = d.max_points;
         o.seed = d.seed;
         o.joint_limits = d.joint_limits != 0;  // the fitter checks the values
+        o.segments = d.fit_segments != 0;
         ssc_fitter* f = make<ssc_fitter>(allocator_of(model), model, o);
         ssc_model_retain(model);
         *out = f;
@@ -257,6 +259,22 @@ ssc_status ssc_fitter_get_shape(const ssc_fitter* fitter, float* out, uint32_t c
         const uint32_t K = fitter->fitter.model().component_count();
         check_output(out, capacity, K, 0, 4);
         for (uint32_t k = 0; k < K; ++k) out[k] = k < shape.size() ? float(shape[k]) : 0.f;
+    });
+}
+
+ssc_status ssc_fitter_get_segment_shape(const ssc_fitter* fitter, uint32_t segment, float* out, uint32_t capacity) {
+    return guarded(__func__, [&] {
+        need(fitter, "fitter");
+        need(out, "out");
+        const std::vector<double>& shape = fitter->fitter.solution().shape;  // the whole body's, then every segment's
+        const Model& m = fitter->fitter.model();
+        SSC_REQUIRE_ARG_S(segment < m.segments().size(), "segment " << segment << " is out of range (the model has " << m.segments().size() << ")");
+        const SegmentSpace& s = m.segments()[segment];
+        check_output(out, capacity, s.components, 0, 4);
+        for (uint32_t k = 0; k < s.components; ++k) {
+            const std::size_t i = std::size_t(m.component_count()) + s.first + k;
+            out[k] = i < shape.size() ? float(shape[i]) : 0.f;
+        }
     });
 }
 

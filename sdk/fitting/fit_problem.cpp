@@ -386,6 +386,21 @@ double FitProblem::mean_scan_distance(uint32_t f, double cap) {
     return sum / double(fd.points.size());
 }
 
+double FitProblem::mean_scan_plane_distance(uint32_t f, double cap) {
+    const auto& fd = frames_[f];
+    if (fd.points.empty()) return 0;
+    kin_[f].update(states_[f], false);
+    pose_frame(f, true);
+    dense_grid_.build(posed_);
+    double sum = 0;
+    for (const Vector3d& p : fd.points) {
+        double d2 = cap * cap;
+        const uint32_t v = dense_grid_.nearest(p, cap, &d2);
+        sum += v == GridIndex::kNone ? cap : std::min(cap, std::abs(posed_normals_[v].dot(p - posed_[v])));
+    }
+    return sum / double(fd.points.size());
+}
+
 const std::vector<Vector3d>& FitProblem::posed_sample(uint32_t f) {
     kin_[f].update(states_[f], false);
     pose_frame(f, false);

@@ -103,6 +103,9 @@ public:
     // The mean distance of frame f's scan points to the nearest posed vertex (every vertex), each
     // capped at `cap` metres: how closely the fit lies on the scan, to compare two fits of it.
     double mean_scan_distance(uint32_t f, double cap);
+    // The same along the nearest vertex's normal (point to plane): the vertices' spacing (about
+    // 1 cm) does not bury a surface that moved a few millimetres.
+    double mean_scan_plane_distance(uint32_t f, double cap);
     // Frame f's posed vertex sample (vertex_sample() order) and each sample's body region
     // (judgement.hpp), for judging a fit.
     const std::vector<Vector3d>& posed_sample(uint32_t f);

@@ -27,7 +27,8 @@ FitOptions checked(const Model& model, FitOptions o) {
 }  // namespace
 
 Fitter::Fitter(const Model& model, const FitOptions& options, std::shared_ptr<const anatomy::ModelAnatomy> anatomy)
-    : options_(checked(model, options)), linear_(model, options_.components, std::move(anatomy)) {}
+    : options_(checked(model, options)),
+      linear_(model, options_.components, std::move(anatomy), options_.segments && options_.components == model.component_count()) {}
 
 const Frame& Fitter::frame(uint32_t frame) const {
     SSC_REQUIRE_ARG_S(frame < frames_.size(), "frame " << frame << " out of range (" << frames_.size() << " frames)");

@@ -39,6 +39,12 @@ constexpr std::size_t kMaxShortFits = 8;
 // Metres: scan points farther than this from a fit count this much in the check of a turned head
 // or wrist (keep_if_closer), so a limb off its points elsewhere does not swamp the part's.
 constexpr double kMoveCheckCap = 0.02;
+// The segment components are kept when the scan lies this much closer with them (its mean distance
+// to the fit along the nearest vertex's normal, after / before; fit_segment_stages()). On bodies
+// the whole-body components hold (the benchmark's scan scenario, 30 trials) they brought it 0.97
+// to 1.00 times as close, fitting noise (mean vertex error 1.89 -> 2.14 mm when kept); on MakeHuman
+// people beyond the model 0.72-0.85 times (docs/fitting.md).
+constexpr double kSegmentsCloser = 0.95;
 // The extremity start (extremities.hpp): extremities picked on the scan, labellings tried (each a
 // short fit), and how closely the tip stage draws the template's tips to them (metres).
 constexpr std::size_t kExtremityPicks = 6, kTipLabellings = 2;
@@ -75,7 +81,12 @@ public:
             // their own; they start from the mean).
             if (F_ == 1 && searched_frames_ == 1) shape = states[0].shape;
         }
-        const Schedule plan = schedule(o_.max_iterations, K_, start && !o_.auto_start, whole_body_);
+        // Segment components (a LinearModel's beyond its whole body's) join only where there are
+        // points: landmarks alone do not say how a part is shaped (67 landmarks at 10 mm: 13.7 ->
+        // 14.1 mm mean vertex error with them on the benchmark's model bodies).
+        bool points = false;
+        for (uint32_t f = 0; f < F_; ++f) points |= p_.has_points(f);
+        const Schedule plan = schedule(o_.max_iterations, points ? K_ : whole_body_, start && !o_.auto_start, whole_body_);
         bool cancelled = false;
         uint32_t iteration = 0;
         if (!(start && !o_.auto_start) && !refine)
@@ -257,26 +268,48 @@ private:
     // every component, then the polish. Fitted earlier, the segments took up part of a misplaced
     // limb's error (an arm 13 to 21 mm off its scan left 2.5 % of the scan unexplained, under the
     // restart's 3 %), so the failure went unnoticed. A fit that was acceptable and that they make
-    // unacceptable keeps its whole-body result. Returns whether the kept fit converged.
+    // unacceptable keeps its whole-body result. Unless FitOptions::keep_segments_always, they are
+    // also kept only when the scan then lies kSegmentsCloser closer (scan_distance()). A whole-body
+    // result that comes back gets the rest of its fine stage and its polish. Returns whether the
+    // kept fit converged.
     bool fit_segment_stages(const Schedule& plan, const FitProgress& progress, uint32_t& iteration, bool& cancelled, bool converged) {
         p_.update_kinematics();
         const std::vector<double> shape_before = p_.shape();
         const std::vector<FitState> states_before = p_.states();
         const bool acceptable_before = every_frame_acceptable();
+        const double distance_before = o_.keep_segments_always ? 0 : scan_distance();
         Stage segments = plan.stages[Schedule::kFine];
         segments.components = K_;
         segments.iterations = plan.segment_iterations;
-        bool with_segments = p_.run_stage(segments, kAllFrames, &progress, iteration, cancelled);
+        const bool with_segments = p_.run_stage(segments, kAllFrames, &progress, iteration, cancelled);
         if (!cancelled && plan.stages[Schedule::kPolish].iterations > 0)
             p_.run_stage(plan.stages[Schedule::kPolish], kAllFrames, &progress, iteration, cancelled);
+        if (cancelled) return with_segments && !implausible_;
         p_.update_kinematics();
-        if (acceptable_before && !every_frame_acceptable() && !cancelled) {
-            p_.shape() = shape_before;
-            p_.states() = states_before;
-            p_.update_kinematics();
-            return converged;
-        }
-        return with_segments && !implausible_;
+        const bool closer = o_.keep_segments_always || scan_distance() <= kSegmentsCloser * distance_before;
+        if (closer && (!acceptable_before || every_frame_acceptable())) return with_segments && !implausible_;
+        p_.shape() = shape_before;
+        p_.states() = states_before;
+        Stage rest = segments, polish = plan.stages[Schedule::kPolish];
+        rest.components = polish.components = whole_body_;
+        converged = p_.run_stage(rest, kAllFrames, &progress, iteration, cancelled);
+        if (!cancelled && polish.iterations > 0) p_.run_stage(polish, kAllFrames, &progress, iteration, cancelled);
+        p_.update_kinematics();
+        return converged && !implausible_;
+    }
+
+    // The mean distance of the scan points to the fit along the nearest vertices' normals
+    // (FitProblem::mean_scan_plane_distance) over the frames with points, weighted by their points;
+    // 0 without any.
+    double scan_distance() {
+        double sum = 0;
+        std::size_t n = 0;
+        for (uint32_t f = 0; f < F_; ++f)
+            if (p_.has_points(f)) {
+                const std::size_t m = p_.frame(f).points.size();
+                sum += p_.mean_scan_plane_distance(f, kMoveCheckCap) * double(m), n += m;
+            }
+        return n ? sum / double(n) : 0;
     }
 
     // A single frame's fit from the automatic start that ends implausible (joints far past their

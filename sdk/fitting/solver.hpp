@@ -47,6 +47,12 @@ struct FitOptions {
     uint32_t seed = 1;                  // for that subset
     bool auto_start = true;             // false: start from the given state instead
     bool hand_search = true;            // search each hand's closure (open .. fist) in scans (hand_search.hpp)
+    // Fitter only: the model's segment shape spaces (head, arms, torso, legs) join the whole body's
+    // components when the fit uses all of those (a LinearModel with segments; docs/fitting.md).
+    bool segments = true;
+    // With segment components: keep them whatever the scan says (registration's model fit, which
+    // measured them so); else only when they bring the scan kSegmentsCloser closer (solver.cpp).
+    bool keep_segments_always = false;
 };
 
 // How one frame's fit was judged (judgement.hpp).

@@ -43,6 +43,7 @@ inline fitting::FitOptions registration_fit() {
     // bodies the whole body's components hold (the benchmark's default scans: 6.10 to 6.98 mm);
     // at 10 most of the gain on bodies beyond the model remains (docs/registration.md).
     o.segment_prior = 10;
+    o.keep_segments_always = true;
     // Landmarks weigh as if placed to 2 mm, whatever their real placement error: the scan's
     // thousands of points share the model's errors (a head turned to match a face the model cannot
     // make), so they outvote some 60 landmarks far beyond their count. At the fitter's 1 cm, one

@@ -6,7 +6,7 @@
 // time is the steadier measure of the work, for comparing builds.
 //
 //   sscape_fit_bench [--trials N] [--scenario landmarks|scan|hands|depth|depth2|robust|poses|frames] [--components K]
-//                    [--max-points N] [--no-joint-limits] [--threads N] [--frames N]
+//                    [--max-points N] [--no-joint-limits] [--no-segments] [--threads N] [--frames N]
 //                    [--scenario library [--pose NAME] [--makehuman DIR] [--landmarks] [--depth] [--truth-start]]
 // sequence (only when asked): a capture of one person (--makehuman DIR: a MakeHuman body beyond the
 // model) moving through 12 poses of the library in --frames frames, turning and stepping about,
@@ -40,6 +40,8 @@
 // not a benchmark): each fit starts from the person's best approximation in the truth's pose
 // (truth_start_state), the random heading left out; what the fit moves away from there, its
 // objective prefers.
+// --no-segments: the whole body's components alone (the Fitter's default adds the model's segment
+// shape spaces, FitOptions::segments; the people's floors then include them too).
 // --threads: worker threads lent to the fitter, caller included (default: one per core, as a
 // context's default; 1 = none).
 #include "paths.hpp"
@@ -368,7 +370,7 @@ int main(int argc, char** argv) {
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     int frame_count = 100;
     std::string library_only, makehuman;
-    bool with_landmarks = false, one_depth_camera = false, truth_start = false;
+    bool with_landmarks = false, one_depth_camera = false, truth_start = false, fit_segments = true;
     for (int i = 1; i < argc; ++i) {
         auto value = [&]() { return i + 1 < argc ? argv[++i] : "0"; };
         if (!std::strcmp(argv[i], "--no-joint-limits")) limits = false;
@@ -383,6 +385,7 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--makehuman")) makehuman = value();
         else if (!std::strcmp(argv[i], "--landmarks")) with_landmarks = true;
         else if (!std::strcmp(argv[i], "--truth-start")) truth_start = true;
+        else if (!std::strcmp(argv[i], "--no-segments")) fit_segments = false;
         else if (!std::strcmp(argv[i], "--depth")) one_depth_camera = true;
     }
     ThreadPool pool(threads);
@@ -394,8 +397,12 @@ int main(int argc, char** argv) {
         return o;
     };
     const Model model(format::read_model_file(sscape_paths::default_model_file()), nullptr);
-    const fitting::LinearModel lin(model, components);
-    std::printf("model: default, %u components used, %d trials per scenario, threads: %u\n", lin.K, trials, threads);
+    // As the Fitter builds it (FitOptions::segments): the segment shape spaces join when every
+    // whole-body component is used.
+    const bool segments = fit_segments && std::min(components, model.component_count()) == model.component_count() && !model.segments().empty();
+    const fitting::LinearModel lin(model, components, nullptr, segments);
+    std::printf("model: default, %u components used%s, %d trials per scenario, threads: %u\n", lin.whole_body,
+                segments ? " and the segments'" : "", trials, threads);
 
     if (only.empty() || only == "landmarks") {
         Row r;
@@ -694,7 +701,7 @@ int main(int argc, char** argv) {
         std::mt19937 rng(600);
         const std::vector<std::vector<Eigen::Vector3d>> people = load_people(model, makehuman, 1, rng);
         if (people.empty()) return 2;
-        const double floor_t = simulation::best_approximation_error(model, people[0], true);
+        const double floor_t = simulation::best_approximation_error(model, people[0], true, nullptr, segments);
         std::vector<std::vector<float>> keys;
         for (const char* name : kKeys)
             for (const simulation::LibraryPose& lp : simulation::pose_library())
@@ -756,7 +763,7 @@ int main(int argc, char** argv) {
         double floor = 0;
         const registration::BodyRegions regions = registration::body_regions(model.data());
         for (const auto& rest : people) {
-            floors.push_back(simulation::best_approximation_error(model, rest, true)), floor += floors.back() / double(people.size());
+            floors.push_back(simulation::best_approximation_error(model, rest, true, nullptr, segments)), floor += floors.back() / double(people.size());
             if (verbose) {
                 std::vector<Eigen::Vector3d> approximation, aligned = rest;
                 {  // onto the model's mean, as best_approximation_error aligns it
@@ -767,7 +774,7 @@ int main(int argc, char** argv) {
                     const Similarity T = align_points(src, dst, false);
                     for (auto& x : aligned) x = T.R * x + T.t;
                 }
-                simulation::best_approximation_error(model, aligned, false, &approximation);
+                simulation::best_approximation_error(model, aligned, false, &approximation, segments);
                 std::printf("  person %zu: floor %.2f mm (%s)\n", floors.size() - 1, floors.back() * 1e3, region_list(regions, region_errors(regions, approximation, aligned)).c_str());
             }
         }

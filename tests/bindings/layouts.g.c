@@ -80,6 +80,7 @@ int main(void) {
     printf("ssc_fitter_def.max_points offset %zu\n", offsetof(ssc_fitter_def, max_points));
     printf("ssc_fitter_def.seed offset %zu\n", offsetof(ssc_fitter_def, seed));
     printf("ssc_fitter_def.joint_limits offset %zu\n", offsetof(ssc_fitter_def, joint_limits));
+    printf("ssc_fitter_def.fit_segments offset %zu\n", offsetof(ssc_fitter_def, fit_segments));
     printf("ssc_depth_image_def size %zu\n", sizeof(ssc_depth_image_def));
     printf("ssc_depth_image_def.struct_size offset %zu\n", offsetof(ssc_depth_image_def, struct_size));
     printf("ssc_depth_image_def.width offset %zu\n", offsetof(ssc_depth_image_def, width));

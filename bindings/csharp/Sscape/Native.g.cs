@@ -286,6 +286,7 @@ namespace Sscape.Native
         public uint @max_points;
         public uint @seed;
         public uint @joint_limits;
+        public uint @fit_segments;
     }
 
     [StructLayout(LayoutKind.Sequential)]
@@ -711,6 +712,9 @@ namespace Sscape.Native
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern ssc_status ssc_fitter_get_shape(IntPtr @fitter, float* @out, uint @capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern ssc_status ssc_fitter_get_segment_shape(IntPtr @fitter, uint @segment, float* @out, uint @capacity);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern ssc_status ssc_fitter_get_pose(IntPtr @fitter, uint @frame, float* @rotations, uint @joint_capacity, float* @translation, float* @scale);

@@ -119,6 +119,7 @@ function declareTypes(koffi) {
     max_points: 'uint32_t',
     seed: 'uint32_t',
     joint_limits: 'uint32_t',
+    fit_segments: 'uint32_t',
   });
   types.ssc_depth_image_def = koffi.struct('ssc_depth_image_def', {
     struct_size: 'uint32_t',
@@ -311,6 +312,7 @@ const prototypes = [
   'int32_t ssc_fitter_get_frame_report(const ssc_fitter* fitter, uint32_t frame, _Inout_ ssc_fit_frame_report* out)',
   'int32_t ssc_fitter_set_frame_callback(ssc_fitter* fitter, ssc_frame_fn* callback, void* user)',
   'int32_t ssc_fitter_get_shape(const ssc_fitter* fitter, float* out, uint32_t capacity)',
+  'int32_t ssc_fitter_get_segment_shape(const ssc_fitter* fitter, uint32_t segment, float* out, uint32_t capacity)',
   'int32_t ssc_fitter_get_pose(const ssc_fitter* fitter, uint32_t frame, float* rotations, uint32_t joint_capacity, float* translation, float* scale)',
   'int32_t ssc_fitter_get_vertices(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity, size_t stride)',
   'int32_t ssc_fitter_get_point_residuals(const ssc_fitter* fitter, uint32_t frame, float* out, uint32_t capacity)',

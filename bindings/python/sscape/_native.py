@@ -50,7 +50,7 @@ class MadeToMeasureDef(ctypes.Structure):
 class FitterDef(ctypes.Structure):
     _fields_ = [("struct_size", c_uint32), ("shape_count", c_uint32), ("fit_scale", c_uint32), ("max_iterations", c_uint32),
                 ("landmark_sigma", c_float), ("point_sigma", c_float), ("shape_prior", c_float), ("pose_prior", c_float),
-                ("max_points", c_uint32), ("seed", c_uint32), ("joint_limits", c_uint32)]
+                ("max_points", c_uint32), ("seed", c_uint32), ("joint_limits", c_uint32), ("fit_segments", c_uint32)]
 
 
 class FitReport(ctypes.Structure):
@@ -182,6 +182,7 @@ _DECLARATIONS = {
     "ssc_fitter_get_frame_report": (_STATUS, [c_void_p, c_uint32, POINTER(FitFrameReport)]),
     "ssc_fitter_set_frame_callback": (_STATUS, [c_void_p, FRAME_FN, c_void_p]),
     "ssc_fitter_get_shape": (_STATUS, [c_void_p, c_float_p, c_uint32]),
+    "ssc_fitter_get_segment_shape": (_STATUS, [c_void_p, c_uint32, c_float_p, c_uint32]),
     "ssc_fitter_get_pose": (_STATUS, [c_void_p, c_uint32, c_float_p, c_uint32, c_float_p, c_float_p]),
     "ssc_fitter_get_vertices": (_STATUS, [c_void_p, c_uint32, c_float_p, c_uint32, c_size_t]),
     "ssc_fitter_get_point_residuals": (_STATUS, [c_void_p, c_uint32, c_float_p, c_uint32]),

@@ -14,7 +14,7 @@ from .errors import check
 from .model import Model
 
 _OPTIONS = {"shape_count", "fit_scale", "max_iterations", "landmark_sigma", "point_sigma", "shape_prior", "pose_prior",
-            "max_points", "seed", "joint_limits"}
+            "max_points", "seed", "joint_limits", "fit_segments"}
 
 
 _FLAGS = ("converged", "implausible", "failed", "left_out")  # the reports' yes/no fields
@@ -42,7 +42,7 @@ class Fitter(Handle):
     """Finds the shape (shared by all frames), each frame's pose and translation, and optionally a
     global scale that best explain the observations added. Options as ssc_fitter_def:
     shape_count, fit_scale, max_iterations, landmark_sigma, point_sigma, shape_prior, pose_prior,
-    max_points, seed, joint_limits. One thread at a time.
+    max_points, seed, joint_limits, fit_segments. One thread at a time.
 
         fitter = sscape.Fitter(model)
         fitter.add_points(scan_points)               # (N, 3) metres
@@ -216,6 +216,20 @@ class Fitter(Handle):
         out = np.empty(self.model.shape_count, np.float32)
         check(lib.ssc_fitter_get_shape(self.handle, out.ctypes.data_as(c_float_p), out.shape[0]))
         return out
+
+    def segment_shape(self, segment) -> np.ndarray:
+        """(shape_count,) float32 one segment's fitted coefficients (by index or name; zeros when the
+        fit had no segments). With shape and pose, Body.set_segment_shape rebuilds the fitted body."""
+        segments = self.model.segments
+        if isinstance(segment, str):
+            names = [s.name for s in segments]
+            if segment not in names:
+                raise KeyError(f"the model has no segment {segment!r} (it has: {', '.join(names) or 'none'})")
+            segment = names.index(segment)
+        count = segments[int(segment)].shape_count if 0 <= int(segment) < len(segments) else 0
+        out = np.empty(max(count, 1), np.float32)
+        check(lib.ssc_fitter_get_segment_shape(self.handle, int(segment), out.ctypes.data_as(c_float_p), count))
+        return out[:count]
 
     def pose(self, frame: int = 0) -> Tuple[np.ndarray, np.ndarray, float]:
         """(rotations (J, 4) x y z w, translation (3,), scale) of a frame."""

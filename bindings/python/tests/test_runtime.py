@@ -297,6 +297,16 @@ def test_fitter_recovers_a_body_from_its_surface(model):
         residuals = fitter.point_residuals()
         assert residuals.shape == (truth[::4].shape[0],) and np.median(residuals) < 0.003
         assert fitter.shape.shape == (50,)
+        # Segment coefficients by name or index, standard deviations.
+        for s in model.segments:
+            c = fitter.segment_shape(s.name)
+            assert c.shape == (s.shape_count,) and np.all(np.isfinite(c)) and np.all(np.abs(c) < 10)
+        with pytest.raises(KeyError):
+            fitter.segment_shape("tail")
+    with sscape.Fitter(model, fit_segments=0) as fitter:  # the whole body's components alone
+        fitter.add_points(truth[::4])
+        fitter.solve()
+        assert all(np.all(fitter.segment_shape(i) == 0) for i in range(len(model.segments)))
     with sscape.Fitter(model) as fitter:
         fitter.add_points(truth[::4])
         with pytest.raises(sscape.SscapeError) as e:

@@ -286,6 +286,7 @@ pub struct ssc_fitter_def {
     pub max_points: u32,
     pub seed: u32,
     pub joint_limits: u32,
+    pub fit_segments: u32,
 }
 
 #[repr(C)]
@@ -488,6 +489,7 @@ extern "C" {
     pub fn ssc_fitter_get_frame_report(fitter: *const ssc_fitter, frame: u32, out: *mut ssc_fit_frame_report) -> ssc_status;
     pub fn ssc_fitter_set_frame_callback(fitter: *mut ssc_fitter, callback: ssc_frame_fn, user: *mut c_void) -> ssc_status;
     pub fn ssc_fitter_get_shape(fitter: *const ssc_fitter, out: *mut f32, capacity: u32) -> ssc_status;
+    pub fn ssc_fitter_get_segment_shape(fitter: *const ssc_fitter, segment: u32, out: *mut f32, capacity: u32) -> ssc_status;
     pub fn ssc_fitter_get_pose(fitter: *const ssc_fitter, frame: u32, rotations: *mut f32, joint_capacity: u32, translation: *mut f32, scale: *mut f32) -> ssc_status;
     pub fn ssc_fitter_get_vertices(fitter: *const ssc_fitter, frame: u32, out: *mut f32, capacity: u32, stride: usize) -> ssc_status;
     pub fn ssc_fitter_get_point_residuals(fitter: *const ssc_fitter, frame: u32, out: *mut f32, capacity: u32) -> ssc_status;

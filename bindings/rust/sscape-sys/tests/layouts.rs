@@ -89,6 +89,7 @@ fn lines() -> Vec<String> {
         format!("ssc_fitter_def.max_points offset {}", offset!(ssc_fitter_def, max_points)),
         format!("ssc_fitter_def.seed offset {}", offset!(ssc_fitter_def, seed)),
         format!("ssc_fitter_def.joint_limits offset {}", offset!(ssc_fitter_def, joint_limits)),
+        format!("ssc_fitter_def.fit_segments offset {}", offset!(ssc_fitter_def, fit_segments)),
         format!("ssc_depth_image_def size {}", size_of::<ssc_depth_image_def>()),
         format!("ssc_depth_image_def.struct_size offset {}", offset!(ssc_depth_image_def, struct_size)),
         format!("ssc_depth_image_def.width offset {}", offset!(ssc_depth_image_def, width)),
