@@ -24,8 +24,9 @@ _Static_assert(sizeof(ssc_batch_desc) == 48 && offsetof(ssc_batch_desc, body_cou
                    offsetof(ssc_batch_desc, vertices_capacity) == 32 && offsetof(ssc_batch_desc, normals) == 36 &&
                    offsetof(ssc_batch_desc, normals_capacity) == 40 && offsetof(ssc_batch_desc, level) == 44,
                "BATCH_DESC in src/sscape.mjs");
-_Static_assert(sizeof(ssc_fitter_def) == 44 && offsetof(ssc_fitter_def, shape_count) == 4 && offsetof(ssc_fitter_def, max_iterations) == 12 &&
-                   offsetof(ssc_fitter_def, seed) == 36 && offsetof(ssc_fitter_def, joint_limits) == 40,
+_Static_assert(sizeof(ssc_fitter_def) == 48 && offsetof(ssc_fitter_def, shape_count) == 4 && offsetof(ssc_fitter_def, max_iterations) == 12 &&
+                   offsetof(ssc_fitter_def, seed) == 36 && offsetof(ssc_fitter_def, joint_limits) == 40 &&
+                   offsetof(ssc_fitter_def, fit_segments) == 44,
                "FITTER_DEF in src/sscape.mjs");
 _Static_assert(sizeof(ssc_fit_report) == 60 && offsetof(ssc_fit_report, iterations) == 4 && offsetof(ssc_fit_report, converged) == 8 &&
                    offsetof(ssc_fit_report, landmark_rms) == 24 && offsetof(ssc_fit_report, point_mean) == 28 &&

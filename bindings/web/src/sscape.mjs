@@ -37,7 +37,7 @@ const SLIDER_INFO = { size: 28, name: 4, unit: 8, description: 12, mean: 16, min
 const LEVEL_INFO = { size: 20, name: 4, vertexCount: 8, triangleCount: 12, uvCount: 16 };
 const EXPORT_DEF = { size: 20, format: 4, level: 8, morphs: 12, morphCount: 16 };
 const MADE_TO_MEASURE_DEF = { size: 20, sex: 4, age: 8 };
-const FITTER_DEF = { size: 44, shapeCount: 4, maxIterations: 12, seed: 36, jointLimits: 40 };
+const FITTER_DEF = { size: 48, shapeCount: 4, maxIterations: 12, seed: 36, jointLimits: 40, fitSegments: 44 };
 const FIT_REPORT = { size: 60, iterations: 4, converged: 8, landmarkRms: 24, pointMean: 28, seconds: 36, restarts: 40,
   unexplainedFraction: 44, implausible: 48, problem: 52 };
 const BATCH_DESC = { size: 48, bodyCount: 4, shapes: 8, shapeCount: 12, poses: 20, translations: 24, vertices: 28,
@@ -364,9 +364,9 @@ export class Model extends Handle {
 
   /**
    * A fitter: shape and pose from landmarks and scan points (options: shapeCount, maxIterations, seed,
-   * jointLimits as ssc_fitter_def; the rest of the defaults as the library's).
+   * jointLimits, fitSegments as ssc_fitter_def; the rest of the defaults as the library's).
    */
-  createFitter({ shapeCount, maxIterations, seed, jointLimits } = {}) {
+  createFitter({ shapeCount, maxIterations, seed, jointLimits, fitSegments } = {}) {
     const rt = this._rt;
     const handle = rt._scratch(FITTER_DEF.size + 4, (d) => {
       rt._m._ssc_fitter_def_init(d, FITTER_DEF.size);
@@ -374,6 +374,7 @@ export class Model extends Handle {
       if (maxIterations !== undefined) rt._setU32(d + FITTER_DEF.maxIterations, maxIterations);
       if (seed !== undefined) rt._setU32(d + FITTER_DEF.seed, seed);
       if (jointLimits !== undefined) rt._setU32(d + FITTER_DEF.jointLimits, jointLimits ? 1 : 0);
+      if (fitSegments !== undefined) rt._setU32(d + FITTER_DEF.fitSegments, fitSegments ? 1 : 0);
       const out = d + FITTER_DEF.size;
       rt._check(rt._m._ssc_fitter_create(this.handle, d, out), 'ssc_fitter_create');
       return rt._u32(out);
