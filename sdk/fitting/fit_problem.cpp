@@ -371,22 +371,13 @@ double FitProblem::share_beyond(uint32_t f, double distance, bool every_vertex) 
     return double(far) / double(n);
 }
 
-double FitProblem::mean_scan_distance(uint32_t f, double cap) {
-    const auto& fd = frames_[f];
-    if (fd.points.empty()) return 0;
-    kin_[f].update(states_[f], false);
-    pose_frame(f, true);
-    dense_grid_.build(posed_);
-    double sum = 0;
-    for (const Vector3d& p : fd.points) {
-        double d2 = cap * cap;
-        dense_grid_.nearest(p, cap, &d2);
-        sum += std::sqrt(d2);
-    }
-    return sum / double(fd.points.size());
-}
+double FitProblem::mean_scan_distance(uint32_t f, double cap) { return scan_distance_to_fit(f, cap, false); }
 
-double FitProblem::mean_scan_plane_distance(uint32_t f, double cap) {
+double FitProblem::mean_scan_plane_distance(uint32_t f, double cap) { return scan_distance_to_fit(f, cap, true); }
+
+// Each scan point's distance to its nearest posed vertex (or along that vertex's normal), capped;
+// the mean over the frame's points.
+double FitProblem::scan_distance_to_fit(uint32_t f, double cap, bool along_normal) {
     const auto& fd = frames_[f];
     if (fd.points.empty()) return 0;
     kin_[f].update(states_[f], false);
@@ -396,7 +387,8 @@ double FitProblem::mean_scan_plane_distance(uint32_t f, double cap) {
     for (const Vector3d& p : fd.points) {
         double d2 = cap * cap;
         const uint32_t v = dense_grid_.nearest(p, cap, &d2);
-        sum += v == GridIndex::kNone ? cap : std::min(cap, std::abs(posed_normals_[v].dot(p - posed_[v])));
+        if (!along_normal || v == GridIndex::kNone) sum += std::sqrt(d2);
+        else sum += std::min(cap, std::abs(posed_normals_[v].dot(p - posed_[v])));
     }
     return sum / double(fd.points.size());
 }

@@ -133,6 +133,7 @@ private:
     void sample_vertices(std::mt19937& rng);
     void estimate_missing_normals(FrameData& fd);
     void pose_frame(uint32_t f, bool every_vertex);
+    double scan_distance_to_fit(uint32_t f, double cap, bool along_normal);
     void find_frame_pairs(uint32_t f, const Stage& st);
     const std::vector<Vector3d>& posed_subset();
     bool active(const Stage& st, uint32_t local) const;

@@ -220,16 +220,7 @@ class Fitter(Handle):
     def segment_shape(self, segment) -> np.ndarray:
         """(shape_count,) float32 one segment's fitted coefficients (by index or name; zeros when the
         fit had no segments). With shape and pose, Body.set_segment_shape rebuilds the fitted body."""
-        segments = self.model.segments
-        if isinstance(segment, str):
-            names = [s.name for s in segments]
-            if segment not in names:
-                raise KeyError(f"the model has no segment {segment!r} (it has: {', '.join(names) or 'none'})")
-            segment = names.index(segment)
-        count = segments[int(segment)].shape_count if 0 <= int(segment) < len(segments) else 0
-        out = np.empty(max(count, 1), np.float32)
-        check(lib.ssc_fitter_get_segment_shape(self.handle, int(segment), out.ctypes.data_as(c_float_p), count))
-        return out[:count]
+        return self.model.read_segment_shape(segment, lambda index, out, count: lib.ssc_fitter_get_segment_shape(self.handle, index, out, count))
 
     def pose(self, frame: int = 0) -> Tuple[np.ndarray, np.ndarray, float]:
         """(rotations (J, 4) x y z w, translation (3,), scale) of a frame."""

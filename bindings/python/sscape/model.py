@@ -242,6 +242,20 @@ class Model(Handle):
         """The landmarks' names, in Body.landmarks order."""
         return [self._name(lib.ssc_model_get_landmark_name, i) for i in range(self.landmark_count)]
 
+    def read_segment_shape(self, segment, read) -> np.ndarray:
+        """One segment's coefficients (by index or name; KeyError for a name the model lacks) from
+        read(index, out, capacity), a C getter's call (a fit's or a registration's)."""
+        segments = self.segments
+        if isinstance(segment, str):
+            names = [s.name for s in segments]
+            if segment not in names:
+                raise KeyError(f"the model has no segment {segment!r} (it has: {', '.join(names) or 'none'})")
+            segment = names.index(segment)
+        count = segments[int(segment)].shape_count if 0 <= int(segment) < len(segments) else 0
+        out = np.empty(max(count, 1), np.float32)
+        check(read(int(segment), out.ctypes.data_as(c_float_p), count))
+        return out[:count]
+
     def index(self, kind: str, name: str) -> int:
         """The index of a "joint", "landmark", "slider" or "segment" by its exact name; KeyError if none."""
         fn = {"joint": lib.ssc_model_find_joint, "landmark": lib.ssc_model_find_landmark, "slider": lib.ssc_model_find_slider,

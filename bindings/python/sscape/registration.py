@@ -168,13 +168,5 @@ class Registration(Handle):
     def fit_segment_shape(self, segment) -> np.ndarray:
         """One segment's coefficients (by index or name) in that fit: with fit()'s shape and pose,
         Body.set_segment_shape rebuilds the fitted body."""
-        segments = self.model.segments
-        if isinstance(segment, str):
-            names = [s.name for s in segments]
-            if segment not in names:
-                raise KeyError(f"the model has no segment {segment!r} (it has: {', '.join(names) or 'none'})")
-            segment = names.index(segment)
-        count = segments[int(segment)].shape_count if 0 <= int(segment) < len(segments) else 0
-        out = np.empty(max(count, 1), np.float32)
-        check(lib.ssc_registration_get_fit_segment_shape(self.handle, int(segment), out.ctypes.data_as(c_float_p), count))
-        return out[:count]
+        return self.model.read_segment_shape(segment, lambda index, out, count: lib.ssc_registration_get_fit_segment_shape(
+            self.handle, index, out, count))
