@@ -36,7 +36,7 @@
 // and a picture of every silent failure and false alarm (with --pose, of every fit); with --trials 0 only the picture.
 // SSCAPE_BENCH_VERBOSE=1 prints a line per fit: its error, also over the head's vertices and over the
 // rest (the head holds a third of the mesh's vertices), and the judgement's figures; in the library,
-// also how much of the head's error is its placement (head_placement). --truth-start (a diagnosis,
+// also how much of the head's and each hand's error is its placement (part_placement). --truth-start (a diagnosis,
 // not a benchmark): each fit starts from the person's best approximation in the truth's pose
 // (truth_start_state), the random heading left out; what the fit moves away from there, its
 // objective prefers.
@@ -241,23 +241,15 @@ double surface_distance(const std::vector<Eigen::Vector3d>& fit, const std::vect
     return n ? sum / double(n) : 0;
 }
 
-// How far the fitted head lies from the truth's, and how much of that its placement explains: the
-// head's vertices moved rigidly onto the truth's (Umeyama, no scale) leave the error of its shape.
-// Heads of people the model does not hold were fitted 12-20 mm off with their shape within 3.6-6.6
-// mm (docs/fitting.md): the turn and the shift are what a fit got wrong.
-struct HeadPlacement {
-    double error = 0, aligned_error = 0, turn_degrees = 0, shift = 0, surface = 0;  // metres, degrees
+// How far a fitted part lies from the truth's, and how much of that its placement explains: the
+// part's vertices moved rigidly onto the truth's (Umeyama, no scale) leave the error of its shape
+// (and, for a hand, of its fingers); the turn and the shift are what the fit placed wrong.
+struct PartPlacement {
+    double error = 0, aligned_error = 0, turn_degrees = 0, shift = 0;  // metres, degrees
 };
-HeadPlacement head_placement(const registration::BodyRegions& regions, const std::vector<Eigen::Vector3d>& fit,
-                             const std::vector<Eigen::Vector3d>& truth, const std::vector<uint32_t>& triangles) {
-    HeadPlacement h;
-    const auto named = std::find(regions.names.begin(), regions.names.end(), "head");
-    if (named == regions.names.end()) return h;
-    const int head = int(named - regions.names.begin());
-    std::vector<Eigen::Vector3d> truth_head;
-    std::vector<std::size_t> vertices;
-    for (std::size_t v = 0; v < fit.size(); ++v)
-        if (regions.of_vertex[v] == head) vertices.push_back(v), truth_head.push_back(truth[v]);
+PartPlacement part_placement(const std::vector<std::size_t>& vertices, const std::vector<Eigen::Vector3d>& fit,
+                             const std::vector<Eigen::Vector3d>& truth) {
+    PartPlacement h;
     if (vertices.size() < 3) return h;
     Eigen::Matrix3Xd A(3, vertices.size()), B(3, vertices.size());
     for (std::size_t i = 0; i < vertices.size(); ++i) A.col(Eigen::Index(i)) = fit[vertices[i]], B.col(Eigen::Index(i)) = truth[vertices[i]];
@@ -270,8 +262,39 @@ HeadPlacement head_placement(const registration::BodyRegions& regions, const std
     h.error /= double(vertices.size()), h.aligned_error /= double(vertices.size());
     h.turn_degrees = Eigen::AngleAxisd(R).angle() * 180.0 / 3.14159265358979323846;
     h.shift = (B.rowwise().mean() - A.rowwise().mean()).norm();
+    return h;
+}
+
+// The head's placement (part_placement) and its surface's distance from the truth's. Heads of
+// people the model does not hold were fitted 12-20 mm off with their shape within 3.6-6.6 mm
+// (docs/fitting.md).
+struct HeadPlacement : PartPlacement {
+    double surface = 0;  // metres
+};
+HeadPlacement head_placement(const registration::BodyRegions& regions, const std::vector<Eigen::Vector3d>& fit,
+                             const std::vector<Eigen::Vector3d>& truth, const std::vector<uint32_t>& triangles) {
+    HeadPlacement h;
+    const auto named = std::find(regions.names.begin(), regions.names.end(), "head");
+    if (named == regions.names.end()) return h;
+    const int head = int(named - regions.names.begin());
+    std::vector<Eigen::Vector3d> truth_head;
+    std::vector<std::size_t> vertices;
+    for (std::size_t v = 0; v < fit.size(); ++v)
+        if (regions.of_vertex[v] == head) vertices.push_back(v), truth_head.push_back(truth[v]);
+    if (vertices.size() < 3) return h;
+    static_cast<PartPlacement&>(h) = part_placement(vertices, fit, truth);
     h.surface = surface_distance(fit, triangles, truth_head);
     return h;
+}
+
+// The vertices of each hand (the model's "hands" vertex set), left ([0], +x in the model's mean,
+// as FitState::hand_closure) and right.
+std::array<std::vector<std::size_t>, 2> hand_vertices(const Model& model) {
+    std::array<std::vector<std::size_t>, 2> hands;
+    const std::vector<uint8_t> mask = hand_mask(model);
+    for (uint32_t v = 0; v < model.vertex_count(); ++v)
+        if (mask[v]) hands[model.data().shape.mean[3 * std::size_t(v)] > 0 ? 0 : 1].push_back(v);
+    return hands;
 }
 
 // A library fit's start at the answer, as near as the model comes: the shape of the person's best
@@ -811,6 +834,7 @@ int main(int argc, char** argv) {
         std::vector<std::string> captions;
         std::uniform_int_distribution<uint32_t> point_count(20000, 60000);
         const HandContact hand_contact(lin);
+        const std::array<std::vector<std::size_t>, 2> hands = hand_vertices(model);
         for (const simulation::LibraryPose& lp : simulation::pose_library()) {
             // --pose: the other poses are drawn and scanned, not fitted, so each trial of this
             // one is the same person, pose and scan as in the run of every pose.
@@ -897,6 +921,12 @@ int main(int argc, char** argv) {
                                                                  fitting::region_name(fitting::BodyRegion(in.part)) + ")";
                     };
                     const HeadPlacement head = head_placement(regions, fv, truth.vertices, triangles);
+                    for (int side = 0; side < 2; ++side) {
+                        const PartPlacement hp = part_placement(hands[std::size_t(side)], fv, truth.vertices);
+                        std::printf("  %s trial %d: %s hand %.1f mm as placed, %.1f mm placed like the truth's (turned %.1f deg, moved %.1f mm), closure %.2f\n",
+                                    lp.name.c_str(), t, side == 0 ? "left" : "right", hp.error * 1e3, hp.aligned_error * 1e3, hp.turn_degrees,
+                                    hp.shift * 1e3, sol.frames[0].hand_closure[side]);
+                    }
                     std::printf("  %s trial %d: head %.1f mm as placed, %.1f mm placed like the truth's (turned %.1f deg, moved %.1f mm); its surface %.2f mm from the truth's\n",
                                 lp.name.c_str(), t, head.error * 1e3, head.aligned_error * 1e3, head.turn_degrees, head.shift * 1e3, head.surface * 1e3);
                     const auto contact_fit = hand_contact.measure(fv, 0.015), contact_truth = hand_contact.measure(truth.vertices, 0.015);
