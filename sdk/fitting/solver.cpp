@@ -70,7 +70,8 @@ public:
         std::vector<FitState>& states = p_.states();
         shape.assign(K_, 0.0);
         states.assign(F_, p_.kin(0).zero_state());
-        if (start && !o_.auto_start) {
+        given_start_ = start && !o_.auto_start;
+        if (given_start_) {
             for (uint32_t f = 0; f < F_; ++f) states[f] = (*start)[f];
             for (uint32_t k = 0; k < K_ && k < (*start)[0].shape.size(); ++k)
                 shape[k] = within_shape_range((*start)[0].shape[k]);
@@ -86,10 +87,10 @@ public:
         // 14.1 mm mean vertex error with them on the benchmark's model bodies).
         bool points = false;
         for (uint32_t f = 0; f < F_; ++f) points |= p_.has_points(f);
-        const Schedule plan = schedule(o_.max_iterations, points ? K_ : whole_body_, start && !o_.auto_start, whole_body_);
+        const Schedule plan = schedule(o_.max_iterations, points ? K_ : whole_body_, given_start_, whole_body_);
         bool cancelled = false;
         uint32_t iteration = 0;
-        if (!(start && !o_.auto_start) && !refine)
+        if (!given_start_ && !refine)
             for (uint32_t f = 0; f < F_ && !cancelled; ++f)
                 if (p_.frame(f).own_landmarks >= kPosingLandmarks && p_.has_points(f))
                     p_.run_stage(landmark_stage(), f, &progress, iteration, cancelled);
@@ -177,11 +178,12 @@ private:
             const bool stage_converged = p_.run_stage(stages[si], kAllFrames, &progress, iteration, cancelled, first_cost);
             if (si < Schedule::kPolish) converged = stage_converged;
             // After the fine stage, with the wrists in place: how closed each hand is, and when a
-            // hand changed, the fine stage again from there. In fits from the automatic start (a
-            // single frame, as the restarts) a closed hand is then checked against the fit before
-            // it (keep_if_closer): a hand left off its points by the stages before scores a fist
-            // best, its fingers pulled out of empty space (pose library: 42 of 384 open hands
-            // closed, 91 mm off); a true fist brings the scan closer.
+            // hand changed, the fine stage again from there. In a single frame's fit from its own
+            // start (the automatic one or the landmarks') a closed hand is then checked against
+            // the fit before it (keep_if_closer): on a hand the stages before left off its points
+            // a fist scores best, its fingers pulled out of empty space (pose library: 42 of 384
+            // open hands closed, 91 mm off); a true fist brings the scan closer. Not in a
+            // sequence's tracked frames (capture benchmark: 4 more frames good, 1 more silent).
             // The head's turn likewise (head_search.hpp), in fits from the automatic start as the
             // restarts: from a given start (a sequence's tracked frames) it turned heads wrong and
             // the frames after them followed (capture benchmark: 78 -> 70 of 100 frames good).
@@ -194,7 +196,7 @@ private:
                 std::vector<double> shape_fitted = p_.shape();
                 std::vector<FitState> fitted = p_.states();
                 bool hands = o_.hand_search && search_hands();
-                if (hands && automatic_start && !cancelled) {
+                if (hands && F_ == 1 && !given_start_ && !cancelled) {
                     converged = p_.run_stage(again, kAllFrames, &progress, iteration, cancelled);
                     if (!cancelled)
                         keep_if_closer(shape_fitted, fitted, nullptr, again, fine_converged, progress, iteration, cancelled, converged);
@@ -568,6 +570,7 @@ private:
     FitOptions o_;
     uint32_t F_, K_, whole_body_;
     uint32_t searched_frames_ = 0;  // frames started by the cloud start search (with its coarse fit)
+    bool given_start_ = false;      // the caller's start (a sequence's tracked frames), not the fit's own
     // A single frame's other start candidates after their short fits, with the explained measure
     // (run()), and the start poses whose short fits were put off (initial_state()).
     std::vector<std::pair<double, FitState>> alternative_starts_;
