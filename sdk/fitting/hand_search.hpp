@@ -5,10 +5,11 @@
 // the largest residual of good fits. After the fine stage (the wrists in place), each hand tries
 // closures 0, 0.25, .. 1 (anatomy/hand_closure.hpp), then halfway to the best one's neighbours,
 // scored with the explained measure of the hand alone (LimbScore of the hand joint), keeping the
-// current fingers unless a closure gains a little (kMinGain in hand_search.cpp); when a hand changed, the fine stage runs again, the fingers' prior
-// centred on the closure. In a single frame's fit from its own start the solver keeps the closures only
-// when the whole fit then lies closer to the scan (keep_if_closer in solver.cpp): on a hand the
-// stages before left off its points, the measure prefers a fist (docs/fitting.md).
+// current fingers unless a closure gains a little (kMinGain in hand_search.cpp); when a hand
+// changed, the fine stage runs again, the fingers' prior centred on the closure. In a single
+// frame's fit from its own start the solver keeps the closures only when the whole fit then lies
+// closer to the scan (keep_if_closer in solver.cpp): on a hand the stages before left off its
+// points, the measure prefers a fist (docs/fitting.md).
 #pragma once
 
 #include "fitting/explained.hpp"
