@@ -1,4 +1,5 @@
 // Fitters: observations in, shape and per-frame pose out (sdk/fitting does the work).
+#include "fitting/fitted_segment_shape.hpp"
 #include "guard.hpp"
 #include "handles.hpp"
 
@@ -266,15 +267,9 @@ ssc_status ssc_fitter_get_segment_shape(const ssc_fitter* fitter, uint32_t segme
     return guarded(__func__, [&] {
         need(fitter, "fitter");
         need(out, "out");
-        const std::vector<double>& shape = fitter->fitter.solution().shape;  // the whole body's, then every segment's
-        const Model& m = fitter->fitter.model();
-        SSC_REQUIRE_ARG_S(segment < m.segments().size(), "segment " << segment << " is out of range (the model has " << m.segments().size() << ")");
-        const SegmentSpace& s = m.segments()[segment];
-        check_output(out, capacity, s.components, 0, 4);
-        for (uint32_t k = 0; k < s.components; ++k) {
-            const std::size_t i = std::size_t(m.component_count()) + s.first + k;
-            out[k] = i < shape.size() ? float(shape[i]) : 0.f;
-        }
+        const std::vector<float> coefficients = fitting::fitted_segment_shape(fitter->fitter.model(), fitter->fitter.solution().shape, segment);
+        check_output(out, capacity, uint32_t(coefficients.size()), 0, 4);
+        std::memcpy(out, coefficients.data(), sizeof(float) * coefficients.size());
     });
 }
 

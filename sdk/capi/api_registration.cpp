@@ -1,5 +1,6 @@
 // Scan registrations: a scan (and landmarks) in, the template deformed onto it out (sdk/registration
 // does the work).
+#include "fitting/fitted_segment_shape.hpp"
 #include "guard.hpp"
 #include "handles.hpp"
 #include "registration_report.hpp"
@@ -207,15 +208,9 @@ ssc_status ssc_registration_get_fit_segment_shape(const ssc_registration* regist
         need(out, "out");
         const registration::Registration& r = registration->registrar.result();
         SSC_REQUIRE_ARG(!r.fit.frames.empty(), "registration: no model fit (the run started from landmarks)");
-        const Model& m = registration->registrar.model();
-        SSC_REQUIRE_ARG_S(segment < m.segments().size(), "segment " << segment << " is out of range (the model has " << m.segments().size() << ")");
-        const SegmentSpace& s = m.segments()[segment];
-        check_output(out, capacity, s.components, 0, 4);
-        const std::vector<double>& shape = r.fit.frames[0].shape;  // the whole body's, then every segment's
-        for (uint32_t k = 0; k < s.components; ++k) {
-            const std::size_t i = std::size_t(m.component_count()) + s.first + k;
-            out[k] = i < shape.size() ? float(shape[i]) : 0.f;
-        }
+        const std::vector<float> coefficients = fitting::fitted_segment_shape(registration->registrar.model(), r.fit.frames[0].shape, segment);
+        check_output(out, capacity, uint32_t(coefficients.size()), 0, 4);
+        std::memcpy(out, coefficients.data(), sizeof(float) * coefficients.size());
     });
 }
 
