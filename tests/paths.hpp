@@ -8,4 +8,7 @@ namespace sscape_paths {
 // model_format/models/sscape-default.sscape: the shipped default model's file.
 const char* default_model_file();
 
+// The build tree's folder the test binary works in (test_main.cpp): the files the tests write.
+const char* scratch_folder();
+
 }  // namespace sscape_paths
