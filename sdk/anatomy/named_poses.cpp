@@ -49,6 +49,15 @@ const Angle kAngles[] = {
     {"bending_forward", {"neck_01", -20, 0, 0, 'm'}},
     {"bending_forward", {"upperarm", -95, 0, 20}},
     {"bending_forward", {"lowerarm", 30, 0, 0}},
+    // Bending down to the toes, legs straight: folded deeper than bending_forward (161 degrees of
+    // trunk against 131), the arms reaching down.
+    {"touching_toes", {"pelvis", 80, 0, 0, 'm'}},
+    {"touching_toes", {"thigh", -80, 0, 0}},
+    {"touching_toes", {"spine_01", 28, 0, 0, 'm'}},
+    {"touching_toes", {"spine_02", 28, 0, 0, 'm'}},
+    {"touching_toes", {"spine_03", 25, 0, 0, 'm'}},
+    {"touching_toes", {"upperarm", -95, -20, -15}},
+    {"touching_toes", {"lowerarm", 40, 0, 0}},
     // Bent over with the arms raised past the head (reaching forward and up).
     {"bent_over_arms_raised", {"pelvis", 60, 0, 0, 'm'}},
     {"bent_over_arms_raised", {"thigh", -60, 0, 0}},
@@ -77,6 +86,7 @@ const std::vector<NamedPose> kPoses = {
     {"crouching", "Crouching: hips and knees deeply bent, trunk leaning forward, arms forward."},
     {"kneeling", "Kneeling upright on both knees, shins on the floor, arms at the sides."},
     {"bending_forward", "Bending forward from the hips with a rounded back, arms hanging towards the floor."},
+    {"touching_toes", "Bending down to the toes with the legs straight, folded deeper than bending forward, arms reaching down."},
     {"bent_over_arms_raised", "Bent over from the hips with both arms raised forward past the head."},
     {"lunge", "Lunge: left leg forward with the knee bent, right leg back with the knee towards the floor."},
     {"arms_behind_back", "Standing with the upper arms back and the elbows bent, hands behind the waist."},

@@ -547,7 +547,7 @@ private:
         quick.steps = ro.steps / 2;
         quick.points = ro.points / 2;
         deferred_templates_.clear();
-        for (std::size_t t = 0; t < p_.templates().posed().size(); ++t) {
+        for (std::size_t t = 0; t < p_.templates().posed().size() && t < kFirstStartPoses; ++t) {
             std::vector<StartCandidate> posed = rigid_start(p_.templates().posed()[t].sample(), p_.cloud_view(f), quick, p_.pool());
             if (posed.front().score >= at_rest.front().score && best_prior <= kImplausiblePose) {
                 if (F_ == 1) deferred_templates_.emplace_back(t, std::move(posed));

@@ -18,7 +18,10 @@ namespace ssc::fitting {
 // The poses the start search tries besides the rest pose (anatomy/named_poses.cpp): scans of
 // people crouching, bent forward or seated have other principal axes than a standing body's, and
 // a fit started from the rest pose ended upside down or standing (hard poses of the benchmark).
-constexpr const char* kStartPoses[] = {"sitting", "crouching", "bending_forward"};
+// The first kFirstStartPoses are tried in the first start search; all of them in the restarts
+// from the start poses placed again (solver.cpp, placed_again()).
+constexpr const char* kStartPoses[] = {"sitting", "crouching", "bending_forward", "touching_toes"};
+constexpr std::size_t kFirstStartPoses = 3;
 
 // The template (mean shape) in one pose.
 struct StartTemplate {
