@@ -28,7 +28,8 @@ namespace {
 // joint 10 degrees past its limit costs about 38; plausible fits stay near 100 or below).
 constexpr double kImplausiblePose = 300;
 // A single frame's fit from the automatic start that judgement.hpp finds wrong is redone from the
-// start search's other candidates, at most kMaxRestarts times (see restart_if_implausible()).
+// start search's other candidates, at most kMaxRestarts times, then from the start poses placed
+// again and from the extremity start (see restart_if_implausible()).
 constexpr uint32_t kMaxRestarts = 2;
 // A limb that gained this fraction of the measure in the limb search has the limbs searched
 // before it searched again (see fit_stages(); the measurements are in docs/fitting.md).
