@@ -111,7 +111,7 @@ try {
     level.dispatchEvent(new Event('change'));
     return { redraws: a.redraws, options: pose.options.length };
   });
-  check(posed.options === 10, `the pose list holds the 10 named poses (${posed.options})`);
+  check(posed.options === 11, `the pose list holds the 11 named poses (${posed.options})`);
   if (screenshot) {
     await page.evaluate(() => { const l = document.getElementById('level'); l.value = '0'; l.dispatchEvent(new Event('change')); });
     await page.screenshot({ path: screenshot });
