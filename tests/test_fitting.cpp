@@ -731,6 +731,7 @@ TEST_CASE("people bent forward are found at any heading by the start poses place
     const fitting::LinearModel lin(m, m.component_count());
     std::mt19937 rng(31);
     for (const double heading : {0.5, 2.0, 3.5, 5.0}) {
+        if (test::sanitized && heading != 0.5) continue;  // one under the sanitizers (92 s for all four), restarted as in Release
         const auto truth = simulation::make_body(m, simulation::random_shape(m, rng), anatomy::named_pose(m, "bending_forward"), Eigen::Vector3d::Zero());
         const auto [sol, err] = fit_scan(m, lin, truth, heading, Eigen::Vector3d(0, 0.1, 1.5), rng);
         INFO("heading " << heading << ": mean vertex error " << err * 1e3 << " mm, " << sol.report.restarts << " restarts, converged "
