@@ -387,26 +387,23 @@ private:
             if (settled(best.judgement) || restarts == kMaxRestarts || cancelled) break;
             restart_from(alternative);
         }
-        // Then the start poses placed again, more carefully (placed_again()), each a restart more.
-        if (!settled(best.judgement) && !cancelled) {
-            std::vector<std::pair<double, FitState>> again = placed_again();
-            std::stable_sort(again.begin(), again.end(), by_measure);
-            for (std::size_t i = 0; i < again.size() && i < kPlacedAgainRestarts; ++i) {
+        // A further set of candidates, best first, each a restart more until one settles (at most `limit`).
+        const auto restart_best_first = [&](std::vector<std::pair<double, FitState>> candidates, std::size_t limit) {
+            std::stable_sort(candidates.begin(), candidates.end(), by_measure);
+            for (std::size_t i = 0; i < candidates.size() && i < limit; ++i) {
                 if (settled(best.judgement) || cancelled) break;
-                restart_from(again[i].second);
+                restart_from(candidates[i].second);
             }
-        }
-        // Then the extremity start's candidates, each a restart more: after the templates', so
-        // that a fit they fix is fixed as before (ranked among them by the explained measure,
-        // the extremity start took their restarts and left fits they fixed failed).
+        };
+        // Then the start poses placed again, more carefully (placed_again()).
+        if (!settled(best.judgement) && !cancelled) restart_best_first(placed_again(), kPlacedAgainRestarts);
+        // Then the extremity start's candidates: after the templates', so that a fit they fix is
+        // fixed as before (ranked among them by the explained measure, the extremity start took
+        // their restarts and left fits they fixed failed).
         if (!settled(best.judgement) && !cancelled) {
             std::vector<std::pair<double, FitState>> extremity;
             extremity_fits(0, extremity);
-            std::stable_sort(extremity.begin(), extremity.end(), by_measure);
-            for (const auto& [cost, alternative] : extremity) {
-                if (settled(best.judgement) || cancelled) break;
-                restart_from(alternative);
-            }
+            restart_best_first(std::move(extremity), std::numeric_limits<std::size_t>::max());
         }
         p_.shape() = best.shape;
         p_.states() = best.states;
