@@ -17,6 +17,7 @@
 #include <fstream>
 #include <random>
 
+#include "training/closest_on_mesh.hpp"
 #include "training/makehuman/assets.hpp"
 #include "training/makehuman/proxy.hpp"
 
@@ -370,4 +371,43 @@ TEST_CASE("batch synthesis of a level of detail gives what a body gives", "[leve
     d.vertices_capacity = ssc_model_vertex_count(b.model);
     CHECK(ssc_model_synthesize_batch(b.model, &d) == SSC_ERROR_INVALID_ARGUMENT);
     CHECK(std::string(ssc_last_error()).find("level") != std::string::npos);
+}
+
+TEST_CASE("the closest point on a mesh is found exactly as a scan of every triangle finds it", "[levels][training]") {
+    const format::ModelData& m = test::default_cpp_model().data();
+    const std::vector<float> xyz(m.shape.mean.begin(), m.shape.mean.end());  // the mean body
+    const std::vector<uint32_t> triangles(m.mesh.triangles.begin(), m.mesh.triangles.end());
+    const training::MeshClosest closest(xyz, triangles);
+    const auto scan_all = [&](const Eigen::Vector3d& p) {
+        double best = std::numeric_limits<double>::infinity();
+        std::pair<uint32_t, std::array<double, 3>> out{0, {1, 0, 0}};
+        for (uint32_t f = 0; 3 * std::size_t(f) < triangles.size(); ++f) {
+            Eigen::Vector3d c[3];
+            for (int k = 0; k < 3; ++k)
+                for (int a = 0; a < 3; ++a) c[k][a] = xyz[3 * std::size_t(triangles[3 * std::size_t(f) + std::size_t(k)]) + std::size_t(a)];
+            const std::array<double, 3> w = training::closest_barycentric(p, c[0], c[1], c[2]);
+            const double d = (w[0] * c[0] + w[1] * c[1] + w[2] * c[2] - p).squaredNorm();
+            if (d < best) best = d, out = {f, w};
+        }
+        return out;
+    };
+    // Points near the surface (vertices moved up to 3 cm), far from it (up to a metre), and a vertex itself.
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<uint32_t> vertex(0, m.vertex_count() - 1);
+    std::uniform_real_distribution<double> near(-0.03, 0.03), far(-1.0, 1.0);
+    for (int i = 0; i < (test::sanitized ? 40 : 200); ++i) {
+        const uint32_t v = vertex(rng);
+        Eigen::Vector3d p(xyz[3 * std::size_t(v)], xyz[3 * std::size_t(v) + 1], xyz[3 * std::size_t(v) + 2]);
+        if (i % 4 == 1) p += Eigen::Vector3d(near(rng), near(rng), near(rng));
+        if (i % 4 == 2) p += Eigen::Vector3d(far(rng), far(rng), far(rng));
+        const auto expected = scan_all(p), found = closest(p);
+        INFO("point " << i << " at vertex " << v);
+        CHECK(found.first == expected.first);
+        CHECK(found.second == expected.second);
+    }
+    // A mesh without triangles: triangle 0, its first corner.
+    const std::vector<uint32_t> none;
+    const training::MeshClosest empty(xyz, none);
+    CHECK(empty(Eigen::Vector3d::Zero()).first == 0);
+    CHECK(empty(Eigen::Vector3d::Zero()).second == std::array<double, 3>{1, 0, 0});
 }

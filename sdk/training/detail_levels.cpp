@@ -1,5 +1,6 @@
 #include "detail_levels.hpp"
 
+#include "closest_on_mesh.hpp"
 #include "common/error.hpp"
 #include "makehuman/proxy.hpp"
 #include "measure/measurements.hpp"
@@ -43,51 +44,6 @@ struct Surface {
     }
     Vector3d corner(uint32_t f, int c) const { return at(xyz, triangles[3 * std::size_t(f) + std::size_t(c)]); }
 };
-
-// The closest point of triangle abc to p, as barycentric weights.
-std::array<double, 3> closest_barycentric(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-    // Ericson, Real-Time Collision Detection, 5.1.5.
-    const Vector3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
-    const Vector3d bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        const double v = d1 / (d1 - d3);
-        return {1 - v, v, 0};
-    }
-    const Vector3d cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        const double w = d2 / (d2 - d6);
-        return {1 - w, 0, w};
-    }
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return {0, 1 - w, w};
-    }
-    const double denom = 1 / (va + vb + vc);
-    const double v = vb * denom, w = vc * denom;
-    return {1 - v - w, v, w};
-}
-
-// The closest point on a mesh to p, by brute force: a training-time cost (a few thousand points).
-std::pair<uint32_t, std::array<double, 3>> closest_on_mesh(const Vector3d& p, const std::vector<float>& xyz, const std::vector<uint32_t>& triangles) {
-    double best = std::numeric_limits<double>::infinity();
-    std::pair<uint32_t, std::array<double, 3>> out{0, {1, 0, 0}};
-    for (uint32_t f = 0; 3 * std::size_t(f) < triangles.size(); ++f) {
-        const Vector3d a = at(xyz, triangles[3 * std::size_t(f)]), b = at(xyz, triangles[3 * std::size_t(f) + 1]), c = at(xyz, triangles[3 * std::size_t(f) + 2]);
-        const std::array<double, 3> w = closest_barycentric(p, a, b, c);
-        const double d = (w[0] * a + w[1] * b + w[2] * c - p).squaredNorm();
-        if (d < best) best = d, out = {f, w};
-    }
-    return out;
-}
 
 // One level vertex: at most 4 body vertices and their weights (summing to 1).
 struct Binding {
@@ -175,9 +131,10 @@ format::DetailLevel make_level(const std::string& name, const format::ModelData&
     l.triangles = std::move(triangles);
     l.uvs = std::move(uvs);
     l.triangle_uvs = std::move(triangle_uvs);
+    const MeshClosest on_level(xyz, l.triangles);
     for (uint32_t k = 0; k < m.landmarks.size(); ++k) {
         const Vector3d p = measure::landmark_position(m, k, body.data());
-        const auto [f, w] = closest_on_mesh(p, xyz, l.triangles);
+        const auto [f, w] = on_level(p);
         l.landmark_triangles.push_back(f);
         const float u = float(w[0]), v = float(w[1]);
         l.landmark_barycentric.insert(l.landmark_barycentric.end(), {u, v, 1.f - u - v});
@@ -186,9 +143,11 @@ format::DetailLevel make_level(const std::string& name, const format::ModelData&
         // How far the level's vertices lie off the body's surface on the template.
         report->name = name, report->vertices = l.vertex_count, report->triangles = l.triangle_count();
         report->offset_mean = report->offset_max = 0;
+        const std::vector<uint32_t> model_triangles(m.mesh.triangles.begin(), m.mesh.triangles.end());
+        const MeshClosest on_body(body, model_triangles);
         for (std::size_t i = 0; i < bindings.size(); ++i) {
             const Vector3d p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-            const auto [f, w] = closest_on_mesh(p, body, m.mesh.triangles.empty() ? std::vector<uint32_t>{} : std::vector<uint32_t>(m.mesh.triangles.begin(), m.mesh.triangles.end()));
+            const auto [f, w] = on_body(p);
             Vector3d on = Vector3d::Zero();
             for (int c = 0; c < 3; ++c) on += w[std::size_t(c)] * at(body, m.mesh.triangles[3 * std::size_t(f) + std::size_t(c)]);
             const double d = (p - on).norm();
@@ -203,6 +162,7 @@ format::DetailLevel proxy_level(const mh::Proxy& proxy, const format::ModelData&
     const uint32_t V = m.vertex_count();
     const std::vector<std::array<double, 3>> at_body = proxy_positions(proxy, body);
     const std::vector<uint32_t> model_triangles(m.mesh.triangles.begin(), m.mesh.triangles.end());
+    const MeshClosest on_body(body, model_triangles);
     std::vector<Binding> bindings;
     for (uint32_t i = 0; i < proxy.vertex_count(); ++i) {
         const Vector3d p(at_body[i][0], at_body[i][1], at_body[i][2]);
@@ -213,7 +173,7 @@ format::DetailLevel proxy_level(const mh::Proxy& proxy, const format::ModelData&
             continue;
         }
         // Bound to the helper geometry the model does not carry: rebound to the body's surface.
-        const auto [f, bw] = closest_on_mesh(p, body, model_triangles);
+        const auto [f, bw] = on_body(p);
         bindings.push_back(bind(s, p, {model_triangles[3 * std::size_t(f)], model_triangles[3 * std::size_t(f) + 1], model_triangles[3 * std::size_t(f) + 2]}, bw));
     }
     return make_level(proxy.name, m, body, bindings, proxy.triangles, proxy.uvs, proxy.triangle_uvs, report);
