@@ -7,7 +7,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <utility>
 #include <vector>
 
 namespace ssc::fitting {
@@ -33,13 +32,6 @@ public:
     // Up to k nearest (fewer when the set is smaller); returns how many were found.
     std::size_t nearest_k(const Eigen::Vector3d& q, std::size_t k, uint32_t* index, double* dist2) const {
         return tree_->knnSearch(q.data(), k, index, dist2);
-    }
-
-    // Every point within sqrt(radius2) of q, as (index, squared distance), nearest first.
-    std::vector<std::pair<uint32_t, double>> within(const Eigen::Vector3d& q, double radius2) const {
-        std::vector<std::pair<uint32_t, double>> found;
-        tree_->radiusSearch(q.data(), radius2, found, nanoflann::SearchParams());
-        return found;
     }
 
 private:

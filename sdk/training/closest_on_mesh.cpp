@@ -1,5 +1,6 @@
 #include "closest_on_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -66,15 +67,24 @@ std::pair<uint32_t, std::array<double, 3>> MeshClosest::operator()(const Vector3
         return (w[0] * a + w[1] * b + w[2] * c - p).squaredNorm();
     };
     // The nearest centroid's triangle bounds the distance; a triangle with a point within that
-    // distance has its centroid within it plus the reach (a small margin for rounding).
+    // distance has its centroid within it plus the reach (a small margin for rounding). Centroids
+    // come nearest first, more each round, until one lies beyond that radius.
     const uint32_t first = index_->nearest(p, nullptr);
     double best = distance2(first, out.second);
     out.first = first;
     const double radius = (std::sqrt(best) + reach_) * (1 + 1e-9) + 1e-12;
-    for (const auto& [f, centroid2] : index_->within(p, radius * radius)) {
-        std::array<double, 3> w;
-        const double d = distance2(f, w);
-        if (d < best || (d == best && f < out.first)) best = d, out = {f, w};
+    std::vector<uint32_t> found;
+    std::vector<double> found2;
+    for (std::size_t k = 16;; k *= 2) {  // (each round checks its centroids from the nearest: ties may come in another order)
+        k = std::min(k, centroids_.size());
+        found.resize(k), found2.resize(k);
+        const std::size_t n = index_->nearest_k(p, k, found.data(), found2.data());
+        for (std::size_t i = 0; i < n && found2[i] <= radius * radius; ++i) {
+            std::array<double, 3> w;
+            const double d = distance2(found[i], w);
+            if (d < best || (d == best && found[i] < out.first)) best = d, out = {found[i], w};
+        }
+        if (n < k || n == centroids_.size() || found2[n - 1] > radius * radius) break;
     }
     return out;
 }
