@@ -23,12 +23,14 @@ constexpr double kCap = 0.05, kModelCap = 0.02;
 // the search 23.7 and 1.93.
 constexpr double kMinGain = 0.003;
 
-void set_closure(const Model& model, FitState& s, int hand, double closure) {
-    for (const auto& r : anatomy::hand_closure(model, hand == 0 ? 'l' : 'r', closure)) s.pose[r.joint] = r.rotation;
+}  // namespace
+
+void set_hand_closure(const Model& model, FitState& s, int hand, double closure) {
+    const auto rotations = anatomy::hand_closure(model, hand == 0 ? 'l' : 'r', closure);
+    if (rotations.empty()) return;
+    for (const auto& r : rotations) s.pose[r.joint] = r.rotation;
     s.hand_closure[hand] = closure;
 }
-
-}  // namespace
 
 void search_hands(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample) {
     const Model& model = kin.model();
@@ -44,7 +46,7 @@ void search_hands(Kinematics& kin, Body& body, FitState& state, const CloudView&
         FitState trial = state, chosen = state;
         auto consider = [&](double c) {
             if (c < 0 || c > 1) return;
-            set_closure(model, trial, hand, c);
+            set_hand_closure(model, trial, hand, c);
             kin.update(trial, false);
             const double s = score(kin, best);
             if (s < best) best = s, chosen = trial;

@@ -26,4 +26,8 @@ namespace ssc::fitting {
 // Rigs without the hand joints are left as they are.
 void search_hands(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample);
 
+// Sets hand (0 left, 1 right) of state to the closure (its finger rotations and hand_closure).
+// Rigs without the hand's joints are left as they are.
+void set_hand_closure(const Model& model, FitState& state, int hand, double closure);
+
 }  // namespace ssc::fitting
