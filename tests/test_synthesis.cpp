@@ -5,11 +5,13 @@
 #include "common/files.hpp"
 #include "common/thread_pool.hpp"
 #include "synthesis/body.hpp"
+#include "synthesis/kernels_skin_xyz.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 using Eigen::Matrix3d;
@@ -400,6 +402,16 @@ TEST_CASE("a body posed again skins in slot order with the same bits, on every i
         k::skin_slots_in_slot_order(layout, rest_slots.data(), body.skinning(), slots.data(), 0, S, k::Isa(isa));
         k::from_slot_order(layout, slots.data(), planar.data(), 0, V);
         CHECK(planar == expected);
+        // Skinning that writes the caller's xyz as it goes (every vertex written, each exactly once
+        // in value, none outside the buffer: the guard floats after it stay).
+        std::vector<float> both(3ull * S, -1.f), xyz(3ull * V + 16, -3.f);
+        k::skin_slots_and_xyz(layout, rest_slots.data(), body.skinning(), both.data(), xyz.data(), 0, S, k::Isa(isa));
+        CHECK(both == slots);
+        bool same = true;
+        for (uint32_t v = 0; v < V; ++v)
+            for (int c = 0; c < 3; ++c) same = same && xyz[3 * v + c] == expected[c * std::size_t(V) + v];
+        CHECK(same);
+        CHECK(std::all_of(xyz.begin() + 3 * std::ptrdiff_t(V), xyz.end(), [](float x) { return x == -3.f; }));
     }
     ssc_model_release(handle);
 }

@@ -1,5 +1,7 @@
 #include "body.hpp"
 
+#include "kernels_skin_xyz.hpp"
+
 #include <algorithm>
 
 namespace ssc {
@@ -99,25 +101,7 @@ const float* Body::rest_joints() {
 }
 
 const float* Body::posed_slots() {
-    if (!posed_slots_ok_) {
-        update_skeleton();
-        const SkinLayout& layout = model_.skin_layout();
-        if (rest_slots_.empty()) {  // on a body's first re-posed shape: a body posed once never pays the memory
-            rest_slots_.resize(3ull * layout.slot_count());
-            posed_slots_.resize(3ull * layout.slot_count());
-        }
-        if (!rest_slots_ok_) {  // once per shape: an animation re-poses the same rest positions
-            split(layout.slot_count(), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
-                kernels::to_slot_order(layout, rest_.data(), rest_slots_.data(), uint32_t(first), uint32_t(end));
-            });
-            rest_slots_ok_ = true;
-        }
-        const kernels::Isa isa = kernels::active_isa();
-        split(layout.slot_count(), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
-            kernels::skin_slots_in_slot_order(layout, rest_slots_.data(), skinning_.data(), posed_slots_.data(), uint32_t(first), uint32_t(end), isa);
-        });
-        posed_slots_ok_ = true;
-    }
+    if (!posed_slots_ok_) posed_xyz(nullptr, 0);
     return posed_slots_.data();
 }
 
@@ -147,10 +131,37 @@ const float* Body::posed() {
     return posed_.data();
 }
 
+// The posed vertices into out at stride, or with out null only the skinning in slot order (what
+// posed_slots() asks for). The one place that skins in slot order: a pose whose vertices are asked
+// for before anything else is skinned straight into the caller's packed xyz, each block written
+// while still in registers, instead of being skinned and then copied in a second pass.
 void Body::posed_xyz(float* out, std::size_t stride) {
     const uint32_t V = model_.vertex_count();
-    if (!posed_ok_ && skin_in_slot_order()) return kernels::slots_to_xyz(model_.skin_layout(), posed_slots(), out, stride, 0, V);
-    kernels::planar_to_xyz(posed(), V, out, stride);
+    const SkinLayout& layout = model_.skin_layout();
+    if (out && posed_ok_) return kernels::planar_to_xyz(posed_.data(), V, out, stride);
+    if (out && posed_slots_ok_) return kernels::slots_to_xyz(layout, posed_slots_.data(), out, stride, 0, V);
+    if (!skin_in_slot_order()) {  // (only ever asked with out: posed_slots() is called in slot order)
+        kernels::planar_to_xyz(posed(), V, out, stride);
+        return;
+    }
+    update_skeleton();
+    if (rest_slots_.empty()) {  // on a body's first re-posed shape: a body posed once never pays the memory
+        rest_slots_.resize(3ull * layout.slot_count());
+        posed_slots_.resize(3ull * layout.slot_count());
+    }
+    if (!rest_slots_ok_) {  // once per shape: an animation re-poses the same rest positions
+        split(layout.slot_count(), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
+            kernels::to_slot_order(layout, rest_.data(), rest_slots_.data(), uint32_t(first), uint32_t(end));
+        });
+        rest_slots_ok_ = true;
+    }
+    float* xyz = stride == 3 * sizeof(float) ? out : nullptr;
+    const kernels::Isa isa = kernels::active_isa();
+    split(layout.slot_count(), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
+        kernels::skin_slots_and_xyz(layout, rest_slots_.data(), skinning_.data(), posed_slots_.data(), xyz, uint32_t(first), uint32_t(end), isa);
+    });
+    posed_slots_ok_ = true;
+    if (out && !xyz) kernels::slots_to_xyz(layout, posed_slots_.data(), out, stride, 0, V);
 }
 
 const float* Body::normals() {

@@ -8,6 +8,7 @@
 #include "cpu.hpp"
 #include "kernels.hpp"
 #include "skin_layout.hpp"
+#include "xyz_store.hpp"
 
 #include <cstdint>
 
@@ -21,23 +22,6 @@ namespace {
 
 #ifdef SSC_OUTPUT_AVX2
 SSC_TARGET_AVX2_BEGIN
-// 8 vertices interleaved: the SSE steps of planar_to_xyz on both 128-bit lanes at once (lane 0
-// vertices 0-3, lane 1 vertices 4-7), then the six 16-byte results put in output order by lane
-// swaps.
-[[gnu::always_inline]] inline void interleave8(__m256 x, __m256 y, __m256 z, __m256& o0, __m256& o1, __m256& o2) {
-    const __m256 xy01 = _mm256_unpacklo_ps(x, y);
-    const __m256 xy23 = _mm256_unpackhi_ps(x, y);
-    const __m256 z0z1 = _mm256_shuffle_ps(z, z, _MM_SHUFFLE(1, 1, 0, 0));
-    const __m256 a = _mm256_shuffle_ps(xy01, _mm256_shuffle_ps(z0z1, xy01, _MM_SHUFFLE(2, 2, 0, 0)), _MM_SHUFFLE(2, 0, 1, 0));
-    const __m256 b = _mm256_shuffle_ps(_mm256_shuffle_ps(xy01, z, _MM_SHUFFLE(1, 1, 3, 3)), xy23, _MM_SHUFFLE(1, 0, 2, 0));
-    const __m256 c = _mm256_shuffle_ps(_mm256_shuffle_ps(z, xy23, _MM_SHUFFLE(2, 2, 2, 2)), _mm256_shuffle_ps(xy23, z, _MM_SHUFFLE(3, 3, 3, 3)),
-                                       _MM_SHUFFLE(2, 0, 2, 0));
-    // a = [x0 y0 z0 x1 | x4 y4 z4 x5], b = [y1 z1 x2 y2 | y5 z5 x6 y6], c = [z2 x3 y3 z3 | z6 x7 y7 z7]
-    o0 = _mm256_permute2f128_ps(a, b, 0x20);
-    o1 = _mm256_permute2f128_ps(c, a, 0x30);
-    o2 = _mm256_permute2f128_ps(b, c, 0x31);
-}
-
 // Returns the vertices done (a multiple of 8).
 uint32_t planar_to_xyz_avx2(const float* xs, const float* ys, const float* zs, uint32_t n, float* out, bool streaming) {
     uint32_t v = 0;

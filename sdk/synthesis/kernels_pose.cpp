@@ -7,8 +7,10 @@
 // [W_j | p_j], and skinning uses G_j * bind_j^-1, which is the identity in the zero pose.
 #include "cpu.hpp"
 #include "kernels.hpp"
+#include "kernels_skin_xyz.hpp"
 #include "madd.hpp"
 #include "model.hpp"
+#include "xyz_store.hpp"
 
 #include <Eigen/Geometry>
 
@@ -143,6 +145,15 @@ constexpr int kRowX[4] = {0, 4, 8, 12}, kRowY[4] = {1, 5, 9, 13}, kRowZ[4] = {2,
 // vertices[s], a block loaded whole where its vertices are consecutive, else gathered and
 // scattered) or, with `slots`, in the layout's own slot order (blocks of slot_count(): slot s at
 // s, every block whole; see skin_slots_in_slot_order).
+// Where the SIMD paths read and write positions, as template arguments: vertex order, slot order,
+// or slot order with the caller's xyz written as well (kernels_skin_xyz.hpp).
+enum class Order { Vertex, Slots, SlotsAndXyz };
+
+// A lambda that must be inlined into its caller: the per-block kernels are lambdas, and with a run
+// function instantiated per order and influence count GCC's inliner stops inlining them otherwise
+// (a call per block, a third slower).
+#define SSC_INLINE_LAMBDA __attribute__((always_inline))
+
 template <int N>
 struct RunArrays {
     const float* xs;
@@ -167,24 +178,28 @@ RunArrays<N> arrays(const SkinLayout& m, const SkinLayout::Run& run, const float
 }
 
 template <int N>
-void skin_run_scalar(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+void skin_run_scalar(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots, float* xyz) {
     const RunArrays<N> a = arrays<N>(m, run, mats, rest, out, slots);
     const float* const* M = a.M;
     const float* const* W = a.W;
     const uint32_t* vid = m.vertices.data();
     for (uint32_t s = run.begin; s < run.end; ++s) {
         const uint32_t v = slots ? s : vid[s];
-        auto blend = [&](int e) {
+        auto blend = [&](int e) SSC_INLINE_LAMBDA {
             float acc = W[0][s] * M[0][e];
             for (int i = 1; i < N; ++i) acc = madd(W[i][s], M[i][e], acc);
             return acc;
         };
-        auto row = [&](const int* e) {
+        auto row = [&](const int* e) SSC_INLINE_LAMBDA {
             return madd(blend(e[2]), a.zs[v], blend(e[0]) * a.xs[v]) + madd(blend(e[1]), a.ys[v], blend(e[3]));
         };
         a.ox[v] = row(kRowX);
         a.oy[v] = row(kRowY);
         a.oz[v] = row(kRowZ);
+        if (xyz) {
+            float* p = xyz + 3 * std::size_t(vid[s]);
+            p[0] = a.ox[v], p[1] = a.oy[v], p[2] = a.oz[v];
+        }
     }
 }
 
@@ -202,10 +217,12 @@ bool unit_weights_avx2(const SkinLayout& m, const SkinLayout::Run& run) {
 }
 
 // The blocks of a run: each block's 8 rest positions loaded (consecutive vertices) or gathered,
-// skin(b, x, y, z, px, py, pz) computing the posed ones, stored or scattered back.
-template <class Skin>
-[[gnu::always_inline]] inline void each_block_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* rest, float* out, bool slots,
-                                                  Skin&& skin) {
+// skin(b, x, y, z, px, py, pz) computing the posed ones, stored or scattered back (and with xyz,
+// written there too).
+template <Order O, class Skin>
+[[gnu::always_inline]] inline void each_block_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* rest, float* out,
+                                                  float* xyz, Skin&& skin) {
+    constexpr bool slots = O != Order::Vertex;
     const uint32_t V = slots ? m.slot_count() : m.vertex_count;
     const float *xs = rest, *ys = rest + V, *zs = rest + 2 * std::size_t(V);
     float *ox = out, *oy = out + V, *oz = out + 2 * std::size_t(V);
@@ -233,39 +250,42 @@ template <class Skin>
                 oz[ti[l]] = tz[l];
             }
         }
+        if constexpr (O == Order::SlotsAndXyz) store_xyz8(px, py, pz, vid + b, m.contiguous[b / SkinLayout::kBlock], xyz);
     }
 }
 
+
 // A one-joint run of weight 1: the arithmetic of skin_run_avx2<1> below with blend(e) = M[e], so the
 // same bits, with the twelve broadcasts made once.
-void skin_run_unit_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+template <Order O>
+void skin_run_unit_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, float* xyz) {
     const float* M = mats + run.offsets[0];
     __m256 k[15];  // elements 0..14 of the column-major 4x4 (row 3 unused)
     for (int e = 0; e < 15; ++e) k[e] = _mm256_broadcast_ss(M + e);
-    each_block_avx2(m, run, rest, out, slots, [&](uint32_t, __m256 x, __m256 y, __m256 z, __m256& px, __m256& py, __m256& pz) {
-        auto row = [&](const int* e) {
+    each_block_avx2<O>(m, run, rest, out, xyz, [&](uint32_t, __m256 x, __m256 y, __m256 z, __m256& px, __m256& py, __m256& pz) SSC_INLINE_LAMBDA {
+        auto row = [&](const int* e) SSC_INLINE_LAMBDA {
             return _mm256_add_ps(_mm256_fmadd_ps(k[e[2]], z, _mm256_mul_ps(k[e[0]], x)), _mm256_fmadd_ps(k[e[1]], y, k[e[3]]));
         };
         px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
     });
 }
 
-template <int N>
-void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+template <int N, Order O>
+void skin_run_avx2(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, float* xyz) {
     if constexpr (N == 1)
-        if (unit_weights_avx2(m, run)) return skin_run_unit_avx2(m, run, mats, rest, out, slots);
-    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out, slots);
+        if (unit_weights_avx2(m, run)) return skin_run_unit_avx2<O>(m, run, mats, rest, out, xyz);
+    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out, O != Order::Vertex);
     const float* const* M = a.M;
     const float* const* W = a.W;
-    each_block_avx2(m, run, rest, out, slots, [&](uint32_t b, __m256 x, __m256 y, __m256 z, __m256& px, __m256& py, __m256& pz) {
+    each_block_avx2<O>(m, run, rest, out, xyz, [&](uint32_t b, __m256 x, __m256 y, __m256 z, __m256& px, __m256& py, __m256& pz) SSC_INLINE_LAMBDA {
         __m256 w[N];
         for (int i = 0; i < N; ++i) w[i] = _mm256_loadu_ps(W[i] + b);
-        auto blend = [&](int e) {
+        auto blend = [&](int e) SSC_INLINE_LAMBDA {
             __m256 acc = _mm256_mul_ps(w[0], _mm256_broadcast_ss(M[0] + e));
             for (int i = 1; i < N; ++i) acc = _mm256_fmadd_ps(w[i], _mm256_broadcast_ss(M[i] + e), acc);
             return acc;
         };
-        auto row = [&](const int* e) {
+        auto row = [&](const int* e) SSC_INLINE_LAMBDA {
             const __m256 p = _mm256_fmadd_ps(blend(e[2]), z, _mm256_mul_ps(blend(e[0]), x));
             const __m256 c = _mm256_fmadd_ps(blend(e[1]), y, blend(e[3]));
             return _mm256_add_ps(p, c);
@@ -288,10 +308,12 @@ bool unit_weights_avx512(const SkinLayout& m, const SkinLayout::Run& run) {
 }
 
 // The 16-slot steps of a run: rest positions loaded (16 consecutive vertices) or
-// gathered, skin(b, mask, x, y, z, px, py, pz) computing the posed ones, stored or scattered back.
-template <class Skin>
-[[gnu::always_inline]] inline void each_block_avx512(const SkinLayout& m, const SkinLayout::Run& run, const float* rest, float* out, bool slots,
-                                                    Skin&& skin) {
+// gathered, skin(b, mask, x, y, z, px, py, pz) computing the posed ones, stored or scattered back
+// (and with xyz, written there too, a block of 8 at a time).
+template <Order O, class Skin>
+[[gnu::always_inline]] inline void each_block_avx512(const SkinLayout& m, const SkinLayout::Run& run, const float* rest, float* out,
+                                                    float* xyz, Skin&& skin) {
+    constexpr bool slots = O != Order::Vertex;
     const uint32_t V = slots ? m.slot_count() : m.vertex_count;
     const float *xs = rest, *ys = rest + V, *zs = rest + 2 * std::size_t(V);
     float *ox = out, *oy = out + V, *oz = out + 2 * std::size_t(V);
@@ -323,37 +345,43 @@ template <class Skin>
             _mm512_mask_i32scatter_ps(oy, k, idx, py, 4);
             _mm512_mask_i32scatter_ps(oz, k, idx, pz, 4);
         }
+        if constexpr (O == Order::SlotsAndXyz) {
+            store_xyz8_masked(px, py, pz, 0, vid + b, contiguous[blk], xyz);
+            if (two) store_xyz8_masked(px, py, pz, 1, vid + b + SkinLayout::kBlock, contiguous[blk + 1], xyz);
+        }
     }
 }
 
-void skin_run_unit_avx512(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+
+template <Order O>
+void skin_run_unit_avx512(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, float* xyz) {
     const float* M = mats + run.offsets[0];
     __m512 k[15];
     for (int e = 0; e < 15; ++e) k[e] = _mm512_set1_ps(M[e]);
-    each_block_avx512(m, run, rest, out, slots, [&](uint32_t, __mmask16, __m512 x, __m512 y, __m512 z, __m512& px, __m512& py, __m512& pz) {
-        auto row = [&](const int* e) {
+    each_block_avx512<O>(m, run, rest, out, xyz, [&](uint32_t, __mmask16, __m512 x, __m512 y, __m512 z, __m512& px, __m512& py, __m512& pz) SSC_INLINE_LAMBDA {
+        auto row = [&](const int* e) SSC_INLINE_LAMBDA {
             return _mm512_add_ps(_mm512_fmadd_ps(k[e[2]], z, _mm512_mul_ps(k[e[0]], x)), _mm512_fmadd_ps(k[e[1]], y, k[e[3]]));
         };
         px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
     });
 }
 
-template <int N>
-void skin_run_avx512(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+template <int N, Order O>
+void skin_run_avx512(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, float* xyz) {
     if constexpr (N == 1)
-        if (unit_weights_avx512(m, run)) return skin_run_unit_avx512(m, run, mats, rest, out, slots);
-    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out, slots);
+        if (unit_weights_avx512(m, run)) return skin_run_unit_avx512<O>(m, run, mats, rest, out, xyz);
+    const RunArrays<N> a = arrays<N>(m, run, mats, rest, out, O != Order::Vertex);
     const float* const* M = a.M;
     const float* const* W = a.W;
-    each_block_avx512(m, run, rest, out, slots, [&](uint32_t b, __mmask16 k, __m512 x, __m512 y, __m512 z, __m512& px, __m512& py, __m512& pz) {
+    each_block_avx512<O>(m, run, rest, out, xyz, [&](uint32_t b, __mmask16 k, __m512 x, __m512 y, __m512 z, __m512& px, __m512& py, __m512& pz) SSC_INLINE_LAMBDA {
         __m512 w[N];
         for (int i = 0; i < N; ++i) w[i] = _mm512_maskz_loadu_ps(k, W[i] + b);
-        auto blend = [&](int e) {
+        auto blend = [&](int e) SSC_INLINE_LAMBDA {
             __m512 acc = _mm512_mul_ps(w[0], _mm512_set1_ps(M[0][e]));
             for (int i = 1; i < N; ++i) acc = _mm512_fmadd_ps(w[i], _mm512_set1_ps(M[i][e]), acc);
             return acc;
         };
-        auto row = [&](const int* e) {
+        auto row = [&](const int* e) SSC_INLINE_LAMBDA {
             const __m512 p = _mm512_fmadd_ps(blend(e[2]), z, _mm512_mul_ps(blend(e[0]), x));
             const __m512 c = _mm512_fmadd_ps(blend(e[1]), y, blend(e[3]));
             return _mm512_add_ps(p, c);
@@ -368,7 +396,7 @@ SSC_TARGET_END
 // WebAssembly SIMD (the browser runtime): the AVX2 path's blocks as two 4-lane halves, a multiply
 // and an add where it fuses them (see madd.hpp).
 template <int N>
-void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots) {
+void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, bool slots, float* xyz) {
     const RunArrays<N> a = arrays<N>(m, run, mats, rest, out, slots);
     const float *xs = a.xs, *ys = a.ys, *zs = a.zs;
     float *ox = a.ox, *oy = a.oy, *oz = a.oz;
@@ -392,12 +420,12 @@ void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float*
         }
         v128_t w[N];
         for (int i = 0; i < N; ++i) w[i] = wasm_v128_load(W[i] + b);
-        auto blend = [&](int e) {
+        auto blend = [&](int e) SSC_INLINE_LAMBDA {
             v128_t acc = wasm_f32x4_mul(w[0], wasm_f32x4_splat(M[0][e]));
             for (int i = 1; i < N; ++i) acc = madd4(w[i], wasm_f32x4_splat(M[i][e]), acc);
             return acc;
         };
-        auto row = [&](const int* e) {
+        auto row = [&](const int* e) SSC_INLINE_LAMBDA {
             return wasm_f32x4_add(madd4(blend(e[2]), z, wasm_f32x4_mul(blend(e[0]), x)), madd4(blend(e[1]), y, blend(e[3])));
         };
         const v128_t px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
@@ -412,25 +440,45 @@ void skin_run_wasm(const SkinLayout& m, const SkinLayout::Run& run, const float*
             wasm_v128_store(tz, pz);
             for (int l = 0; l < 4; ++l) ox[id[l]] = tx[l], oy[id[l]] = ty[l], oz[id[l]] = tz[l];
         }
+        if (xyz) {
+            alignas(16) float tx[4], ty[4], tz[4];
+            wasm_v128_store(tx, px);
+            wasm_v128_store(ty, py);
+            wasm_v128_store(tz, pz);
+            for (int l = 0; l < 4; ++l) {
+                float* p = xyz + 3 * std::size_t(id[l]);
+                p[0] = tx[l], p[1] = ty[l], p[2] = tz[l];
+            }
+        }
     }
 }
 #endif
 
 template <int N>
-void skin_run(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, Isa isa, bool slots) {
+void skin_run(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, Isa isa, bool slots, float* xyz) {
 #ifdef SSC_SKIN_AVX2
-    if (isa == Isa::Avx512) return skin_run_avx512<N>(m, run, mats, rest, out, slots);
-    if (isa != Isa::Baseline) return skin_run_avx2<N>(m, run, mats, rest, out, slots);
+    // (one instantiation per order: nothing left for the compiler to unswitch, and skinning alone
+    // compiles as if the xyz writes did not exist)
+    if (isa == Isa::Avx512) {
+        if (!slots) return skin_run_avx512<N, Order::Vertex>(m, run, mats, rest, out, nullptr);
+        if (!xyz) return skin_run_avx512<N, Order::Slots>(m, run, mats, rest, out, nullptr);
+        return skin_run_avx512<N, Order::SlotsAndXyz>(m, run, mats, rest, out, xyz);
+    }
+    if (isa != Isa::Baseline) {
+        if (!slots) return skin_run_avx2<N, Order::Vertex>(m, run, mats, rest, out, nullptr);
+        if (!xyz) return skin_run_avx2<N, Order::Slots>(m, run, mats, rest, out, nullptr);
+        return skin_run_avx2<N, Order::SlotsAndXyz>(m, run, mats, rest, out, xyz);
+    }
 #endif
 #if defined(__wasm_simd128__)
-    return skin_run_wasm<N>(m, run, mats, rest, out, slots);
+    return skin_run_wasm<N>(m, run, mats, rest, out, slots, xyz);
 #endif
     (void)isa;
-    skin_run_scalar<N>(m, run, mats, rest, out, slots);
+    skin_run_scalar<N>(m, run, mats, rest, out, slots, xyz);
 }
 
 void skin_runs(const SkinLayout& layout, const float* rest, const SkinMatrix* skinning, float* out, uint32_t first, uint32_t end, Isa isa,
-               bool slots) {
+               bool slots, float* xyz = nullptr) {
     if (int(isa) > int(supported_isa())) isa = supported_isa();
     const float* mats = skinning[0].m;
     for (const auto& full : layout.runs) {
@@ -439,10 +487,10 @@ void skin_runs(const SkinLayout& layout, const float* rest, const SkinMatrix* sk
         run.begin = std::max(run.begin, first);
         run.end = std::min(run.end, end);
         switch (run.influences) {
-            case 1: skin_run<1>(layout, run, mats, rest, out, isa, slots); break;
-            case 2: skin_run<2>(layout, run, mats, rest, out, isa, slots); break;
-            case 3: skin_run<3>(layout, run, mats, rest, out, isa, slots); break;
-            default: skin_run<4>(layout, run, mats, rest, out, isa, slots); break;
+            case 1: skin_run<1>(layout, run, mats, rest, out, isa, slots, xyz); break;
+            case 2: skin_run<2>(layout, run, mats, rest, out, isa, slots, xyz); break;
+            case 3: skin_run<3>(layout, run, mats, rest, out, isa, slots, xyz); break;
+            default: skin_run<4>(layout, run, mats, rest, out, isa, slots, xyz); break;
         }
     }
 }
@@ -470,6 +518,11 @@ void skin_slots(const SkinLayout& layout, const float* rest, const SkinMatrix* s
 void skin_slots_in_slot_order(const SkinLayout& layout, const float* rest_slots, const SkinMatrix* skinning, float* out_slots, uint32_t first,
                               uint32_t end, Isa isa) {
     skin_runs(layout, rest_slots, skinning, out_slots, first, end, isa, /*slots=*/true);
+}
+
+void skin_slots_and_xyz(const SkinLayout& layout, const float* rest_slots, const SkinMatrix* skinning, float* out_slots, float* xyz,
+                        uint32_t first, uint32_t end, Isa isa) {
+    skin_runs(layout, rest_slots, skinning, out_slots, first, end, isa, /*slots=*/true, xyz);
 }
 
 void normals(const Model& m, const float* planar, float* face, float* out) {

@@ -5,6 +5,7 @@
 #include "sscape_format/model_io.hpp"
 #include "synthesis/cpu.hpp"
 #include "synthesis/kernels.hpp"
+#include "synthesis/kernels_skin_xyz.hpp"
 #include "testing/synthetic_model.hpp"
 
 #include <sscape/sscape.h>
@@ -258,7 +259,7 @@ void BM_PoseStage(benchmark::State& state) {
     k::skin_slots_in_slot_order(layout, rest_slots.data(), skinning, slots.data(), 0, S, k::active_isa());
     const int stage = int(state.range(0));
     static const char* names[] = {"skin, vertex order", "rest to slot order", "skin, slot order", "slot order to xyz", "planar to xyz",
-                                  "one matrix, contiguous (floor)", "shape rows, one body"};
+                                  "one matrix, contiguous (floor)", "shape rows, one body", "skin, slot order, and xyz"};
     const ssc::Model& model = f.m->model;
     std::vector<float> scaled(model.component_count()), shaped(model.padded_rows());
     k::scale_coefficients(model, f.p.shapes[0].data(), scaled.data());
@@ -272,6 +273,7 @@ void BM_PoseStage(benchmark::State& state) {
             case 3: k::slots_to_xyz(layout, slots.data(), f.out.data(), 12, 0, V); break;
             case 4: k::planar_to_xyz(planar.data(), V, f.out.data(), 12); break;
             case 6: k::shape_rows(model, 1, &scaled_rows, &shaped_rows, 0, model.padded_rows() / ssc::Model::kChunk); break;
+            case 7: k::skin_slots_and_xyz(layout, rest_slots.data(), skinning, slots.data(), f.out.data(), 0, S, k::active_isa()); break;
             default:
 #if defined(__x86_64__)
                 transform_stream(rest, planar.data(), V, skinning[3].m);
@@ -297,7 +299,7 @@ void BM_BasisReadFloor(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_BasisReadFloor)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PoseStage)->DenseRange(0, 6)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PoseStage)->DenseRange(0, 7)->Unit(benchmark::kMicrosecond);
 void BM_LoadDefaultModel(benchmark::State& state) {
     for (auto _ : state) {
         ssc_model* m = load_default();
