@@ -105,11 +105,11 @@ const float* Body::posed_slots() {
     return posed_slots_.data();
 }
 
-// A rest shape's first posing skins in vertex order (gathering and scattering inside the skinning);
-// from its second posing on (an animation), the rest is put in slot order once and each posing
-// reads and writes whole blocks, paying the gathers once on the way out. Putting a rest in slot
-// order costs about what the vertex-order skinning's gathers do, so a shape posed only once (a
-// batch of variants) would pay for both (docs/speed.md).
+// A rest shape's first posing asked for as planar positions (posed(): normals, landmarks, fits)
+// skins in vertex order (gathering and scattering inside the skinning); from its second posing on
+// (an animation), the rest is put in slot order once and each posing reads and writes whole
+// blocks, paying the gathers once on the way out. posed_xyz also takes slot order for a first
+// posing (docs/speed.md).
 bool Body::skin_in_slot_order() const { return rest_slots_ok_ || rest_posed_; }
 
 const float* Body::posed() {
@@ -140,12 +140,14 @@ void Body::posed_xyz(float* out, std::size_t stride) {
     const SkinLayout& layout = model_.skin_layout();
     if (out && posed_ok_) return kernels::planar_to_xyz(posed_.data(), V, out, stride);
     if (out && posed_slots_ok_) return kernels::slots_to_xyz(layout, posed_slots_.data(), out, stride, 0, V);
-    if (!skin_in_slot_order()) {  // (only ever asked with out: posed_slots() is called in slot order)
-        kernels::planar_to_xyz(posed(), V, out, stride);
-        return;
-    }
+    float* xyz = stride == 3 * sizeof(float) ? out : nullptr;
+    // A shape's first posing whose packed vertices are asked for first goes to slot order too: the
+    // rest's conversion and the skinning straight into xyz cost less than the vertex order's
+    // gathered and scattered blocks and then a copy (docs/speed.md). (posed_slots() calls this in
+    // slot order only, so here out is never null.)
+    if (!skin_in_slot_order() && !xyz) return kernels::planar_to_xyz(posed(), V, out, stride);
     update_skeleton();
-    if (rest_slots_.empty()) {  // on a body's first re-posed shape: a body posed once never pays the memory
+    if (rest_slots_.empty()) {  // on first use: a body only ever asked for planar positions never pays the memory
         rest_slots_.resize(3ull * layout.slot_count());
         posed_slots_.resize(3ull * layout.slot_count());
     }
@@ -155,7 +157,6 @@ void Body::posed_xyz(float* out, std::size_t stride) {
         });
         rest_slots_ok_ = true;
     }
-    float* xyz = stride == 3 * sizeof(float) ? out : nullptr;
     const kernels::Isa isa = kernels::active_isa();
     split(layout.slot_count(), Model::kSkinBlock, [&](std::size_t first, std::size_t end) {
         kernels::skin_slots_and_xyz(layout, rest_slots_.data(), skinning_.data(), posed_slots_.data(), xyz, uint32_t(first), uint32_t(end), isa);

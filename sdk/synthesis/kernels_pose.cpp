@@ -341,9 +341,15 @@ template <Order O, class Skin>
             const __m512 zero = _mm512_setzero_ps();
             skin(b, k, _mm512_mask_i32gather_ps(zero, k, idx, xs, 4), _mm512_mask_i32gather_ps(zero, k, idx, ys, 4),
                  _mm512_mask_i32gather_ps(zero, k, idx, zs, 4), px, py, pz);
-            _mm512_mask_i32scatter_ps(ox, k, idx, px, 4);
-            _mm512_mask_i32scatter_ps(oy, k, idx, py, 4);
-            _mm512_mask_i32scatter_ps(oz, k, idx, pz, 4);
+            alignas(64) float tx[16], ty[16], tz[16];
+            _mm512_store_ps(tx, px);
+            _mm512_store_ps(ty, py);
+            _mm512_store_ps(tz, pz);
+            const int lanes = two ? 16 : 8;
+            for (int l = 0; l < lanes; ++l) {
+                const uint32_t v = vid[b + l];
+                ox[v] = tx[l], oy[v] = ty[l], oz[v] = tz[l];
+            }
         }
         if constexpr (O == Order::SlotsAndXyz) {
             store_xyz8_masked(px, py, pz, 0, vid + b, contiguous[blk], xyz);
