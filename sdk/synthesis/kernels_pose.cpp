@@ -135,6 +135,15 @@ namespace {
 // The 12 elements of a column-major 4x4 affine matrix that skinning uses: rows 0..2 of each column.
 constexpr int kRowX[4] = {0, 4, 8, 12}, kRowY[4] = {1, 5, 9, 13}, kRowZ[4] = {2, 6, 10, 14};
 
+// Where the SIMD paths read and write positions, as template arguments: vertex order, slot order,
+// or slot order with the caller's xyz written as well (kernels_skin_xyz.hpp).
+enum class Order { Vertex, Slots, SlotsAndXyz };
+
+// A lambda that must be inlined into its caller: the per-block kernels are lambdas, and with a run
+// function instantiated per order and influence count GCC's inliner stops inlining them otherwise
+// (a call per block, a third slower).
+#define SSC_INLINE_LAMBDA __attribute__((always_inline))
+
 // One run: N joints shared by every vertex, weights per vertex. Blends the 12 matrix elements
 // w_0 M_0 + w_1 M_1 + ... (FMAs in influence order) and transforms:
 // p = (m0 x + m8 z) + (m4 y + m12) per row, the same order in the SIMD and the scalar path.
@@ -145,15 +154,6 @@ constexpr int kRowX[4] = {0, 4, 8, 12}, kRowY[4] = {1, 5, 9, 13}, kRowZ[4] = {2,
 // vertices[s], a block loaded whole where its vertices are consecutive, else gathered and
 // scattered) or, with `slots`, in the layout's own slot order (blocks of slot_count(): slot s at
 // s, every block whole; see skin_slots_in_slot_order).
-// Where the SIMD paths read and write positions, as template arguments: vertex order, slot order,
-// or slot order with the caller's xyz written as well (kernels_skin_xyz.hpp).
-enum class Order { Vertex, Slots, SlotsAndXyz };
-
-// A lambda that must be inlined into its caller: the per-block kernels are lambdas, and with a run
-// function instantiated per order and influence count GCC's inliner stops inlining them otherwise
-// (a call per block, a third slower).
-#define SSC_INLINE_LAMBDA __attribute__((always_inline))
-
 template <int N>
 struct RunArrays {
     const float* xs;
@@ -254,7 +254,6 @@ template <Order O, class Skin>
     }
 }
 
-
 // A one-joint run of weight 1: the arithmetic of skin_run_avx2<1> below with blend(e) = M[e], so the
 // same bits, with the twelve broadcasts made once.
 template <Order O>
@@ -341,6 +340,8 @@ template <Order O, class Skin>
             const __m512 zero = _mm512_setzero_ps();
             skin(b, k, _mm512_mask_i32gather_ps(zero, k, idx, xs, 4), _mm512_mask_i32gather_ps(zero, k, idx, ys, 4),
                  _mm512_mask_i32gather_ps(zero, k, idx, zs, 4), px, py, pz);
+            // Scattered by scalar stores, as the AVX2 path does: vscatterdps is slower on AMD
+            // (this stage 26.1 against 23.5 us on Zen 5; docs/speed.md).
             alignas(64) float tx[16], ty[16], tz[16];
             _mm512_store_ps(tx, px);
             _mm512_store_ps(ty, py);
@@ -357,7 +358,6 @@ template <Order O, class Skin>
         }
     }
 }
-
 
 template <Order O>
 void skin_run_unit_avx512(const SkinLayout& m, const SkinLayout::Run& run, const float* mats, const float* rest, float* out, float* xyz) {

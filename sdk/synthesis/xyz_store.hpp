@@ -5,12 +5,11 @@
 
 #include "cpu.hpp"
 
+#include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #include <immintrin.h>
-#define SSC_XYZ_STORE_AVX2 1
 
 namespace ssc::kernels {
 
