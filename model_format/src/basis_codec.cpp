@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 
 namespace ssc::format {
@@ -224,21 +225,32 @@ void decode_residuals(const uint8_t* planes, std::size_t plane_bytes, uint32_t n
     q.resize(count);
     const std::vector<Sources> from = prediction_sources(n, predictor, mirror);
     std::vector<int32_t> value(std::size_t(n) + 1, 0);  // by position, one row at a time; value[n] stays 0
-    std::size_t in = 0;
+    std::vector<int64_t> residual(n);
     for (std::size_t row = 0; row < static_cast<std::size_t>(components) * 3; ++row) {
+        // A row's residuals first, in a loop of its own (independent values: it vectorizes), then
+        // the predictions, which depend on earlier positions' values.
+        const uint8_t* b = planes + row * n;
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t z = uint32_t(b[i]) | uint32_t(b[count + i]) << 8 | uint32_t(b[2 * count + i]) << 16 | uint32_t(b[3 * count + i]) << 24;
+            residual[i] = static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
+        }
         int16_t* out = q.data() + row * n;
         const int s = signs ? signs[row / 3] : 0;
         const int64_t sign = row % 3 == 0 ? -s : s;
         bool in_range = true;
-        for (uint32_t i = 0; i < n; ++i, ++in) {
-            const uint32_t z = uint32_t(planes[in]) | uint32_t(planes[count + in]) << 8 |
-                               uint32_t(planes[2 * count + in]) << 16 | uint32_t(planes[3 * count + in]) << 24;
-            const int64_t r = static_cast<int64_t>(z >> 1) ^ -static_cast<int64_t>(z & 1);
-            const int64_t v = r + prediction(value.data(), from[i], sign);
-            in_range &= v >= -32768 && v <= 32767;
-            value[i] = static_cast<int32_t>(v);
-            out[order[i]] = static_cast<int16_t>(v);
-        }
+        auto decode = [&](auto mirrored) {
+            for (uint32_t i = 0; i < n; ++i) {
+                const Sources& f = from[i];
+                int64_t v = residual[i] + value[f.p];
+                if constexpr (decltype(mirrored)::value) v += sign * (int64_t(value[f.m]) - value[f.mp]);
+                in_range &= v >= -32768 && v <= 32767;
+                value[i] = static_cast<int32_t>(v);
+                out[order[i]] = static_cast<int16_t>(v);
+            }
+        };
+        // (sign 0: a component coded without its mirror; the same values as prediction() gives)
+        if (sign != 0) decode(std::true_type{});
+        else decode(std::false_type{});
         SSC_REQUIRE_MODEL(in_range, "shape basis value out of 16-bit range (component " + std::to_string(row / 3) + ")");
     }
 }
