@@ -241,6 +241,29 @@ double surface_distance(const std::vector<Eigen::Vector3d>& fit, const std::vect
     return n ? sum / double(n) : 0;
 }
 
+// The shares of the scan's points farther than each of `distances` from the fitted surface (the
+// nearest vertex's triangles): how much of the scan a fit leaves unexplained at tighter distances
+// than the judgement's 2.5 cm (a hand lying on the body in the scan and elsewhere in the fit).
+std::vector<double> scan_beyond(const std::vector<Eigen::Vector3d>& fit, const std::vector<uint32_t>& triangles,
+                                const std::vector<Eigen::Vector3d>& points, const std::vector<double>& distances) {
+    std::vector<std::vector<uint32_t>> ring(fit.size());
+    for (uint32_t t = 0; 3 * std::size_t(t) < triangles.size(); ++t)
+        for (int c = 0; c < 3; ++c) ring[triangles[3 * std::size_t(t) + std::size_t(c)]].push_back(t);
+    const fitting::PointIndex index(fit);
+    std::vector<double> share(distances.size(), 0);
+    for (const Eigen::Vector3d& q : points) {
+        double d2 = 0;
+        const uint32_t k = index.nearest(q, &d2);
+        double d = std::sqrt(d2);
+        for (uint32_t t : ring[k])
+            d = std::min(d, registration::point_triangle_distance(q, fit[triangles[3 * std::size_t(t)]], fit[triangles[3 * std::size_t(t) + 1]],
+                                                                  fit[triangles[3 * std::size_t(t) + 2]]));
+        for (std::size_t i = 0; i < distances.size(); ++i) share[i] += d > distances[i];
+    }
+    for (double& x : share) x /= double(std::max<std::size_t>(points.size(), 1));
+    return share;
+}
+
 // How far a fitted part lies from the truth's, and how much of that its placement explains: the
 // part's vertices moved rigidly onto the truth's (Umeyama, no scale) leave the error of its shape
 // (and, for a hand, of its fingers); the turn and the shift are what the fit placed wrong.
@@ -929,6 +952,8 @@ int main(int argc, char** argv) {
                     }
                     std::printf("  %s trial %d: head %.1f mm as placed, %.1f mm placed like the truth's (turned %.1f deg, moved %.1f mm); its surface %.2f mm from the truth's\n",
                                 lp.name.c_str(), t, head.error * 1e3, head.aligned_error * 1e3, head.turn_degrees, head.shift * 1e3, head.surface * 1e3);
+                    const std::vector<double> beyond = scan_beyond(fv, triangles, frame.clouds[0].points, {0.008, 0.012, 0.02});
+                    std::printf("  %s trial %d: scan beyond 8 / 12 / 20 mm of the fit %.4f %.4f %.4f\n", lp.name.c_str(), t, beyond[0], beyond[1], beyond[2]);
                     const auto contact_fit = hand_contact.measure(fv, 0.015), contact_truth = hand_contact.measure(truth.vertices, 0.015);
                     std::printf("  %s trial %d: hands in contact (fit) %.2f %.2f (truth) %.2f %.2f\n", lp.name.c_str(), t, contact_fit[0], contact_fit[1],
                                 contact_truth[0], contact_truth[1]);
