@@ -241,14 +241,13 @@ void decode_residuals(const uint8_t* planes, std::size_t plane_bytes, uint32_t n
         auto decode = [&](auto mirrored) {
             for (uint32_t i = 0; i < n; ++i) {
                 const Sources& f = from[i];
-                int64_t v = residual[i] + value[f.p];
-                if constexpr (decltype(mirrored)::value) v += sign * (int64_t(value[f.m]) - value[f.mp]);
+                // (without a mirror term: prediction() with sign 0)
+                const int64_t v = residual[i] + (decltype(mirrored)::value ? prediction(value.data(), f, sign) : int64_t(value[f.p]));
                 in_range &= v >= -32768 && v <= 32767;
                 value[i] = static_cast<int32_t>(v);
                 out[order[i]] = static_cast<int16_t>(v);
             }
         };
-        // (sign 0: a component coded without its mirror; the same values as prediction() gives)
         if (sign != 0) decode(std::true_type{});
         else decode(std::false_type{});
         SSC_REQUIRE_MODEL(in_range, "shape basis value out of 16-bit range (component " + std::to_string(row / 3) + ")");
