@@ -133,7 +133,11 @@ else
   # The runtime, the browser package and the configurator page in build-wasm/web (docs/web.md); the
   # Release tests run it in Chromium.
   NPM_IGNORE_SCRIPTS=1 npm_tools build-wasm zstd-napi@0.0.13 three@0.170.0
-  NODE_PATH=/usr/share/nodejs CMAKE_WRAPPER=emcmake build build-wasm -DCMAKE_BUILD_TYPE=Release -DSSCAPE_NPM_MODULES="$PWD/build-wasm/npm/node_modules"
+  # Archives made by LLVM's ar itself, which emscripten's emar wraps in a Python start of 2 s each.
+  llvm_root=$(em-config LLVM_ROOT 2> /dev/null || true)
+  [ -x "$llvm_root/llvm-ar" ] && [ -x "$llvm_root/llvm-ranlib" ] || llvm_root=""
+  NODE_PATH=/usr/share/nodejs CMAKE_WRAPPER=emcmake build build-wasm -DCMAKE_BUILD_TYPE=Release -DSSCAPE_NPM_MODULES="$PWD/build-wasm/npm/node_modules" \
+      ${llvm_root:+-DCMAKE_AR="$llvm_root/llvm-ar" -DCMAKE_RANLIB="$llvm_root/llvm-ranlib"}
   stage "npm packages"
   npm_tools build "$gltf_validator" koffi@3.3.4 typescript@5.9.3 three@0.170.0 puppeteer-core@24.40.0
   stage "Release tests"
