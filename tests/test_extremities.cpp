@@ -161,33 +161,3 @@ TEST_CASE("a leg out sideways and sitting on the floor with the legs out, which 
         CHECK(error < 0.01);
     }
 }
-
-TEST_CASE("a finished fit judged right that leaves its scan off in places is redone from other starts", "[fitting]") {
-    // The model's own body reaching forward and up, scanned all round: the fit from the best start
-    // ends judged right with both forearms wrong, 2.2 % of the scan over 8 mm from its surface
-    // and 11.6 mm mean vertex error; the start search's second other candidate fits it to 2.9 mm,
-    // 0.1 % off. Should a change make this fit right at once, restarts is 0: pick another body.
-    const Model& m = test_model();
-    const auto& library = simulation::pose_library();
-    const auto pose = std::find_if(library.begin(), library.end(), [](const simulation::LibraryPose& p) { return p.name == "arms_forward_up"; });
-    REQUIRE(pose != library.end());
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> turn(-M_PI, M_PI);
-    simulation::TrueBody b = simulation::make_body(m, simulation::random_shape(m, rng), simulation::library_pose(m, *pose), Vector3d::Zero());
-    simulation::transform_body(b, Eigen::AngleAxisd(turn(rng), Vector3d::UnitY()).toRotationMatrix() * simulation::library_orientation(*pose),
-                               Vector3d::Zero());
-    simulation::BoothSpec spec;
-    spec.points = 25000;
-    fitting::FitOptions options;
-    options.components = m.component_count();
-    fitting::Fitter fitter(m, options);
-    fitter.add_cloud(0, simulation::booth_scan(m, b, spec, rng));
-    const fitting::FitReport& report = fitter.solve();
-    const std::vector<Vector3d> fitted = fitter.vertices(0);
-    double error = 0;
-    for (std::size_t v = 0; v < fitted.size(); ++v) error += (fitted[v] - b.vertices[v]).norm() / double(fitted.size());
-    INFO(error * 1000 << " mm, " << report.restarts << " restarts; " << report.problem_text);
-    CHECK(report.restarts >= 1);
-    CHECK(report.converged);
-    CHECK(error < 0.005);
-}

@@ -5,7 +5,6 @@
 #include "anatomy/named_poses.hpp"
 #include "fitting/fit_problem.hpp"
 #include "fitting/judgement.hpp"
-#include "fitting/surface_distance.hpp"
 #include "simulation/depth_camera.hpp"
 #include "simulation/pose_library.hpp"
 #include "simulation/simulate.hpp"
@@ -198,30 +197,4 @@ TEST_CASE("a forearm through the body is judged wrong and named, arms crossed ov
         CHECK(ok.acceptable());
         CHECK(ok.inside < fitting::kLimbInsideShare);
     }
-}
-
-TEST_CASE("the distance to a fitted surface is exact near it: above a face, past an edge, beyond a corner", "[fitting][judgement]") {
-    // A flat grid of 1 cm squares (two triangles each) over [0, 10 cm]^2 at z = 0.
-    const uint32_t n = 11;
-    std::vector<Eigen::Vector3d> vertices;
-    for (uint32_t j = 0; j < n; ++j)
-        for (uint32_t i = 0; i < n; ++i) vertices.emplace_back(0.01 * i, 0.01 * j, 0.0);
-    std::vector<uint32_t> triangles;
-    for (uint32_t j = 0; j + 1 < n; ++j)
-        for (uint32_t i = 0; i + 1 < n; ++i) {
-            const uint32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-            triangles.insert(triangles.end(), {a, b, d, a, d, c});
-        }
-    const fitting::SurfaceDistance surface(vertices, triangles.data(), triangles.size() / 3);
-    // Above the middle of a square: 4 mm to the face, 8.1 mm to the nearest vertex.
-    CHECK(surface({0.045, 0.055, 0.004}) == Approx(0.004).margin(1e-12));
-    CHECK(surface({0.105, 0.052, 0.0}) == Approx(0.005).margin(1e-12));                 // past an edge
-    CHECK(surface({0.103, 0.104, 0.0}) == Approx(0.005).margin(1e-12));                 // beyond a corner
-    CHECK(surface({0.02, 0.03, -0.02}) == Approx(0.02).margin(1e-12));                  // below a vertex
-    const std::vector<Eigen::Vector3d> points{{0.045, 0.055, 0.004}, {0.045, 0.055, 0.009}, {0.021, 0.064, -0.003}, {0.5, 0.5, 0.5}};
-    CHECK(fitting::share_beyond_surface(surface, points, 0.006) == Approx(0.5));
-    CHECK(fitting::share_beyond_surface(surface, points, 0.0) == Approx(1.0));
-    CHECK(fitting::share_beyond_surface(surface, {}, 0.006) == 0.0);
-    CHECK(fitting::point_triangle_distance({0.3, 0.3, 1.0}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}) == Approx(1.0));
-    CHECK(fitting::point_triangle_distance({2.0, 0.0, 0.0}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}) == Approx(1.0));
 }

@@ -10,7 +10,6 @@
 #include "fitting/judgement.hpp"
 #include "fitting/limb_search.hpp"
 #include "fitting/rigid_start.hpp"
-#include "fitting/surface_distance.hpp"
 #include "fitting/wrist_search.hpp"
 
 #include "common/error.hpp"
@@ -76,17 +75,6 @@ constexpr std::size_t kExtremityPoints = 30000;
 // Landmarks that pose the body before the scan is fitted (landmark_stage): enough to place the
 // trunk and every limb.
 constexpr std::size_t kPosingLandmarks = 12;
-// A finished fit judged right that leaves more than kRetryTight of its scan farther than
-// kTightDistance from its surface (kTightSamples scan points, exact point-to-surface distances) is
-// redone from other starts, at most kTightRestarts times (restart_if_off_surface()). Never a
-// failure (hair and clothes leave real scans off a naked body). Pose library (4 trials, points
-// only): every success left at most 1.75 %, five of nine silent failures 2.0-2.9 %; two of them
-// fixed (16.1 and 16.8 -> 6.3 and 7.6 mm mean vertex error), one other 2.9 mm better, one 0.3 worse
-// (docs/fitting.md).
-constexpr double kTightDistance = 0.008;
-constexpr double kRetryTight = 0.018;
-constexpr std::size_t kTightSamples = 5000;
-constexpr std::size_t kTightRestarts = 2;
 
 using Eigen::Quaterniond;
 
@@ -134,8 +122,6 @@ public:
         if (F_ == 1 && searched_frames_ == 1 && !cancelled)
             converged = restart_if_implausible(plan, progress, iteration, cancelled, sol.report.restarts, converged);
         if (plan.segment_iterations > 0 && !cancelled) converged = fit_segment_stages(plan, progress, iteration, cancelled, converged);
-        if (F_ == 1 && searched_frames_ == 1 && !cancelled && !implausible_)
-            converged = restart_if_off_surface(plan, progress, iteration, cancelled, sol.report.restarts, converged);
         report(plan.stages[Schedule::kPolish], converged, sol.report);
         sol.report.iterations = iteration;
         sol.report.cancelled = cancelled;
@@ -420,71 +406,6 @@ private:
         return n ? sum / double(n) : 0;
     }
 
-    // The share of frame f's scan sample (kTightSamples points) beyond kTightDistance from its
-    // fitted surface (kinematics current).
-    double scan_share_off_surface(uint32_t f) {
-        const FrameData& fd = p_.frame(f);
-        if (fd.points.empty()) return 0;
-        const LinearModel& lin = p_.linear();
-        const Kinematics& kin = p_.kin(f);
-        std::vector<Vector3d> posed(lin.V);
-        for (uint32_t v = 0; v < lin.V; ++v) posed[v] = kin.posed_vertex(v, kin.rest_vertex(v));
-        const auto& triangles = lin.model.data().mesh.triangles;
-        const SurfaceDistance surface(posed, triangles.data(), triangles.size() / 3);
-        std::vector<Vector3d> sample(std::min(kTightSamples, fd.scan_sample.size()));
-        for (std::size_t i = 0; i < sample.size(); ++i) sample[i] = fd.points[fd.scan_sample[i]];
-        return share_beyond_surface(surface, sample, kTightDistance);
-    }
-
-    // A finished single-frame fit judged right but off its scan in places (kRetryTight: a hand or
-    // an arm lying elsewhere than the scan's, which the stages before the segment components
-    // cannot tell from shape they have not fitted yet) is redone from the extremity start's
-    // candidates, then the start search's others, each finished the same way; the one judged right
-    // that leaves the least of the scan off is kept. Returns whether the kept fit converged.
-    bool restart_if_off_surface(const Schedule& plan, const FitProgress& progress, uint32_t& iteration, bool& cancelled,
-                                uint32_t& restarts, bool converged) {
-        p_.update_kinematics();
-        struct Kept {
-            std::vector<double> shape;
-            std::vector<FitState> states;
-            bool converged;
-            double off;
-        };
-        // Scans taken all round only: a depth camera's view leaves most of a fit unseen, the
-        // library's depth fits went off in places that often (median fit 0.50 -> 1.12 s) for two
-        // silent failures fewer of 51.
-        if (!judge(p_, 0).all_round) return converged;
-        Kept best{p_.shape(), p_.states(), converged, scan_share_off_surface(0)};
-        if (best.off <= kRetryTight) return converged;
-        // The extremity start's candidates first: unlike the start search's others, they were not
-        // ranked below the fitted one.
-        std::vector<std::pair<double, FitState>> candidates;
-        extremity_fits(0, candidates);
-        std::stable_sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        if (candidates.size() < kTightRestarts) {
-            const std::vector<std::pair<double, FitState>> others = other_starts();
-            candidates.insert(candidates.end(), others.begin(), others.end());
-        }
-        for (std::size_t i = 0; i < candidates.size() && i < kTightRestarts && best.off > kRetryTight && !cancelled; ++i) {
-            p_.states()[0] = candidates[i].second;
-            p_.shape() = candidates[i].second.shape;
-            bool c = fit_stages(plan, Schedule::kCoarse, progress, iteration, cancelled, nullptr);
-            if (cancelled) break;
-            ++restarts;
-            p_.update_kinematics();
-            if (!judge(p_, 0).acceptable()) continue;
-            if (plan.segment_iterations > 0) c = fit_segment_stages(plan, progress, iteration, cancelled, c);
-            if (cancelled) break;
-            p_.update_kinematics();
-            const double off = scan_share_off_surface(0);
-            if (off < best.off && judge(p_, 0).acceptable()) best = {p_.shape(), p_.states(), c, off};
-        }
-        p_.shape() = best.shape;
-        p_.states() = best.states;
-        p_.update_kinematics();
-        return best.converged;
-    }
-
     // A single frame's fit from the automatic start that ends implausible (joints far past their
     // limits: a body forced onto data of the other way round) or leaves more than
     // kRetryUnexplained of its scan unexplained (a limb or the body in the wrong place) is redone from the start search's
@@ -515,8 +436,15 @@ private:
             double measure;
         };
         Attempt best{p_.shape(), p_.states(), converged, first, p_.explained(0)};
-        const std::vector<std::pair<double, FitState>> alternatives = other_starts();
+        // The start poses not tried yet get their short fits now; all candidates, best first.
+        std::vector<std::pair<double, FitState>> alternatives = alternative_starts_;
+        double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
+        for (const auto& [t, found] : deferred_templates_) {
+            best_prior = 0;
+            short_fits(0, found, &p_.templates().posed()[t].pose, alternatives, best_cost, best_prior);
+        }
         const auto by_measure = [](const auto& a, const auto& b) { return a.first < b.first; };
+        std::stable_sort(alternatives.begin(), alternatives.end(), by_measure);
         // Each restart: the fit from the candidate, kept when judged right or explaining more.
         const auto restart_from = [&](const FitState& alternative) {
             p_.states()[0] = alternative;
@@ -562,19 +490,6 @@ private:
         // (benchmark poses crouching and bent over), reported as failed.
         implausible_ = !cancelled && !best.judgement.acceptable();
         return best.converged && !implausible_;
-    }
-
-    // The start search's candidates other than the one fitted, best first: the start poses not
-    // tried yet get their short fits now (the first call; deferred_templates_ is emptied).
-    std::vector<std::pair<double, FitState>> other_starts() {
-        double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
-        for (const auto& [t, found] : deferred_templates_) {
-            best_prior = 0;
-            short_fits(0, found, &p_.templates().posed()[t].pose, alternative_starts_, best_cost, best_prior);
-        }
-        deferred_templates_.clear();
-        std::stable_sort(alternative_starts_.begin(), alternative_starts_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        return alternative_starts_;
     }
 
     // Short coarse fits (pose and the main shape components) of a template's rigid candidates,

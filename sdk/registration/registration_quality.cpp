@@ -1,7 +1,5 @@
 #include "registration/registration_quality.hpp"
 
-#include "fitting/surface_distance.hpp"
-
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -46,10 +44,25 @@ BodyRegions body_regions(const format::ModelData& model) {
     return r;
 }
 
-// Declared here before the fitting's judgement needed it (fitting/surface_distance.hpp); kept so
-// that the many files including this header need not compile again.
 double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    return fitting::point_triangle_distance(p, a, b, c);
+    // The closest point by the triangle's Voronoi regions (Ericson, Real-Time Collision Detection, 5.1.5).
+    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return (p - a).norm();
+    const Eigen::Vector3d bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return (p - b).norm();
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
+    const Eigen::Vector3d cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return (p - c).norm();
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+    const double denom = 1.0 / (va + vb + vc);
+    return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
 }
 
 std::vector<Eigen::Vector3d> vertex_normals(const std::vector<Eigen::Vector3d>& vertices, const std::vector<uint32_t>& triangles) {
@@ -112,8 +125,8 @@ RegistrationQuality registration_quality(const std::vector<Eigen::Vector3d>& ver
             double best = std::sqrt(d2[0]);
             for (std::size_t k = 0; k < found; ++k)
                 for (uint32_t t : around[near[k]])
-                    best = std::min(best, fitting::point_triangle_distance(points[i], vertices[triangles[3 * t]], vertices[triangles[3 * t + 1]],
-                                                                           vertices[triangles[3 * t + 2]]));
+                    best = std::min(best, point_triangle_distance(points[i], vertices[triangles[3 * t]], vertices[triangles[3 * t + 1]],
+                                                                  vertices[triangles[3 * t + 2]]));
             point_distance[i] = best;
             point_region[i] = region[near[0]];
         }

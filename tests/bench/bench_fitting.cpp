@@ -54,7 +54,6 @@
 #include "fitting/interpenetration.hpp"
 #include "fitting/judgement.hpp"
 #include "fitting/nearest.hpp"
-#include "fitting/surface_distance.hpp"
 #include "registration/registration_quality.hpp"
 #include "render/body_sheet.hpp"
 #include "render/fit_picture.hpp"
@@ -223,9 +222,29 @@ private:
 // can show of a fit. Low beside a high vertex error, the surface is right and the vertices lie
 // elsewhere on it (a forearm twisted, a hand resting on the body in another place).
 // Distances from points to a fitted surface: the nearest vertex, then the triangles around it.
+struct SurfaceDistance {
+    const std::vector<Eigen::Vector3d>& fit;
+    const std::vector<uint32_t>& triangles;
+    std::vector<std::vector<uint32_t>> ring;
+    fitting::PointIndex index;
+    SurfaceDistance(const std::vector<Eigen::Vector3d>& f, const std::vector<uint32_t>& t) : fit(f), triangles(t), ring(f.size()), index(f) {
+        for (uint32_t i = 0; 3 * std::size_t(i) < triangles.size(); ++i)
+            for (int c = 0; c < 3; ++c) ring[triangles[3 * std::size_t(i) + std::size_t(c)]].push_back(i);
+    }
+    double operator()(const Eigen::Vector3d& q) const {
+        double d2 = 0;
+        const uint32_t k = index.nearest(q, &d2);
+        double d = std::sqrt(d2);
+        for (uint32_t t : ring[k])
+            d = std::min(d, registration::point_triangle_distance(q, fit[triangles[3 * std::size_t(t)]], fit[triangles[3 * std::size_t(t) + 1]],
+                                                                  fit[triangles[3 * std::size_t(t) + 2]]));
+        return d;
+    }
+};
+
 double surface_distance(const std::vector<Eigen::Vector3d>& fit, const std::vector<uint32_t>& triangles,
                         const std::vector<Eigen::Vector3d>& truth) {
-    const fitting::SurfaceDistance distance(fit, triangles.data(), triangles.size() / 3);
+    const SurfaceDistance distance(fit, triangles);
     double sum = 0;
     std::size_t n = 0;
     for (std::size_t v = 0; v < truth.size(); v += 3, ++n) sum += distance(truth[v]);
@@ -237,7 +256,7 @@ double surface_distance(const std::vector<Eigen::Vector3d>& fit, const std::vect
 // than the judgement's 2.5 cm (a hand lying on the body in the scan and elsewhere in the fit).
 std::vector<double> scan_beyond(const std::vector<Eigen::Vector3d>& fit, const std::vector<uint32_t>& triangles,
                                 const std::vector<Eigen::Vector3d>& points, const std::vector<double>& distances) {
-    const fitting::SurfaceDistance distance(fit, triangles.data(), triangles.size() / 3);
+    const SurfaceDistance distance(fit, triangles);
     std::vector<double> share(distances.size(), 0);
     for (const Eigen::Vector3d& q : points) {
         const double d = distance(q);
