@@ -5,7 +5,7 @@
 #   ./setup.sh test    install, build everything (tests, benchmarks, samples), run the whole test suite,
 #                      also under ASan + UBSan, then fuzz; prints each stage's time at the end
 # Environment: JOBS (parallel build jobs, default: number of cores), FUZZ_SECONDS (per fuzz target,
-# default 15), SSCAPE_CCACHE=0 (compile without ccache).
+# default 10), SSCAPE_CCACHE=0 (compile without ccache).
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -152,11 +152,11 @@ else
   npm_tools build-sanitize "$gltf_validator"
   stage "sanitizer tests"
   (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest -j "$jobs" --output-on-failure)
-  # The fuzz targets (model loading, each reader), 15 seconds each (two at a time; a regression check with the
+  # The fuzz targets (model loading, each reader), 10 seconds each (two at a time; a regression check with the
   # corpus earlier runs left); long runs: see README.
   stage "fuzz build"
   CC=clang CXX=clang++ TARGET=fuzz_all build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo "${lines_only[@]}" -DSSCAPE_FUZZ=ON \
       -DSSCAPE_BUILD_TESTS=OFF -DSSCAPE_BUILD_BENCHMARKS=OFF -DSSCAPE_BUILD_TRAINING=OFF -DSSCAPE_BUILD_SAMPLES=OFF
   stage "fuzzing"
-  tests/fuzz/run.sh build-fuzz "${FUZZ_SECONDS:-15}"
+  tests/fuzz/run.sh build-fuzz "${FUZZ_SECONDS:-10}"
 fi
