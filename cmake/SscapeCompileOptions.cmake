@@ -5,7 +5,7 @@ if(SSCAPE_SANITIZE)
   add_link_options(-fsanitize=address,undefined,float-cast-overflow)
   # Programs linked at fixed addresses: a sanitized program carries 2.4 million dynamic relocations
   # (the sanitizers' per-check data), which a position-independent one applies at every start,
-  # 0.22 of its 0.46 s; the test command starts about a thousand of them.
+  # 0.22 of its 0.46 s; the test command starts several hundred of them.
   add_link_options($<$<STREQUAL:$<TARGET_PROPERTY:TYPE>,EXECUTABLE>:-no-pie>)
 endif()
 
