@@ -227,8 +227,8 @@ void shape_rows(const Model& m, std::size_t count, const float* const* scaled, f
 
 namespace {
 
-// Inlined into both versions below: with FMA enabled std::fma is one instruction, without it a
-// call into libm (exact either way, so the same bits).
+// Baseline x86-64: std::fma is a call into libm there (exact, so the same bits as the AVX2 path's
+// instructions).
 [[gnu::always_inline]] inline void shape_joints_body(const Model& m, std::size_t count, const float* const* scaled,
                                                      float* const* joints) {
     const uint32_t J = m.joint_count(), K = m.component_count();
@@ -244,8 +244,33 @@ namespace {
 
 #ifdef SSC_SHAPE_AVX2
 SSC_TARGET_AVX2_BEGIN
+// Sixteen outputs at a time, each accumulated over k in the same order as shape_joints_body (the
+// same bits): the scalar loop is one dependent chain of K fused multiply-adds per output, which
+// left the CPU waiting on each (4 us of a shape + pose on Zen 5; docs/speed.md).
 void shape_joints_avx2(const Model& m, std::size_t count, const float* const* scaled, float* const* joints) {
-    shape_joints_body(m, count, scaled, joints);
+    const uint32_t J = m.joint_count(), K = m.component_count(), n = 3 * J;
+    const float* basis = m.joint_basis();
+    for (std::size_t g = 0; g < count; ++g) {
+        float* out = joints[g];
+        const float* s = scaled[g];
+        uint32_t i = 0;
+        for (; i + 16 <= n; i += 16) {
+            __m256 a0 = _mm256_loadu_ps(m.joint_mean() + i), a1 = _mm256_loadu_ps(m.joint_mean() + i + 8);
+            for (uint32_t k = 0; k < K; ++k) {
+                const __m256 c = _mm256_broadcast_ss(s + k);
+                const float* row = basis + std::size_t(k) * n + i;
+                a0 = _mm256_fmadd_ps(c, _mm256_loadu_ps(row), a0);
+                a1 = _mm256_fmadd_ps(c, _mm256_loadu_ps(row + 8), a1);
+            }
+            _mm256_storeu_ps(out + i, a0);
+            _mm256_storeu_ps(out + i + 8, a1);
+        }
+        for (; i < n; ++i) {
+            float acc = m.joint_mean()[i];
+            for (uint32_t k = 0; k < K; ++k) acc = madd(s[k], basis[std::size_t(k) * n + i], acc);
+            out[i] = acc;
+        }
+    }
 }
 SSC_TARGET_END
 #endif
