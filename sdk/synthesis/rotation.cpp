@@ -44,11 +44,15 @@ bool to_unit_quaternions(ssc_rotation_format format, const float* in, uint32_t c
             for (int i = 0; i < 4; ++i) q[i] = r[i] / n;
         } else {
             const double angle = std::sqrt(double(r[0]) * r[0] + double(r[1]) * r[1] + double(r[2]) * r[2]);
-            const double s = angle > 1e-12 ? std::sin(0.5 * angle) / angle : 0.5;  // sin(a/2)/a -> 1/2
+            // Both of the half angle, unconditionally: the compiler makes them one sincos call
+            // (glibc's gives the same bits as sin and cos; the pose-only synthesis's libm time
+            // about halves).
+            const double half_sin = std::sin(0.5 * angle), half_cos = std::cos(0.5 * angle);
+            const double s = angle > 1e-12 ? half_sin / angle : 0.5;  // sin(a/2)/a -> 1/2
             q[0] = r[0] * s;
             q[1] = r[1] * s;
             q[2] = r[2] * s;
-            q[3] = std::cos(0.5 * angle);
+            q[3] = half_cos;
         }
         for (int i = 0; i < 4; ++i) out[4 * j + i] = static_cast<float>(q[i]);
     }
