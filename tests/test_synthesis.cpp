@@ -395,6 +395,12 @@ TEST_CASE("a body posed again skins in slot order with the same bits, on every i
     const uint32_t S = layout.slot_count();
     std::vector<float> rest_slots(3ull * S), expected(3ull * V);
     k::to_slot_order(layout, body.rest_planar(), rest_slots.data(), 0, S);
+    {  // (on this run's instruction set: its loads, gathers or permutes copy each slot's vertex)
+        bool copied = true;
+        for (uint32_t s = 0; s < S; ++s)
+            for (int c = 0; c < 3; ++c) copied = copied && rest_slots[c * std::size_t(S) + s] == body.rest_planar()[c * std::size_t(V) + layout.vertices[s]];
+        CHECK(copied);
+    }
     k::skin_slots(m, body.rest_planar(), body.skinning(), expected.data(), 0, k::skin_slot_count(m), k::Isa::Baseline);
     for (int isa = 0; isa < 3; ++isa) {
         INFO("isa " << k::isa_name(k::Isa(isa)));
