@@ -71,7 +71,7 @@ TEST_CASE("damage inside a well-formed frame is caught by verification", "[corru
     // validation must catch what remains. A flip may land on a harmless byte (a float that stays
     // finite), so OK is allowed, but most must be rejected, and none may crash.
     const auto good = test::mini_bytes();
-    Vec<unsigned char> fb;
+    format::ContentBuffer fb;
     format::unpack_container(good.data(), good.size(), format::kDefaultMaxModelBytes, fb);
     std::mt19937 rng(5);
     int rejected = 0;

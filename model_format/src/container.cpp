@@ -72,7 +72,7 @@ std::vector<unsigned char> pack_container(const void* payload, std::size_t size,
     return out;
 }
 
-void unpack_container(const void* data, std::size_t size, uint64_t max_bytes, Vec<unsigned char>& out) {
+void unpack_container(const void* data, std::size_t size, uint64_t max_bytes, ContentBuffer& out) {
     const auto* p = static_cast<const unsigned char*>(data);
     SSC_REQUIRE_MODEL(size >= kHeaderSize, "file is " + std::to_string(size) + " bytes, shorter than the " +
                                            std::to_string(kHeaderSize) + "-byte header");

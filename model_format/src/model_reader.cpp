@@ -44,7 +44,7 @@ std::pair<const uint32_t*, const int8_t*> mirror_arrays(const flatbuffers::Vecto
 ModelData read_model(const void* data, std::size_t size, const ReadOptions& options) {
     SSC_REQUIRE_ARG(data != nullptr || size == 0, "data is NULL");
     const Allocator* a = options.allocator;
-    Vec<unsigned char> buffer{CAlloc<unsigned char>(a)};
+    ContentBuffer buffer{ContentAlloc(a)};
     unpack_container(data, size, options.max_model_bytes ? options.max_model_bytes : kDefaultMaxModelBytes, buffer);
 
     flatbuffers::Verifier verifier(buffer.data(), buffer.size());

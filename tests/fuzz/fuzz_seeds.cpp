@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
         if (segments) add_segments(model.data);
         const std::vector<unsigned char> file = ssc::format::write_model(model.data);
         put(out / "model_memory" / ("model" + std::to_string(n) + ".sscape"), file.data(), file.size());
-        ssc::Vec<unsigned char> payload;
+        ssc::format::ContentBuffer payload;
         ssc::format::unpack_container(file.data(), file.size(), ssc::format::kDefaultMaxModelBytes, payload);
         put(out / "model_payload" / ("payload" + std::to_string(n) + ".bin"), payload.data(), payload.size());
         ++n;
