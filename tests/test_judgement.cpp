@@ -198,3 +198,43 @@ TEST_CASE("a forearm through the body is judged wrong and named, arms crossed ov
         CHECK(ok.inside < fitting::kLimbInsideShare);
     }
 }
+
+TEST_CASE("a forearm or upper arm turned on the body passes the judgement but leaves the scan a little way off", "[fitting][judgement]") {
+    // What restart_if_off_closely (solver.cpp) looks for: an arm placed wrong as a whole lies within
+    // the judgement's distances (nothing unexplained at 5 cm, little loose at 2.5 cm), yet leaves
+    // more than kRetryTight of the scan beyond kTightDistance; the right fit leaves almost none.
+    const Model& m = test_model();
+    const fitting::LinearModel lin(m, m.component_count());
+    struct Turn {
+        const char* pose;
+        const char* joint;
+        int axis;
+        double degrees;
+    };
+    for (const Turn& t : {Turn{"hands_on_belly", "lowerarm_l", 2, 25}, Turn{"hands_on_belly", "upperarm_l", 1, 25}, Turn{"reach_up_right", "upperarm_l", 1, 15}}) {
+        std::mt19937 rng(11);
+        const auto truth = body_in(m, pose_of(m, t.pose), rng);
+        fitting::Frame frame;
+        frame.clouds.push_back(booth(m, truth, rng));
+        fitting::FitProblem p(lin, {frame}, fitting::FitOptions{}, nullptr);
+        const auto judge_as = [&](const fitting::FitState& s, double& off) {
+            p.shape() = s.shape;
+            p.states()[0] = s;
+            p.update_kinematics(false);
+            off = p.share_beyond_plane(0, fitting::kTightDistance, fitting::kTightCap);
+            return fitting::judge(p, 0);
+        };
+        double right_off = 0, turned_off = 0;
+        const fitting::Judgement right = judge_as(state_of(lin, truth), right_off);
+        fitting::FitState turned = state_of(lin, truth);
+        const std::size_t j = std::size_t(m.find_joint(t.joint));
+        turned.pose[j] = turned.pose[j] * Eigen::Quaterniond(Eigen::AngleAxisd(t.degrees * M_PI / 180, Eigen::Vector3d::Unit(t.axis)));
+        const fitting::Judgement wrong = judge_as(turned, turned_off);
+        INFO(t.pose << ", " << t.joint << " turned " << t.degrees << " degrees: " << wrong.describe(m) << "; beyond 8 mm " << right_off << " right, "
+                    << turned_off << " turned; loose " << wrong.loose);
+        CHECK(right.acceptable());
+        CHECK(right_off < 0.25 * fitting::kRetryTight);
+        CHECK(wrong.acceptable());
+        CHECK(turned_off > fitting::kRetryTight);
+    }
+}

@@ -375,6 +375,21 @@ double FitProblem::mean_scan_distance(uint32_t f, double cap) { return scan_dist
 
 double FitProblem::mean_scan_plane_distance(uint32_t f, double cap) { return scan_distance_to_fit(f, cap, true); }
 
+double FitProblem::share_beyond_plane(uint32_t f, double distance, double cap) {
+    const auto& fd = frames_[f];
+    if (fd.points.empty()) return 0;
+    kin_[f].update(states_[f], false);
+    pose_frame(f, true);
+    dense_grid_.build(posed_);
+    std::size_t far = 0;
+    for (const Vector3d& p : fd.points) {
+        double d2 = cap * cap;
+        const uint32_t v = dense_grid_.nearest(p, cap, &d2);
+        far += v == GridIndex::kNone || std::abs(posed_normals_[v].dot(p - posed_[v])) > distance;
+    }
+    return double(far) / double(fd.points.size());
+}
+
 // Each scan point's distance to its nearest posed vertex (or along that vertex's normal), capped;
 // the mean over the frame's points.
 double FitProblem::scan_distance_to_fit(uint32_t f, double cap, bool along_normal) {

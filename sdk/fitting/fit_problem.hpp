@@ -106,6 +106,10 @@ public:
     // The same along the nearest vertex's normal (point to plane): the vertices' spacing (about
     // 1 cm) does not bury a surface that moved a few millimetres.
     double mean_scan_plane_distance(uint32_t f, double cap);
+    // The share of frame f's scan points farther than `distance` from the fit along the nearest
+    // posed vertex's normal (every vertex; none within `cap` counts as farther): how much of the
+    // scan a fit leaves a little way off, tighter than the judgement's loose share.
+    double share_beyond_plane(uint32_t f, double distance, double cap);
     // Frame f's posed vertex sample (vertex_sample() order) and each sample's body region
     // (judgement.hpp), for judging a fit.
     const std::vector<Vector3d>& posed_sample(uint32_t f);
