@@ -375,37 +375,40 @@ double FitProblem::mean_scan_distance(uint32_t f, double cap) { return scan_dist
 
 double FitProblem::mean_scan_plane_distance(uint32_t f, double cap) { return scan_distance_to_fit(f, cap, true); }
 
-double FitProblem::share_beyond_plane(uint32_t f, double distance, double cap) {
+// Frame f posed (every vertex), then visit(point, its nearest posed vertex within cap or kNone,
+// the squared distance to it or cap squared) for each scan point. Returns the number of points.
+template <class Visit>
+std::size_t FitProblem::visit_scan_nearest(uint32_t f, double cap, Visit&& visit) {
     const auto& fd = frames_[f];
     if (fd.points.empty()) return 0;
     kin_[f].update(states_[f], false);
     pose_frame(f, true);
     dense_grid_.build(posed_);
-    std::size_t far = 0;
     for (const Vector3d& p : fd.points) {
         double d2 = cap * cap;
         const uint32_t v = dense_grid_.nearest(p, cap, &d2);
-        far += v == GridIndex::kNone || std::abs(posed_normals_[v].dot(p - posed_[v])) > distance;
+        visit(p, v, d2);
     }
-    return double(far) / double(fd.points.size());
+    return fd.points.size();
+}
+
+double FitProblem::share_beyond_plane(uint32_t f, double distance, double cap) {
+    std::size_t far = 0;
+    const std::size_t n = visit_scan_nearest(f, cap, [&](const Vector3d& p, uint32_t v, double) {
+        far += v == GridIndex::kNone || std::abs(posed_normals_[v].dot(p - posed_[v])) > distance;
+    });
+    return n ? double(far) / double(n) : 0;
 }
 
 // Each scan point's distance to its nearest posed vertex (or along that vertex's normal), capped;
 // the mean over the frame's points.
 double FitProblem::scan_distance_to_fit(uint32_t f, double cap, bool along_normal) {
-    const auto& fd = frames_[f];
-    if (fd.points.empty()) return 0;
-    kin_[f].update(states_[f], false);
-    pose_frame(f, true);
-    dense_grid_.build(posed_);
     double sum = 0;
-    for (const Vector3d& p : fd.points) {
-        double d2 = cap * cap;
-        const uint32_t v = dense_grid_.nearest(p, cap, &d2);
+    const std::size_t n = visit_scan_nearest(f, cap, [&](const Vector3d& p, uint32_t v, double d2) {
         if (!along_normal || v == GridIndex::kNone) sum += std::sqrt(d2);
         else sum += std::min(cap, std::abs(posed_normals_[v].dot(p - posed_[v])));
-    }
-    return sum / double(fd.points.size());
+    });
+    return n ? sum / double(n) : 0;
 }
 
 const std::vector<Vector3d>& FitProblem::posed_sample(uint32_t f) {

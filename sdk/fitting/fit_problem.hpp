@@ -138,6 +138,8 @@ private:
     void estimate_missing_normals(FrameData& fd);
     void pose_frame(uint32_t f, bool every_vertex);
     double scan_distance_to_fit(uint32_t f, double cap, bool along_normal);
+    template <class Visit>
+    std::size_t visit_scan_nearest(uint32_t f, double cap, Visit&& visit);
     void find_frame_pairs(uint32_t f, const Stage& st);
     const std::vector<Vector3d>& posed_subset();
     bool active(const Stage& st, uint32_t local) const;

@@ -447,15 +447,8 @@ private:
             double measure;
         };
         Attempt best{p_.shape(), p_.states(), converged, first, p_.explained(0)};
-        // The start poses not tried yet get their short fits now; all candidates, best first.
-        std::vector<std::pair<double, FitState>> alternatives = alternative_starts_;
-        double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
-        for (const auto& [t, found] : deferred_templates_) {
-            best_prior = 0;
-            short_fits(0, found, &p_.templates().posed()[t].pose, alternatives, best_cost, best_prior);
-        }
+        const std::vector<std::pair<double, FitState>> alternatives = other_starts();
         const auto by_measure = [](const auto& a, const auto& b) { return a.first < b.first; };
-        std::stable_sort(alternatives.begin(), alternatives.end(), by_measure);
         // Each restart: the fit from the candidate, kept when judged right or explaining more.
         const auto restart_from = [&](const FitState& alternative) {
             p_.states()[0] = alternative;
@@ -550,13 +543,7 @@ private:
             restore(best.shape, best.states);
         }
         // The start search's next candidates, each through every stage.
-        std::vector<std::pair<double, FitState>> alternatives = alternative_starts_;
-        double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
-        for (const auto& [t, found] : deferred_templates_) {
-            best_prior = 0;
-            short_fits(0, found, &p_.templates().posed()[t].pose, alternatives, best_cost, best_prior);
-        }
-        std::stable_sort(alternatives.begin(), alternatives.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        const std::vector<std::pair<double, FitState>> alternatives = other_starts();
         for (std::size_t i = 0; i < alternatives.size() && i < kTightRestarts && !cancelled; ++i) {
             p_.states()[0] = alternatives[i].second;
             p_.shape() = alternatives[i].second.shape;
@@ -567,6 +554,19 @@ private:
         }
         restore(best.shape, best.states);
         return best.converged;
+    }
+
+    // A single frame's start candidates not taken, the start poses whose short fits were put off
+    // fitted now, best first by the explained measure.
+    std::vector<std::pair<double, FitState>> other_starts() {
+        std::vector<std::pair<double, FitState>> alternatives = alternative_starts_;
+        double best_cost = std::numeric_limits<double>::infinity(), best_prior = 0;
+        for (const auto& [t, found] : deferred_templates_) {
+            best_prior = 0;
+            short_fits(0, found, &p_.templates().posed()[t].pose, alternatives, best_cost, best_prior);
+        }
+        std::stable_sort(alternatives.begin(), alternatives.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        return alternatives;
     }
 
     void restore(const std::vector<double>& shape, const std::vector<FitState>& states) {
