@@ -578,6 +578,61 @@ TEST_CASE("the wrist search turns back a forearm the fit left turned over", "[fi
     CHECK(after_distance < before_distance);
 }
 
+TEST_CASE("an arm turned over about its own line swings its elbow round and leaves the scan a little way off", "[fitting][wrists]") {
+    // Fits of arms raised or reaching down ended with a straight arm turned over, palm and elbow
+    // facing the wrong way, judged right (the arm lies on its points): the solver tries each arm
+    // turned half a turn about its line (turn_arm_over) when a fit leaves its scan a little way off.
+    const Model& m = default_model().model();
+    const fitting::LinearModel lin(m, m.component_count());
+    const std::vector<anatomy::JointLimit>& limits = lin.limits;
+    const int64_t shoulder = m.find_joint("upperarm_l"), elbow = m.find_joint("lowerarm_l"), wrist = m.find_joint("hand_l");
+    REQUIRE(shoulder >= 0);
+    REQUIRE(elbow >= 0);
+    REQUIRE(wrist >= 0);
+    std::mt19937 rng(67);
+    std::vector<float> pose = simulation::random_pose(m, rng, 0.3);
+    // The arm held out sideways, the elbow bent 60 degrees.
+    set_joint_rotation(pose, std::size_t(shoulder), anatomy::rotation_from_angles(limits[std::size_t(shoulder)], Eigen::Vector3d(-0.3, 0, -0.8)));
+    const Eigen::Vector3d e = anatomy::anatomical_angles(limits[std::size_t(elbow)], joint_rotation(pose, std::size_t(elbow)));
+    set_joint_rotation(pose, std::size_t(elbow), anatomy::rotation_from_angles(limits[std::size_t(elbow)], Eigen::Vector3d(-60 * M_PI / 180, e[1], e[2])));
+    const std::vector<float> shape = simulation::random_shape(m, rng);
+    const auto truth = simulation::make_body(m, shape, pose, Eigen::Vector3d::Zero());
+    fitting::Frame frame;
+    simulation::CloudSpec spec;
+    spec.points = 30000;
+    spec.missing = 0;
+    frame.clouds.push_back(simulation::simulate_cloud(m, truth, spec, rng));
+    fitting::FitProblem problem(lin, {frame}, fitting::FitOptions{}, nullptr);
+    set_to_truth(problem, m, shape, pose);
+    fitting::FitState& state = problem.states()[0];
+    fitting::Kinematics& kin = problem.kin(0);
+    const std::vector<uint8_t> in_hands = vertex_set_flags(m, "hands");
+    REQUIRE(flagged_error(m, state, in_hands, truth) < 1e-4);  // the state is the truth
+    kin.update(state, false);
+    const Eigen::Vector3d s0 = kin.joint_position(uint32_t(shoulder)), e0 = kin.joint_position(uint32_t(elbow)),
+                          w0 = kin.joint_position(uint32_t(wrist));
+    problem.update_kinematics();
+    const double truth_off = problem.share_beyond_plane(0, 0.008, 0.05);
+
+    REQUIRE(fitting::turn_arm_over(kin, state, anatomy::Side::Left));
+    // The wrist and shoulder stay; the elbow is mirrored through the shoulder-wrist line.
+    const Eigen::Vector3d axis = (w0 - s0).normalized(), foot = s0 + axis * axis.dot(e0 - s0);
+    CHECK((kin.joint_position(uint32_t(shoulder)) - s0).norm() < 1e-9);
+    CHECK((kin.joint_position(uint32_t(wrist)) - w0).norm() < 1e-9);
+    CHECK((kin.joint_position(uint32_t(elbow)) - (2 * foot - e0)).norm() < 1e-9);
+    CHECK((e0 - foot).norm() > 0.02);  // a bent elbow: it really moved
+    problem.update_kinematics();
+    const double turned_off = problem.share_beyond_plane(0, 0.008, 0.05);
+    const double hand_off = flagged_error(m, state, in_hands, truth);
+    INFO("scan beyond 8 mm: " << 100 * truth_off << " % the truth, " << 100 * turned_off << " % the arm turned over (hand vertices " << hand_off * 1e3
+                              << " mm off)");
+    CHECK(hand_off > 0.03);
+    CHECK(turned_off > 4 * truth_off + 0.01);
+    // Turned again: the arm as it was.
+    REQUIRE(fitting::turn_arm_over(kin, state, anatomy::Side::Left));
+    CHECK(flagged_error(m, state, in_hands, truth) < 1e-6);
+}
+
 TEST_CASE("the fitter's segment shape spaces fit proportions the whole body's cannot hold", "[fitting][segments]") {
     // A body whose head, arms, torso and legs are each shaped beyond what the whole-body
     // components make of them (each segment's first component at 1.5 to 2 SD): fitted with the

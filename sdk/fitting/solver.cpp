@@ -528,19 +528,34 @@ private:
             p_.states() = best.states;
             p_.update_kinematics();
         };
-        // The limbs searched from the finished fit, then every component's fine stage and the polish.
-        const LimbGains gains = search_limbs(kLimbCount);
-        if (*std::max_element(gains.begin(), gains.end()) > 0) {
+        // Every component's fine stage and the polish from a moved fit; whether it converged.
+        const auto settle = [&]() {
             Stage all = plan.stages[Schedule::kFine];
             all.components = K_;
             if (plan.segment_iterations > 0) all.iterations = plan.segment_iterations;
             const bool c = p_.run_stage(all, kAllFrames, &progress, iteration, cancelled);
             if (!cancelled && plan.stages[Schedule::kPolish].iterations > 0)
                 p_.run_stage(plan.stages[Schedule::kPolish], kAllFrames, &progress, iteration, cancelled);
+            return c;
+        };
+        // The limbs searched from the finished fit, then settled.
+        const LimbGains gains = search_limbs(kLimbCount);
+        if (*std::max_element(gains.begin(), gains.end()) > 0) {
+            const bool c = settle();
             if (cancelled) return restore(best.shape, best.states), best.converged;
             consider(c);
         } else {
             restore(best.shape, best.states);
+        }
+        // Each arm turned half a turn about the line from its shoulder to its wrist, then settled:
+        // a straight arm turned over (the palm and the elbow facing the other way) lies on its
+        // points nearly as well, and no descent step turns it back through the half turn.
+        for (const anatomy::Side side : {anatomy::Side::Left, anatomy::Side::Right}) {
+            if (cancelled || !turn_arm_over(p_.kin(0), p_.states()[0], side)) continue;
+            p_.update_kinematics();
+            const bool c = settle();
+            if (cancelled) return restore(best.shape, best.states), best.converged;
+            consider(c);
         }
         // The start search's next candidates, each through every stage.
         const std::vector<std::pair<double, FitState>> alternatives = other_starts();

@@ -83,4 +83,25 @@ bool search_wrists(Kinematics& kin, Body& body, FitState& state, const CloudView
     return moved;
 }
 
+bool turn_arm_over(Kinematics& kin, FitState& state, anatomy::Side side) {
+    const LinearModel& lin = kin.linear();
+    const int64_t upper = anatomy::find_limb_joint(lin.roles, anatomy::BodyPart::Arm, side, anatomy::LimbJoint::Upper);
+    const int64_t elbow = anatomy::find_limb_joint(lin.roles, anatomy::BodyPart::Arm, side, anatomy::LimbJoint::Middle);
+    if (upper < 0 || elbow < 0) return false;
+    uint32_t wrist = lin.J;  // the hand joint on the elbow
+    for (uint32_t j = 0; j < lin.J; ++j)
+        if (lin.roles[j].part == anatomy::BodyPart::Hand && lin.chains[j].size() > 1 && lin.chains[j][1] == uint32_t(elbow)) wrist = j;
+    if (wrist == lin.J) return false;
+    kin.update(state, false);
+    const Vector3d line = kin.joint_position(wrist) - kin.joint_position(uint32_t(upper));
+    if (line.norm() < 1e-6) return false;
+    // A world-frame rotation of the joint's posed rotation about its posed position, as
+    // Kinematics::apply makes one: the local pose P <- exp(A^T w) P.
+    const Vector3d axis = kin.local_from_world(uint32_t(upper)) * line.normalized();
+    Eigen::Quaterniond& pose = state.pose[std::size_t(upper)];
+    pose = (Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, axis)) * pose).normalized();
+    kin.update(state, false);
+    return true;
+}
+
 }  // namespace ssc::fitting

@@ -11,6 +11,7 @@
 // hands wrong as often as it fixed bad ones.
 #pragma once
 
+#include "anatomy/joint_roles.hpp"
 #include "common/thread_pool.hpp"
 #include "fitting/explained.hpp"
 #include "fitting/kinematics.hpp"
@@ -26,5 +27,14 @@ namespace ssc::fitting {
 // Rigs without limited elbow and wrist joints are left as they are.
 bool search_wrists(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
                    ThreadPool& pool);
+
+// Turns the arm on `side` half a turn about the line from its upper arm's joint to its wrist: the
+// whole arm rigidly, so the wrist stays where it is and the elbow swings round to the other side
+// of that line. A straight arm turned over (palm and elbow facing the wrong way) lies on its points
+// nearly as well as the right one, and neither the forearm's range nor a descent step turns it
+// back; the solver tries this on fits that leave their scan a little way off
+// (restart_if_off_closely in solver.cpp). Returns false, with the state as it was, when the rig
+// has no such arm. kin: the frame's (updated here, without derivatives).
+bool turn_arm_over(Kinematics& kin, FitState& state, anatomy::Side side);
 
 }  // namespace ssc::fitting
