@@ -68,9 +68,10 @@ constexpr double kMoveCheckCap = 0.02;
 // people beyond the model 0.72-0.85 times (docs/fitting.md).
 constexpr double kSegmentsCloser = 0.95;
 // A fit judged right that leaves over kRetryTight of its scan beyond kTightDistance (judgement.hpp)
-// is tried again: the limbs searched from it, then up to kTightRestarts of the start search's other
-// candidates, each through every stage; a try judged right that leaves at most kTightCloser times
-// as much of the scan that far off replaces it (restart_if_off_closely()). On the pose library
+// is tried again: the limbs searched from it, each arm turned over (turn_arm_over), then up to
+// kTightRestarts of the start search's other candidates, each through every stage; a try judged
+// right that leaves at most kTightCloser times as much of the scan that far off replaces it
+// (restart_if_off_closely()). On the pose library
 // (MakeHuman people, 192 fits) 6 fits were tried again and 3 replaced (two silent failures to
 // successes, one 30 -> 18 mm), none made worse; at 1.2 % instead of 1.8 a third of the fits were
 // tried again for one success more (docs/fitting.md).
@@ -523,7 +524,10 @@ private:
             ++restarts;
             p_.update_kinematics();
             const double t = p_.share_beyond_plane(0, kTightDistance, kTightCap);
-            if (t < kTightCloser * best.off && judge(p_, 0).acceptable()) best = {p_.shape(), p_.states(), c, t};
+            // Never a converged fit traded for one that did not converge: the fit would then be
+            // reported failed for a retry (the model's own squat with the arms raised: 5.50 mm
+            // converged -> 8.40 mm unconverged, an arm turned over).
+            if (t < kTightCloser * best.off && (c || !best.converged) && judge(p_, 0).acceptable()) best = {p_.shape(), p_.states(), c, t};
             p_.shape() = best.shape;
             p_.states() = best.states;
             p_.update_kinematics();
