@@ -400,6 +400,18 @@ double FitProblem::share_beyond_plane(uint32_t f, double distance, double cap) {
     return n ? double(far) / double(n) : 0;
 }
 
+std::vector<double> FitProblem::region_shares_beyond_plane(uint32_t f, double distance, double cap, const std::vector<uint8_t>& regions,
+                                                           std::size_t region_count) {
+    std::vector<double> far(region_count, 0.0), near(region_count, 0.0);
+    visit_scan_nearest(f, cap, [&](const Vector3d& p, uint32_t v, double) {
+        if (v == GridIndex::kNone || v >= regions.size() || regions[v] >= region_count) return;
+        near[regions[v]] += 1;
+        far[regions[v]] += std::abs(posed_normals_[v].dot(p - posed_[v])) > distance;
+    });
+    for (std::size_t r = 0; r < region_count; ++r) far[r] = near[r] > 0 ? far[r] / near[r] : 0.0;
+    return far;
+}
+
 // Each scan point's distance to its nearest posed vertex (or along that vertex's normal), capped;
 // the mean over the frame's points.
 double FitProblem::scan_distance_to_fit(uint32_t f, double cap, bool along_normal) {

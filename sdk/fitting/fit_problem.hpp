@@ -110,6 +110,11 @@ public:
     // posed vertex's normal (every vertex; none within `cap` counts as farther): how much of the
     // scan a fit leaves a little way off, tighter than the judgement's loose share.
     double share_beyond_plane(uint32_t f, double distance, double cap);
+    // The same counted by the region of each point's nearest vertex (judgement.hpp's regions,
+    // vertex_regions(): `regions[v]` below `region_count`): each region's far points over the
+    // points nearest it.
+    std::vector<double> region_shares_beyond_plane(uint32_t f, double distance, double cap, const std::vector<uint8_t>& regions,
+                                                   std::size_t region_count);
     // Frame f's posed vertex sample (vertex_sample() order) and each sample's body region
     // (judgement.hpp), for judging a fit.
     const std::vector<Vector3d>& posed_sample(uint32_t f);
