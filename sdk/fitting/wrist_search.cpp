@@ -23,6 +23,13 @@ constexpr double kCap = 0.05, kModelCap = 0.02;
 constexpr double kMinGain = 0.05;
 constexpr std::size_t kSamples = 1500;
 
+// The wrist on an elbow: the hand joint whose parent it is; lin.J when the rig has none.
+uint32_t wrist_on(const LinearModel& lin, std::size_t elbow) {
+    for (uint32_t j = 0; j < lin.J; ++j)
+        if (lin.roles[j].part == anatomy::BodyPart::Hand && lin.chains[j].size() > 1 && lin.chains[j][1] == elbow) return j;
+    return lin.J;
+}
+
 }  // namespace
 
 bool search_wrists(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
@@ -35,9 +42,7 @@ bool search_wrists(Kinematics& kin, Body& body, FitState& state, const CloudView
         const int64_t elbow = anatomy::find_limb_joint(roles, anatomy::BodyPart::Arm, side, anatomy::LimbJoint::Middle);
         if (elbow < 0) continue;
         const std::size_t je = std::size_t(elbow);
-        std::size_t jw = lin.J;  // the wrist: the hand joint on the elbow
-        for (uint32_t j = 0; j < lin.J; ++j)
-            if (roles[j].part == anatomy::BodyPart::Hand && lin.chains[j].size() > 1 && lin.chains[j][1] == je) jw = j;
+        const std::size_t jw = wrist_on(lin, je);
         if (jw == lin.J || !limits[je].limited || !limits[jw].limited) continue;
         const anatomy::JointLimit &le = limits[je], &lw = limits[jw];
         kin.update(state, false);
@@ -88,9 +93,7 @@ bool turn_arm_over(Kinematics& kin, FitState& state, anatomy::Side side) {
     const int64_t upper = anatomy::find_limb_joint(lin.roles, anatomy::BodyPart::Arm, side, anatomy::LimbJoint::Upper);
     const int64_t elbow = anatomy::find_limb_joint(lin.roles, anatomy::BodyPart::Arm, side, anatomy::LimbJoint::Middle);
     if (upper < 0 || elbow < 0) return false;
-    uint32_t wrist = lin.J;  // the hand joint on the elbow
-    for (uint32_t j = 0; j < lin.J; ++j)
-        if (lin.roles[j].part == anatomy::BodyPart::Hand && lin.chains[j].size() > 1 && lin.chains[j][1] == uint32_t(elbow)) wrist = j;
+    const uint32_t wrist = wrist_on(lin, std::size_t(elbow));
     if (wrist == lin.J) return false;
     kin.update(state, false);
     const Vector3d line = kin.joint_position(wrist) - kin.joint_position(uint32_t(upper));
