@@ -438,10 +438,15 @@ LimbsInside FitProblem::limbs_inside(uint32_t f) {
 
 const std::vector<uint8_t>& FitProblem::sample_regions() {
     if (sample_regions_.empty()) {
-        const std::vector<uint8_t> regions = vertex_regions(lin_);
+        const std::vector<uint8_t>& regions = vertex_regions();
         for (uint32_t v : vertex_sample_) sample_regions_.push_back(regions[v]);
     }
     return sample_regions_;
+}
+
+const std::vector<uint8_t>& FitProblem::vertex_regions() {
+    if (vertex_regions_.empty()) vertex_regions_ = fitting::vertex_regions(lin_);
+    return vertex_regions_;
 }
 
 }  // namespace ssc::fitting

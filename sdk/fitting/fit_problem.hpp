@@ -119,6 +119,8 @@ public:
     // (judgement.hpp), for judging a fit.
     const std::vector<Vector3d>& posed_sample(uint32_t f);
     const std::vector<uint8_t>& sample_regions();
+    // Every model vertex's body region (judgement.hpp's vertex_regions()), built when needed.
+    const std::vector<uint8_t>& vertex_regions();
     // How far frame f's posed surface passes through itself (interpenetration.hpp).
     LimbsInside limbs_inside(uint32_t f);
 
@@ -159,6 +161,7 @@ private:
     std::vector<double> shape_;
     std::vector<FitState> states_;
     std::vector<uint8_t> sample_regions_;  // judgement.hpp's region of each, built when needed
+    std::vector<uint8_t> vertex_regions_;  // the same for every vertex
     std::unique_ptr<InterpenetrationTest> inside_test_;  // built when needed
     std::vector<uint32_t> vertex_sample_;  // area-uniform model vertices (model-to-scan, explained measure)
     std::vector<Vector3d> posed_, posed_normals_, subset_posed_, subset_normals_;

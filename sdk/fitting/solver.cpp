@@ -522,7 +522,7 @@ private:
         // ... and only when an arm holds it (kTightArm): what the tries below mend is an arm placed
         // wrong. A scan's own bumps (hair, clothes; the tests' simulated bumps) leave a head or a
         // leg off and would cost four fits' time for nothing.
-        const std::vector<double> regions = p_.region_shares_beyond_plane(0, kTightDistance, kTightCap, vertex_regions(p_.linear()), kBodyRegionCount);
+        const std::vector<double> regions = p_.region_shares_beyond_plane(0, kTightDistance, kTightCap, p_.vertex_regions(), kBodyRegionCount);
         if (std::max(regions[std::size_t(BodyRegion::LeftArm)], regions[std::size_t(BodyRegion::RightArm)]) <= kTightArm) return converged;
         struct Kept {
             std::vector<double> shape;

@@ -51,6 +51,7 @@
 #include "anatomy/named_poses.hpp"
 #include "common/rigid.hpp"
 #include "fitting/fitter.hpp"
+#include "fitting/grid_index.hpp"
 #include "fitting/interpenetration.hpp"
 #include "fitting/judgement.hpp"
 #include "fitting/nearest.hpp"
@@ -264,6 +265,26 @@ std::vector<double> scan_beyond(const std::vector<Eigen::Vector3d>& fit, const s
     }
     for (double& x : share) x /= double(std::max<std::size_t>(points.size(), 1));
     return share;
+}
+
+// Per body region (fitting::BodyRegion: head, trunk, arms, legs), the share of the scan points
+// whose nearest fitted vertex lies in it that are farther than `distance` from the fit's surface:
+// an arm placed wrong leaves its own points a little way off, scanner noise every region alike.
+std::array<double, fitting::kBodyRegionCount> region_beyond(const std::vector<Eigen::Vector3d>& fit, const std::vector<uint32_t>& triangles,
+                                                             const std::vector<uint8_t>& regions, const std::vector<Eigen::Vector3d>& points,
+                                                             double distance) {
+    const SurfaceDistance surface(fit, triangles);
+    fitting::GridIndex index(0.02);
+    index.build(fit);
+    std::array<double, fitting::kBodyRegionCount> far{}, near{};
+    for (const Eigen::Vector3d& q : points) {
+        const uint32_t v = index.nearest(q, 0.1, nullptr);
+        if (v == fitting::GridIndex::kNone || regions[v] >= fitting::kBodyRegionCount) continue;
+        near[regions[v]] += 1;
+        far[regions[v]] += surface(q) > distance;
+    }
+    for (std::size_t r = 0; r < far.size(); ++r) far[r] = near[r] > 0 ? far[r] / near[r] : 0;
+    return far;
 }
 
 // How far a fitted part lies from the truth's, and how much of that its placement explains: the
@@ -859,6 +880,7 @@ int main(int argc, char** argv) {
         std::vector<std::string> captions;
         std::uniform_int_distribution<uint32_t> point_count(20000, 60000);
         const HandContact hand_contact(lin);
+        const std::vector<uint8_t> vertex_regions = fitting::vertex_regions(lin);
         const std::array<std::vector<std::size_t>, 2> hands = hand_vertices(model);
         for (const simulation::LibraryPose& lp : simulation::pose_library()) {
             // --pose: the other poses are drawn and scanned, not fitted, so each trial of this
@@ -956,6 +978,9 @@ int main(int argc, char** argv) {
                                 lp.name.c_str(), t, head.error * 1e3, head.aligned_error * 1e3, head.turn_degrees, head.shift * 1e3, head.surface * 1e3);
                     const std::vector<double> beyond = scan_beyond(fv, triangles, frame.clouds[0].points, {0.008, 0.012, 0.02});
                     std::printf("  %s trial %d: scan beyond 8 / 12 / 20 mm of the fit %.4f %.4f %.4f\n", lp.name.c_str(), t, beyond[0], beyond[1], beyond[2]);
+                    const auto by_region = region_beyond(fv, triangles, vertex_regions, frame.clouds[0].points, 0.008);
+                    std::printf("  %s trial %d: scan beyond 8 mm by region (head, trunk, arms, legs) %.4f %.4f %.4f %.4f %.4f %.4f\n", lp.name.c_str(), t,
+                                by_region[0], by_region[1], by_region[2], by_region[3], by_region[4], by_region[5]);
                     const auto contact_fit = hand_contact.measure(fv, 0.015), contact_truth = hand_contact.measure(truth.vertices, 0.015);
                     std::printf("  %s trial %d: hands in contact (fit) %.2f %.2f (truth) %.2f %.2f\n", lp.name.c_str(), t, contact_fit[0], contact_fit[1],
                                 contact_truth[0], contact_truth[1]);
