@@ -267,24 +267,34 @@ std::vector<double> scan_beyond(const std::vector<Eigen::Vector3d>& fit, const s
     return share;
 }
 
-// Per body region (fitting::BodyRegion: head, trunk, arms, legs), the share of the scan points
-// whose nearest fitted vertex lies in it that are farther than `distance` from the fit's surface:
-// an arm placed wrong leaves its own points a little way off, scanner noise every region alike.
-std::array<double, fitting::kBodyRegionCount> region_beyond(const std::vector<Eigen::Vector3d>& fit, const std::vector<uint32_t>& triangles,
-                                                             const std::vector<uint8_t>& regions, const std::vector<Eigen::Vector3d>& points,
-                                                             double distance) {
-    const SurfaceDistance surface(fit, triangles);
+// Per body region (fitting::BodyRegion: head, trunk, arms, legs), of the scan points whose nearest
+// fitted vertex lies in it: the share farther than `distance` from the fit along that vertex's
+// normal, and of those the share on the side less of them lie (0: all in front of the surface or
+// all behind it, as on a bump; an arm placed wrong leaves its points on both sides).
+struct RegionBeyond {
+    std::array<double, fitting::kBodyRegionCount> share{}, balance{};
+};
+RegionBeyond region_beyond(const std::vector<Eigen::Vector3d>& fit, const std::vector<uint32_t>& triangles, const std::vector<uint8_t>& regions,
+                           const std::vector<Eigen::Vector3d>& points, double distance) {
+    const std::vector<Eigen::Vector3d> normals = registration::vertex_normals(fit, triangles);
     fitting::GridIndex index(0.02);
     index.build(fit);
-    std::array<double, fitting::kBodyRegionCount> far{}, near{};
+    std::array<double, fitting::kBodyRegionCount> near{}, front{}, behind{};
     for (const Eigen::Vector3d& q : points) {
-        const uint32_t v = index.nearest(q, 0.1, nullptr);
+        const uint32_t v = index.nearest(q, 0.05, nullptr);
         if (v == fitting::GridIndex::kNone || regions[v] >= fitting::kBodyRegionCount) continue;
+        const double d = normals[v].dot(q - fit[v]);
         near[regions[v]] += 1;
-        far[regions[v]] += surface(q) > distance;
+        front[regions[v]] += d > distance;
+        behind[regions[v]] += d < -distance;
     }
-    for (std::size_t r = 0; r < far.size(); ++r) far[r] = near[r] > 0 ? far[r] / near[r] : 0;
-    return far;
+    RegionBeyond r;
+    for (std::size_t g = 0; g < near.size(); ++g) {
+        const double far = front[g] + behind[g];
+        r.share[g] = near[g] > 0 ? far / near[g] : 0;
+        r.balance[g] = far > 0 ? std::min(front[g], behind[g]) / far : 0;
+    }
+    return r;
 }
 
 // How far a fitted part lies from the truth's, and how much of that its placement explains: the
@@ -978,9 +988,12 @@ int main(int argc, char** argv) {
                                 lp.name.c_str(), t, head.error * 1e3, head.aligned_error * 1e3, head.turn_degrees, head.shift * 1e3, head.surface * 1e3);
                     const std::vector<double> beyond = scan_beyond(fv, triangles, frame.clouds[0].points, {0.008, 0.012, 0.02});
                     std::printf("  %s trial %d: scan beyond 8 / 12 / 20 mm of the fit %.4f %.4f %.4f\n", lp.name.c_str(), t, beyond[0], beyond[1], beyond[2]);
-                    const auto by_region = region_beyond(fv, triangles, vertex_regions, frame.clouds[0].points, 0.008);
-                    std::printf("  %s trial %d: scan beyond 8 mm by region (head, trunk, arms, legs) %.4f %.4f %.4f %.4f %.4f %.4f\n", lp.name.c_str(), t,
-                                by_region[0], by_region[1], by_region[2], by_region[3], by_region[4], by_region[5]);
+                    const RegionBeyond by_region = region_beyond(fv, triangles, vertex_regions, frame.clouds[0].points, 0.008);
+                    std::printf("  %s trial %d: scan beyond 8 mm by region (head, trunk, arms, legs) %.4f %.4f %.4f %.4f %.4f %.4f, on the lesser side "
+                                "%.2f %.2f %.2f %.2f %.2f %.2f\n",
+                                lp.name.c_str(), t, by_region.share[0], by_region.share[1], by_region.share[2], by_region.share[3], by_region.share[4],
+                                by_region.share[5], by_region.balance[0], by_region.balance[1], by_region.balance[2], by_region.balance[3],
+                                by_region.balance[4], by_region.balance[5]);
                     const auto contact_fit = hand_contact.measure(fv, 0.015), contact_truth = hand_contact.measure(truth.vertices, 0.015);
                     std::printf("  %s trial %d: hands in contact (fit) %.2f %.2f (truth) %.2f %.2f\n", lp.name.c_str(), t, contact_fit[0], contact_fit[1],
                                 contact_truth[0], contact_truth[1]);
