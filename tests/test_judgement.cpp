@@ -5,6 +5,7 @@
 #include "anatomy/named_poses.hpp"
 #include "fitting/fit_problem.hpp"
 #include "fitting/judgement.hpp"
+#include "fitting/wrist_search.hpp"
 #include "simulation/depth_camera.hpp"
 #include "simulation/pose_library.hpp"
 #include "simulation/simulate.hpp"
@@ -283,4 +284,69 @@ TEST_CASE("bumps the model cannot hold leave a scan a little way off, but not at
     CHECK(off > fitting::kRetryTight);
     CHECK(std::max(shares[std::size_t(fitting::BodyRegion::LeftArm)], shares[std::size_t(fitting::BodyRegion::RightArm)]) < 0.04);
     CHECK(*std::max_element(shares.begin(), shares.end()) > 0.04);  // the bumps' own region
+}
+
+TEST_CASE("an arm placed wrong as a whole is judged off its points once the fit is finished; bumps on an arm are not", "[fitting][judgement]") {
+    // A fit reported converged with an arm turned over (bent over with the arms raised, 16 mm on the
+    // pose library) passes every other check: the arm lies within 4 cm of the scan, the scan within
+    // 2.5 cm of the fit. Its own points lie a little way off, on both sides of its surface: over
+    // kArmOffShare beyond kTightDistance, over kArmOffRatio times the trunk's share, over
+    // kArmOffBothSides of them on the lesser side. Judged so only when finished (judge(..., true)).
+    const Model& m = test_model();
+    const fitting::LinearModel lin(m, m.component_count());
+    const std::size_t left = std::size_t(fitting::BodyRegion::LeftArm), right_arm = std::size_t(fitting::BodyRegion::RightArm);
+    for (const char* pose : {"boxing_guard", "hands_on_belly", "a_pose"}) {
+        std::mt19937 rng(11);
+        const auto truth = body_in(m, pose_of(m, pose), rng);
+        fitting::Frame frame;
+        frame.clouds.push_back(booth(m, truth, rng));
+        fitting::FitProblem p(lin, {frame}, fitting::FitOptions{}, nullptr);
+        const auto judged = [&](const fitting::FitState& s, bool finished) {
+            p.shape() = s.shape;
+            p.states()[0] = s;
+            p.update_kinematics(false);
+            return fitting::judge(p, 0, finished);
+        };
+        const fitting::Judgement right = judged(state_of(lin, truth), true);
+        // The left arm turned over about its own line: the wrist stays, the elbow swings round.
+        fitting::FitState turned = state_of(lin, truth);
+        REQUIRE(fitting::turn_arm_over(p.kin(0), turned, anatomy::Side::Left));
+        const fitting::Judgement unfinished = judged(turned, false), wrong = judged(turned, true);
+        INFO(pose << ": the left arm's points beyond 8 mm " << right.off_points[left] << " right, " << wrong.off_points[left] << " turned over ("
+                  << wrong.off_points_balance[left] << " on the lesser side): " << wrong.describe(m));
+        CHECK(right.acceptable());
+        CHECK(right.off_points[left] < 0.02);
+        CHECK_FALSE(wrong.acceptable());
+        CHECK(wrong.off_points[left] > 2 * fitting::kArmOffShare);
+        CHECK(wrong.off_points_balance[left] > fitting::kArmOffBothSides);
+        CHECK(unfinished.problem != fitting::FitProblemKind::ArmOffPoints);
+        // Hands on the belly turned over leave 3 % of the scan unexplained and an A pose's arm
+        // goes 75 degrees past its range, said first; the fists at the chin show nothing else.
+        if (std::string(pose) == "boxing_guard") {
+            CHECK(wrong.problem == fitting::FitProblemKind::ArmOffPoints);
+            CHECK(wrong.region == int32_t(left));
+            CHECK(wrong.describe(m).find("left arm lies off its points") != std::string::npos);
+            CHECK(unfinished.acceptable());
+        }
+    }
+    // Clothes or a watch: six bumps of 1-2 cm over 4-10 cm on the body, ten draws; in draw 7 one
+    // covers 23 % of the left arm's points beyond 8 mm, all on one side: a right fit all the same.
+    double bumpiest = 0;
+    for (uint32_t seed = 0; seed < 10; ++seed) {
+        std::mt19937 rng(100 + seed);
+        auto bumpy = body_in(m, pose_of(m, "a_pose"), rng);
+        const fitting::FitState s = state_of(lin, bumpy);
+        simulation::add_bumps(bumpy, m, 6, rng);
+        fitting::Frame frame;
+        frame.clouds.push_back(booth(m, bumpy, rng));
+        fitting::FitProblem q(lin, {frame}, fitting::FitOptions{}, nullptr);
+        q.shape() = s.shape;
+        q.states()[0] = s;
+        q.update_kinematics(false);
+        const fitting::Judgement j = fitting::judge(q, 0, true);
+        bumpiest = std::max({bumpiest, j.off_points[left], j.off_points[right_arm]});
+        INFO("draw " << seed << ": " << j.describe(m) << "; arms' points beyond 8 mm " << j.off_points[left] << ", " << j.off_points[right_arm]);
+        CHECK(j.acceptable());
+    }
+    CHECK(bumpiest > 2 * fitting::kArmOffShare);  // a bump did cover an arm
 }

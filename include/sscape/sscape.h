@@ -1183,6 +1183,9 @@ typedef enum ssc_fit_problem {
     SSC_FIT_PROBLEM_LIMB_OFF_SCAN = 3,    /**< a limb, the head or the trunk lies where the scan saw empty space */
     SSC_FIT_PROBLEM_LIMB_INSIDE = 4,      /**< a forearm or lower leg passes through the body (over 20 % of it
                                                more than 2 cm inside the trunk, the head or another limb) */
+    SSC_FIT_PROBLEM_ARM_OFF_POINTS = 5,   /**< an arm lies off its own points, placed wrong as a whole: over 5 %
+                                               of the scan nearest it more than 8 mm from the fit, on both sides
+                                               of its surface (a bump of clothing lies on one) */
     SSC_FIT_PROBLEM_FORCE32 = 0x7FFFFFFF
 } ssc_fit_problem;
 
@@ -1206,8 +1209,8 @@ typedef struct ssc_fit_frame_report {
                                        its pose is its own best fit, not to be trusted. */
     uint32_t problem;             /**< ssc_fit_problem. */
     int32_t joint;                /**< The joint furthest past its range, or -1 when none is. */
-    int32_t region;               /**< ssc_body_region off the scan (LIMB_OFF_SCAN) or through the body
-                                       (LIMB_INSIDE), else the part most
+    int32_t region;               /**< ssc_body_region off the scan (LIMB_OFF_SCAN), off its points
+                                       (ARM_OFF_POINTS) or through the body (LIMB_INSIDE), else the part most
                                        outside the scan's extent (a partial scan), or -1. */
     float unexplained_fraction;   /**< As ssc_fit_report's, for this frame. */
     float joint_excess_degrees;   /**< How far that joint lies past its range. */

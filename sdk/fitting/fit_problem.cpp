@@ -412,6 +412,23 @@ std::vector<double> FitProblem::region_shares_beyond_plane(uint32_t f, double di
     return far;
 }
 
+void FitProblem::region_sides_beyond_plane(uint32_t f, double distance, double cap, const std::vector<uint8_t>& regions, double* share,
+                                           double* lesser_side, std::size_t region_count) {
+    std::vector<double> front(region_count, 0.0), behind(region_count, 0.0), near(region_count, 0.0);
+    visit_scan_nearest(f, cap, [&](const Vector3d& p, uint32_t v, double) {
+        if (v == GridIndex::kNone || v >= regions.size() || regions[v] >= region_count) return;
+        near[regions[v]] += 1;
+        const double d = posed_normals_[v].dot(p - posed_[v]);
+        front[regions[v]] += d > distance;
+        behind[regions[v]] += d < -distance;
+    });
+    for (std::size_t r = 0; r < region_count; ++r) {
+        const double far = front[r] + behind[r];
+        share[r] = near[r] > 0 ? far / near[r] : 0.0;
+        lesser_side[r] = far > 0 ? std::min(front[r], behind[r]) / far : 0.0;
+    }
+}
+
 // Each scan point's distance to its nearest posed vertex (or along that vertex's normal), capped;
 // the mean over the frame's points.
 double FitProblem::scan_distance_to_fit(uint32_t f, double cap, bool along_normal) {

@@ -115,6 +115,11 @@ public:
     // points nearest it.
     std::vector<double> region_shares_beyond_plane(uint32_t f, double distance, double cap, const std::vector<uint8_t>& regions,
                                                    std::size_t region_count);
+    // The same shares into share[region_count], and of each region's far points the share on the
+    // side of the surface fewer of them lie into lesser_side[region_count] (0: all in front, or all
+    // behind, as on a bump).
+    void region_sides_beyond_plane(uint32_t f, double distance, double cap, const std::vector<uint8_t>& regions, double* share,
+                                   double* lesser_side, std::size_t region_count);
     // Frame f's posed vertex sample (vertex_sample() order) and each sample's body region
     // (judgement.hpp), for judging a fit.
     const std::vector<Vector3d>& posed_sample(uint32_t f);

@@ -65,7 +65,7 @@ std::vector<uint8_t> vertex_regions(const LinearModel& lin) {
     return regions;
 }
 
-Judgement judge(FitProblem& p, uint32_t f) {
+Judgement judge(FitProblem& p, uint32_t f, bool finished) {
     Judgement J;
     const LinearModel& lin = p.linear();
     const FitState& state = p.states()[f];
@@ -126,6 +126,15 @@ Judgement judge(FitProblem& p, uint32_t f) {
         // A part missing from a scan (a hole) leaves the rest of the scan explained; a part placed
         // where the scan saw nothing has left its own points loosely explained elsewhere.
         if (worst > kOffScanShare && J.loose > kLooseShare) J.problem = FitProblemKind::LimbOffScan;
+        if (finished) {
+            p.region_sides_beyond_plane(f, kTightDistance, kTightCap, p.vertex_regions(), J.off_points.data(), J.off_points_balance.data(),
+                                        kBodyRegionCount);
+            const std::size_t left = std::size_t(BodyRegion::LeftArm), right = std::size_t(BodyRegion::RightArm);
+            for (const std::size_t arm : {left, right})
+                if (J.problem == FitProblemKind::None && J.off_points[arm] > kArmOffShare && J.off_points[arm] > kArmOffRatio * J.off_points[trunk] &&
+                    J.off_points_balance[arm] > kArmOffBothSides)
+                    J.problem = FitProblemKind::ArmOffPoints, J.region = int32_t(arm);
+        }
     }
     // A limb through the body, with or without a scan. The least of the problems: any other says
     // more about where the fit went wrong.
@@ -160,6 +169,10 @@ std::string Judgement::describe(const Model& model) const {
     case FitProblemKind::LimbInside:
         s << "the " << region_name(BodyRegion(inside_limb)) << " passes through the " << region_name(BodyRegion(inside_part)) << " ("
           << inside * 100 << " % of its " << (inside_limb >= int32_t(BodyRegion::LeftLeg) ? "lower leg" : "forearm") << " inside)";
+        break;
+    case FitProblemKind::ArmOffPoints:
+        s << "the " << region_name(BodyRegion(region)) << " lies off its points, placed wrong as a whole (" << off_points[std::size_t(region)] * 100
+          << " % of the scan nearest it over " << kTightDistance * 1000 << " mm from the fitted surface, on both sides of it)";
         break;
     case FitProblemKind::LimbOffScan:
         s << "the " << region_name(BodyRegion(region)) << " lies where the scan saw empty space (" << off_scan[std::size_t(region)] * 100

@@ -174,7 +174,7 @@ private:
         const std::size_t tried = p_.pair_queries();
         r.frames.clear();
         for (uint32_t f = 0; f < F_; ++f) {
-            const Judgement j = judge(p_, f);
+            const Judgement j = judge(p_, f, true);
             r.unexplained = std::max(r.unexplained, j.unexplained);
             FrameReport fr;
             fr.problem = j.problem;
@@ -538,7 +538,7 @@ private:
             // Never a converged fit traded for one that did not converge: the fit would then be
             // reported failed for a retry (the model's own squat with the arms raised: 5.50 mm
             // converged -> 8.40 mm unconverged, an arm turned over).
-            if (t < kTightCloser * best.off && (c || !best.converged) && judge(p_, 0).acceptable()) best = {p_.shape(), p_.states(), c, t};
+            if (t < kTightCloser * best.off && (c || !best.converged) && judge(p_, 0, true).acceptable()) best = {p_.shape(), p_.states(), c, t};
             p_.shape() = best.shape;
             p_.states() = best.states;
             p_.update_kinematics();
