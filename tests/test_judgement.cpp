@@ -286,7 +286,7 @@ TEST_CASE("bumps the model cannot hold leave a scan a little way off, but not at
     CHECK(*std::max_element(shares.begin(), shares.end()) > 0.04);  // the bumps' own region
 }
 
-TEST_CASE("an arm placed wrong as a whole is judged off its points once the fit is finished; bumps on an arm are not", "[fitting][judgement]") {
+TEST_CASE("an arm placed wrong as a whole is judged off its points once the fit is finished, bumps on an arm are not", "[fitting][judgement]") {
     // A fit reported converged with an arm turned over (bent over with the arms raised, 16 mm on the
     // pose library) passes every other check: the arm lies within 4 cm of the scan, the scan within
     // 2.5 cm of the fit. Its own points lie a little way off, on both sides of its surface: over
