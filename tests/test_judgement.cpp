@@ -41,15 +41,16 @@ fitting::FitState state_of(const fitting::LinearModel& lin, const simulation::Tr
     return s;
 }
 
-// Judges `state` as the fit of `cloud`.
-fitting::Judgement judge_state(const fitting::LinearModel& lin, const fitting::PointCloud& cloud, const fitting::FitState& state) {
+// Judges `state` as the fit of `cloud` (finished: as a fit returned, judge()'s own).
+fitting::Judgement judge_state(const fitting::LinearModel& lin, const fitting::PointCloud& cloud, const fitting::FitState& state,
+                               bool finished = false) {
     fitting::Frame frame;
     frame.clouds.push_back(cloud);
     fitting::FitProblem p(lin, {frame}, fitting::FitOptions{}, nullptr);
     p.shape() = state.shape;
     p.states()[0] = state;
     p.update_kinematics(false);
-    return fitting::judge(p, 0);
+    return fitting::judge(p, 0, finished);
 }
 
 simulation::TrueBody body_in(const Model& m, const std::vector<float>& pose, std::mt19937& rng) {
@@ -337,13 +338,7 @@ TEST_CASE("an arm placed wrong as a whole is judged off its points once the fit 
         auto bumpy = body_in(m, pose_of(m, "a_pose"), rng);
         const fitting::FitState s = state_of(lin, bumpy);
         simulation::add_bumps(bumpy, m, 6, rng);
-        fitting::Frame frame;
-        frame.clouds.push_back(booth(m, bumpy, rng));
-        fitting::FitProblem q(lin, {frame}, fitting::FitOptions{}, nullptr);
-        q.shape() = s.shape;
-        q.states()[0] = s;
-        q.update_kinematics(false);
-        const fitting::Judgement j = fitting::judge(q, 0, true);
+        const fitting::Judgement j = judge_state(lin, booth(m, bumpy, rng), s, true);
         bumpiest = std::max({bumpiest, j.off_points[left], j.off_points[right_arm]});
         INFO("draw " << seed << ": " << j.describe(m) << "; arms' points beyond 8 mm " << j.off_points[left] << ", " << j.off_points[right_arm]);
         CHECK(j.acceptable());
