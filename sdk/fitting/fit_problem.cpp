@@ -402,14 +402,9 @@ double FitProblem::share_beyond_plane(uint32_t f, double distance, double cap) {
 
 std::vector<double> FitProblem::region_shares_beyond_plane(uint32_t f, double distance, double cap, const std::vector<uint8_t>& regions,
                                                            std::size_t region_count) {
-    std::vector<double> far(region_count, 0.0), near(region_count, 0.0);
-    visit_scan_nearest(f, cap, [&](const Vector3d& p, uint32_t v, double) {
-        if (v == GridIndex::kNone || v >= regions.size() || regions[v] >= region_count) return;
-        near[regions[v]] += 1;
-        far[regions[v]] += std::abs(posed_normals_[v].dot(p - posed_[v])) > distance;
-    });
-    for (std::size_t r = 0; r < region_count; ++r) far[r] = near[r] > 0 ? far[r] / near[r] : 0.0;
-    return far;
+    std::vector<double> share(region_count, 0.0), lesser_side(region_count, 0.0);
+    region_sides_beyond_plane(f, distance, cap, regions, share.data(), lesser_side.data(), region_count);
+    return share;
 }
 
 void FitProblem::region_sides_beyond_plane(uint32_t f, double distance, double cap, const std::vector<uint8_t>& regions, double* share,
