@@ -1186,6 +1186,9 @@ typedef enum ssc_fit_problem {
     SSC_FIT_PROBLEM_ARM_OFF_POINTS = 5,   /**< an arm lies off its own points, placed wrong as a whole: over 5 %
                                                of the scan nearest it more than 8 mm from the fit, on both sides
                                                of its surface (a bump of clothing lies on one) */
+    SSC_FIT_PROBLEM_HAND_OFF_POINTS = 6,  /**< a hand lies off its own points, turned about the wrist or laid on
+                                               the body in another place: over 25 % of the scan nearest it more
+                                               than 8 mm from the fit (region names its arm) */
     SSC_FIT_PROBLEM_FORCE32 = 0x7FFFFFFF
 } ssc_fit_problem;
 
@@ -1210,7 +1213,8 @@ typedef struct ssc_fit_frame_report {
     uint32_t problem;             /**< ssc_fit_problem. */
     int32_t joint;                /**< The joint furthest past its range, or -1 when none is. */
     int32_t region;               /**< ssc_body_region off the scan (LIMB_OFF_SCAN), off its points
-                                       (ARM_OFF_POINTS) or through the body (LIMB_INSIDE), else the part most
+                                       (ARM_OFF_POINTS), the arm of a hand off its points (HAND_OFF_POINTS) or through
+                                       the body (LIMB_INSIDE), else the part most
                                        outside the scan's extent (a partial scan), or -1. */
     float unexplained_fraction;   /**< As ssc_fit_report's, for this frame. */
     float joint_excess_degrees;   /**< How far that joint lies past its range. */

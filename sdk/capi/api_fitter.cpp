@@ -1,5 +1,6 @@
 // Fitters: observations in, shape and per-frame pose out (sdk/fitting does the work).
 #include "fitting/fitted_segment_shape.hpp"
+#include "fitting/judgement.hpp"
 #include "guard.hpp"
 #include "handles.hpp"
 
@@ -8,6 +9,17 @@
 
 using namespace ssc;
 using namespace ssc::capi;
+
+// A frame report's problem and region go out as the library's own values.
+static_assert(uint32_t(fitting::FitProblemKind::JointPastRange) == SSC_FIT_PROBLEM_JOINT_PAST_RANGE &&
+                  uint32_t(fitting::FitProblemKind::ScanUnexplained) == SSC_FIT_PROBLEM_SCAN_UNEXPLAINED &&
+                  uint32_t(fitting::FitProblemKind::LimbOffScan) == SSC_FIT_PROBLEM_LIMB_OFF_SCAN &&
+                  uint32_t(fitting::FitProblemKind::LimbInside) == SSC_FIT_PROBLEM_LIMB_INSIDE &&
+                  uint32_t(fitting::FitProblemKind::ArmOffPoints) == SSC_FIT_PROBLEM_ARM_OFF_POINTS &&
+                  uint32_t(fitting::FitProblemKind::HandOffPoints) == SSC_FIT_PROBLEM_HAND_OFF_POINTS,
+              "ssc_fit_problem is fitting::FitProblemKind");
+static_assert(int32_t(fitting::BodyRegion::Head) == SSC_BODY_REGION_HEAD && int32_t(fitting::BodyRegion::RightLeg) == SSC_BODY_REGION_RIGHT_LEG,
+              "ssc_body_region is fitting::BodyRegion");
 
 namespace {
 

@@ -408,7 +408,7 @@ std::vector<double> FitProblem::region_shares_beyond_plane(uint32_t f, double di
 }
 
 void FitProblem::region_sides_beyond_plane(uint32_t f, double distance, double cap, const std::vector<uint8_t>& regions, double* share,
-                                           double* lesser_side, std::size_t region_count) {
+                                           double* lesser_side, std::size_t region_count, double* near_count) {
     std::vector<double> front(region_count, 0.0), behind(region_count, 0.0), near(region_count, 0.0);
     visit_scan_nearest(f, cap, [&](const Vector3d& p, uint32_t v, double) {
         if (v == GridIndex::kNone || v >= regions.size() || regions[v] >= region_count) return;
@@ -421,6 +421,7 @@ void FitProblem::region_sides_beyond_plane(uint32_t f, double distance, double c
         const double far = front[r] + behind[r];
         share[r] = near[r] > 0 ? far / near[r] : 0.0;
         lesser_side[r] = far > 0 ? std::min(front[r], behind[r]) / far : 0.0;
+        if (near_count) near_count[r] = near[r];
     }
 }
 
@@ -459,6 +460,11 @@ const std::vector<uint8_t>& FitProblem::sample_regions() {
 const std::vector<uint8_t>& FitProblem::vertex_regions() {
     if (vertex_regions_.empty()) vertex_regions_ = fitting::vertex_regions(lin_);
     return vertex_regions_;
+}
+
+const std::vector<uint8_t>& FitProblem::vertex_hands() {
+    if (vertex_hands_.empty()) vertex_hands_ = fitting::vertex_hands(lin_);
+    return vertex_hands_;
 }
 
 }  // namespace ssc::fitting

@@ -117,15 +117,17 @@ public:
                                                    std::size_t region_count);
     // The same shares into share[region_count], and of each region's far points the share on the
     // side of the surface fewer of them lie into lesser_side[region_count] (0: all in front, or all
-    // behind, as on a bump).
+    // behind, as on a bump); the count of points nearest each region into near_count when given.
     void region_sides_beyond_plane(uint32_t f, double distance, double cap, const std::vector<uint8_t>& regions, double* share,
-                                   double* lesser_side, std::size_t region_count);
+                                   double* lesser_side, std::size_t region_count, double* near_count = nullptr);
     // Frame f's posed vertex sample (vertex_sample() order) and each sample's body region
     // (judgement.hpp), for judging a fit.
     const std::vector<Vector3d>& posed_sample(uint32_t f);
     const std::vector<uint8_t>& sample_regions();
     // Every model vertex's body region (judgement.hpp's vertex_regions()), built when needed.
     const std::vector<uint8_t>& vertex_regions();
+    // Every model vertex's hand (judgement.hpp's vertex_hands(): 0 left, 1 right, else none).
+    const std::vector<uint8_t>& vertex_hands();
     // How far frame f's posed surface passes through itself (interpenetration.hpp).
     LimbsInside limbs_inside(uint32_t f);
 
@@ -167,6 +169,7 @@ private:
     std::vector<FitState> states_;
     std::vector<uint8_t> sample_regions_;  // judgement.hpp's region of each, built when needed
     std::vector<uint8_t> vertex_regions_;  // the same for every vertex
+    std::vector<uint8_t> vertex_hands_;    // each vertex's hand
     std::unique_ptr<InterpenetrationTest> inside_test_;  // built when needed
     std::vector<uint32_t> vertex_sample_;  // area-uniform model vertices (model-to-scan, explained measure)
     std::vector<Vector3d> posed_, posed_normals_, subset_posed_, subset_normals_;

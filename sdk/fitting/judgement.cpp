@@ -65,7 +65,18 @@ std::vector<uint8_t> vertex_regions(const LinearModel& lin) {
     return regions;
 }
 
-Judgement judge(FitProblem& p, uint32_t f, bool finished) {
+std::vector<uint8_t> vertex_hands(const LinearModel& lin) {
+    std::vector<uint8_t> hands(lin.V, 255);
+    for (uint32_t v = 0; v < lin.V; ++v) {
+        const uint32_t j = dominant_joint(lin.model.data(), v);
+        if (j >= lin.roles.size() || lin.roles[j].part != anatomy::BodyPart::Hand) continue;
+        if (lin.roles[j].side == anatomy::Side::Left) hands[v] = 0;
+        if (lin.roles[j].side == anatomy::Side::Right) hands[v] = 1;
+    }
+    return hands;
+}
+
+Judgement judge(FitProblem& p, uint32_t f, bool finished, bool hands) {
     Judgement J;
     const LinearModel& lin = p.linear();
     const FitState& state = p.states()[f];
@@ -134,6 +145,29 @@ Judgement judge(FitProblem& p, uint32_t f, bool finished) {
                 if (J.problem == FitProblemKind::None && J.off_points[arm] > kArmOffShare && J.off_points[arm] > kArmOffRatio * J.off_points[trunk] &&
                     J.off_points_balance[arm] > kArmOffBothSides)
                     J.problem = FitProblemKind::ArmOffPoints, J.region = int32_t(arm);
+            std::array<double, 2> hand_balance{}, hand_points{};
+            if (hands)
+                p.region_sides_beyond_plane(f, kTightDistance, kTightCap, p.vertex_hands(), J.hand_off_points.data(), hand_balance.data(), 2,
+                                            hand_points.data());
+            if (hands) {
+                // The hand's own surface off the scan: a bump (clothes, a watch) lies over a hand
+                // whose surface stays under it; a hand turned sticks out of its points.
+                const std::vector<uint8_t>& hand_of = p.vertex_hands();
+                const std::vector<uint32_t>& sample = p.vertex_sample();
+                std::array<double, 2> samples{}, away{};
+                for (std::size_t s = 0; s < posed.size(); ++s) {
+                    const uint8_t h = hand_of[sample[s]];
+                    if (h > 1) continue;
+                    samples[h] += 1;
+                    away[h] += fd.scan_grid.nearest(posed[s], kLooseDistance, nullptr) == GridIndex::kNone;
+                }
+                for (std::size_t h = 0; h < 2; ++h) J.hand_off_surface[h] = samples[h] > 0 ? away[h] / samples[h] : 0.0;
+            }
+            for (std::size_t h = 0; h < 2; ++h)
+                if (J.problem == FitProblemKind::None && hand_points[h] >= kHandMinPoints && J.hand_off_points[h] > kHandOffShare &&
+                    J.hand_off_points[h] > kArmOffRatio * J.off_points[trunk] && J.hand_off_surface[h] > kHandOffSurface)
+                    J.problem = FitProblemKind::HandOffPoints, J.hand = int32_t(h),
+                    J.region = int32_t(h == 0 ? BodyRegion::LeftArm : BodyRegion::RightArm);
         }
     }
     // A limb through the body, with or without a scan. The least of the problems: any other says
@@ -173,6 +207,10 @@ std::string Judgement::describe(const Model& model) const {
     case FitProblemKind::ArmOffPoints:
         s << "the " << region_name(BodyRegion(region)) << " lies off its points, placed wrong as a whole (" << off_points[std::size_t(region)] * 100
           << " % of the scan nearest it over " << kTightDistance * 1000 << " mm from the fitted surface, on both sides of it)";
+        break;
+    case FitProblemKind::HandOffPoints:
+        s << "the " << (hand == 0 ? "left" : "right") << " hand lies off its points, turned or placed wrong (" << hand_off_points[std::size_t(hand)] * 100
+          << " % of the scan nearest it over " << kTightDistance * 1000 << " mm from the fitted surface)";
         break;
     case FitProblemKind::LimbOffScan:
         s << "the " << region_name(BodyRegion(region)) << " lies where the scan saw empty space (" << off_scan[std::size_t(region)] * 100

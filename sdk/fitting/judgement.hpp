@@ -36,7 +36,7 @@ constexpr std::size_t kBodyRegionCount = 6;
 const char* region_name(BodyRegion region);  // "head", "trunk", "left arm", ...
 
 // What is wrong with a fit, the first that applies in this order (None: nothing).
-enum class FitProblemKind : uint8_t { None = 0, JointPastRange = 1, ScanUnexplained = 2, LimbOffScan = 3, LimbInside = 4, ArmOffPoints = 5 };
+enum class FitProblemKind : uint8_t { None = 0, JointPastRange = 1, ScanUnexplained = 2, LimbOffScan = 3, LimbInside = 4, ArmOffPoints = 5, HandOffPoints = 6 };
 
 // Tolerances of the judgement (see judgement.cpp for the measurements behind them).
 // A joint may lie this far past its range (radians) before the fit is judged wrong: the ranges are
@@ -82,6 +82,20 @@ constexpr double kRetryTight = 0.018;
 constexpr double kArmOffShare = 0.05;
 constexpr double kArmOffRatio = 3.0;
 constexpr double kArmOffBothSides = 0.05;
+// A finished fit's hand lies off its own points (turned about the wrist or the forearm, laid on
+// the body in another place) when, of the scan points nearest it (at least kHandMinPoints), over
+// kHandOffShare lie beyond kTightDistance from the fit, over kArmOffRatio times the trunk's
+// share, and over kHandOffSurface of the hand's own surface samples have no scan point within
+// 2.5 cm. A hand differs from the model's more than an arm does (fingers, closure), so its share
+// is set well above the good fits'; no side test: a hand's points lie around thin fingers. The
+// surface test tells a bump from a turn: in ten simulated bumpy scans bumps over a hand left 28
+// and 41 % of its points beyond 8 mm, but at most 0.9 % of its surface away from the scan; hands
+// turned a quarter turn 27-60 %. Pose library (MakeHuman people, 4 trials): successes' hands at
+// most 20 % of their points; the hands of silent failures, turned 30-105 degrees, 29-52 %, one
+// of them raised over the head with 42 points nearest it (docs/fitting.md, "Judging a fit").
+constexpr double kHandOffShare = 0.25;
+constexpr double kHandMinPoints = 30;
+constexpr double kHandOffSurface = 0.10;
 // A forearm or lower leg with more than this share inside another part of the body
 // (interpenetration.hpp) passes through it (see judgement.cpp for the measurements).
 constexpr double kLimbInsideShare = 0.2;
@@ -109,7 +123,14 @@ struct Judgement {
     // Finished fits (judge(..., true)), per region: the share of the scan points nearest it beyond
     // kTightDistance, and of those the share on the side fewer of them lie.
     std::array<double, kBodyRegionCount> off_points{}, off_points_balance{};
-    int32_t region = -1;  // the region off the scan (LimbOffScan) or through the body (LimbInside), else the most unscanned one or -1
+    // Finished fits judged with their hands, per hand (0 left, 1 right): the same share for the
+    // scan points nearest it.
+    std::array<double, 2> hand_off_points{};
+    // ... and the share of its surface samples with no scan point within 2.5 cm.
+    std::array<double, 2> hand_off_surface{};
+    int32_t hand = -1;  // the hand off its points (HandOffPoints), else -1
+    int32_t region = -1;  // the region off the scan (LimbOffScan), off its points (ArmOffPoints), the arm of the hand off its
+                          // points (HandOffPoints), through the body (LimbInside), else the most unscanned one or -1
 
     bool acceptable() const { return problem == FitProblemKind::None; }
     // One line: what is wrong, where, by how much ("the left elbow lies 31 degrees past its range").
@@ -122,10 +143,15 @@ struct Judgement {
 // judged on their joints alone. finished: the fit as it will be returned, also judged for an arm
 // off its points (ArmOffPoints); before its last stages (the segments, the wrist search, the
 // tight retry) a good fit's arm may still lie that far off (three of the library's successes
-// were restarted for it and failed).
-Judgement judge(FitProblem& problem, uint32_t f, bool finished = false);
+// were restarted for it and failed). hands (with finished): also judged for a hand off its
+// points (HandOffPoints), for fits whose wrists and hands the fitter searched (a single frame
+// from its own start): a capture's tracked frames carry their hands over from the frame before,
+// and judging them there failed good frames whose refits went wrong (docs/fitting.md).
+Judgement judge(FitProblem& problem, uint32_t f, bool finished = false, bool hands = false);
 
 // Each model vertex's region (by its largest skinning weight's joint).
 std::vector<uint8_t> vertex_regions(const LinearModel& lin);
+// Each model vertex's hand by the same joint: 0 left, 1 right, 255 none.
+std::vector<uint8_t> vertex_hands(const LinearModel& lin);
 
 }  // namespace ssc::fitting

@@ -174,7 +174,7 @@ private:
         const std::size_t tried = p_.pair_queries();
         r.frames.clear();
         for (uint32_t f = 0; f < F_; ++f) {
-            const Judgement j = judge(p_, f, true);
+            const Judgement j = judge(p_, f, true, wrists_searched());
             r.unexplained = std::max(r.unexplained, j.unexplained);
             FrameReport fr;
             fr.problem = j.problem;
@@ -229,7 +229,7 @@ private:
             // the frames after them followed (capture benchmark: 78 -> 70 of 100 frames good).
             // A turned head is checked against the fit before it (keep_if_closer); then the wrists.
             if (si == Schedule::kFine && !cancelled) {
-                const bool automatic_start = F_ == 1 && searched_frames_ == 1;
+                const bool automatic_start = wrists_searched();
                 Stage again = stages[Schedule::kFine];
                 again.iterations = std::max<uint32_t>(2, again.iterations / 2);
                 bool fine_converged = converged;
@@ -367,6 +367,10 @@ private:
         }
         return opened;
     }
+
+    // A single frame from the fit's own start: its head and wrists are searched (fit_stages), and
+    // its hands judged (judge()'s hands).
+    bool wrists_searched() const { return F_ == 1 && searched_frames_ == 1; }
 
     // What restart_if_implausible() accepts of a frame: judgement.hpp's verdict.
     bool every_frame_acceptable() {
@@ -538,7 +542,8 @@ private:
             // Never a converged fit traded for one that did not converge: the fit would then be
             // reported failed for a retry (the model's own squat with the arms raised: 5.50 mm
             // converged -> 8.40 mm unconverged, an arm turned over).
-            if (t < kTightCloser * best.off && (c || !best.converged) && judge(p_, 0, true).acceptable()) best = {p_.shape(), p_.states(), c, t};
+            if (t < kTightCloser * best.off && (c || !best.converged) && judge(p_, 0, true, wrists_searched()).acceptable())
+                best = {p_.shape(), p_.states(), c, t};
             p_.shape() = best.shape;
             p_.states() = best.states;
             p_.update_kinematics();

@@ -271,18 +271,19 @@ std::vector<double> scan_beyond(const std::vector<Eigen::Vector3d>& fit, const s
 // fitted vertex lies in it: the share farther than `distance` from the fit along that vertex's
 // normal, and of those the share on the side less of them lie (0: all in front of the surface or
 // all behind it, as on a bump; an arm placed wrong leaves its points on both sides).
+constexpr std::size_t kPartCount = fitting::kBodyRegionCount + 2;  // the judgement's regions and the two hands
 struct RegionBeyond {
-    std::array<double, fitting::kBodyRegionCount> share{}, balance{};
+    std::array<double, kPartCount> share{}, balance{};
 };
 RegionBeyond region_beyond(const std::vector<Eigen::Vector3d>& fit, const std::vector<uint32_t>& triangles, const std::vector<uint8_t>& regions,
                            const std::vector<Eigen::Vector3d>& points, double distance) {
     const std::vector<Eigen::Vector3d> normals = registration::vertex_normals(fit, triangles);
     fitting::GridIndex index(0.02);
     index.build(fit);
-    std::array<double, fitting::kBodyRegionCount> near{}, front{}, behind{};
+    std::array<double, kPartCount> near{}, front{}, behind{};
     for (const Eigen::Vector3d& q : points) {
         const uint32_t v = index.nearest(q, 0.05, nullptr);
-        if (v == fitting::GridIndex::kNone || regions[v] >= fitting::kBodyRegionCount) continue;
+        if (v == fitting::GridIndex::kNone || regions[v] >= kPartCount) continue;
         const double d = normals[v].dot(q - fit[v]);
         near[regions[v]] += 1;
         front[regions[v]] += d > distance;
@@ -890,7 +891,11 @@ int main(int argc, char** argv) {
         std::vector<std::string> captions;
         std::uniform_int_distribution<uint32_t> point_count(20000, 60000);
         const HandContact hand_contact(lin);
-        const std::vector<uint8_t> vertex_regions = fitting::vertex_regions(lin);
+        // The judgement's regions with each hand a part of its own (6 left, 7 right).
+        std::vector<uint8_t> vertex_regions = fitting::vertex_regions(lin);
+        const std::vector<uint8_t> vertex_hands = fitting::vertex_hands(lin);
+        for (uint32_t v = 0; v < lin.V; ++v)
+            if (vertex_hands[v] < 2) vertex_regions[v] = uint8_t(fitting::kBodyRegionCount + vertex_hands[v]);
         const std::array<std::vector<std::size_t>, 2> hands = hand_vertices(model);
         for (const simulation::LibraryPose& lp : simulation::pose_library()) {
             // --pose: the other poses are drawn and scanned, not fitted, so each trial of this
@@ -989,11 +994,11 @@ int main(int argc, char** argv) {
                     const std::vector<double> beyond = scan_beyond(fv, triangles, frame.clouds[0].points, {0.008, 0.012, 0.02});
                     std::printf("  %s trial %d: scan beyond 8 / 12 / 20 mm of the fit %.4f %.4f %.4f\n", lp.name.c_str(), t, beyond[0], beyond[1], beyond[2]);
                     const RegionBeyond by_region = region_beyond(fv, triangles, vertex_regions, frame.clouds[0].points, 0.008);
-                    std::printf("  %s trial %d: scan beyond 8 mm by region (head, trunk, arms, legs) %.4f %.4f %.4f %.4f %.4f %.4f, on the lesser side "
-                                "%.2f %.2f %.2f %.2f %.2f %.2f\n",
+                    std::printf("  %s trial %d: scan beyond 8 mm by region (head, trunk, arms, legs, hands) %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f, on the lesser side "
+                                "%.2f %.2f %.2f %.2f %.2f %.2f %.2f %.2f\n",
                                 lp.name.c_str(), t, by_region.share[0], by_region.share[1], by_region.share[2], by_region.share[3], by_region.share[4],
-                                by_region.share[5], by_region.balance[0], by_region.balance[1], by_region.balance[2], by_region.balance[3],
-                                by_region.balance[4], by_region.balance[5]);
+                                by_region.share[5], by_region.share[6], by_region.share[7], by_region.balance[0], by_region.balance[1], by_region.balance[2],
+                                by_region.balance[3], by_region.balance[4], by_region.balance[5], by_region.balance[6], by_region.balance[7]);
                     const auto contact_fit = hand_contact.measure(fv, 0.015), contact_truth = hand_contact.measure(truth.vertices, 0.015);
                     std::printf("  %s trial %d: hands in contact (fit) %.2f %.2f (truth) %.2f %.2f\n", lp.name.c_str(), t, contact_fit[0], contact_fit[1],
                                 contact_truth[0], contact_truth[1]);

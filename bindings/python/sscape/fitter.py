@@ -19,7 +19,8 @@ _OPTIONS = {"shape_count", "fit_scale", "max_iterations", "landmark_sigma", "poi
 
 _FLAGS = ("converged", "implausible", "failed", "left_out")  # the reports' yes/no fields
 # ssc_fit_problem and ssc_body_region by name.
-_PROBLEMS = ("none", "joint_past_range", "scan_unexplained", "limb_off_scan", "limb_inside", "arm_off_points")
+_PROBLEMS = ("none", "joint_past_range", "scan_unexplained", "limb_off_scan", "limb_inside", "arm_off_points",
+             "hand_off_points")
 _REGIONS = ("head", "trunk", "left_arm", "right_arm", "left_leg", "right_leg")
 
 
@@ -203,9 +204,9 @@ class Fitter(Handle):
     def frame_report(self, frame: int = 0) -> Dict[str, object]:
         """How a frame's fit was judged, after solve(): failed (the fit did not find the person),
         left_out (failed, so kept out of the shared shape), problem ("none", "joint_past_range",
-        "scan_unexplained", "limb_off_scan", "limb_inside", "arm_off_points") and problem_text, the joint furthest past its range,
-        the region off the scan (or the most unscanned one), unscanned (parts a partial scan does
-        not show)."""
+        "scan_unexplained", "limb_off_scan", "limb_inside", "arm_off_points", "hand_off_points")
+        and problem_text, the joint furthest past its range, the region off the scan (or the most
+        unscanned one), unscanned (parts a partial scan does not show)."""
         r = FitFrameReport(struct_size=ctypes.sizeof(FitFrameReport))
         check(lib.ssc_fitter_get_frame_report(self.handle, frame, ctypes.byref(r)))
         return _frame_dict(r, self.model.joint_names)

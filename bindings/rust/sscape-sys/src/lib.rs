@@ -104,6 +104,7 @@ pub const SSC_FIT_PROBLEM_SCAN_UNEXPLAINED: ssc_fit_problem = 2;
 pub const SSC_FIT_PROBLEM_LIMB_OFF_SCAN: ssc_fit_problem = 3;
 pub const SSC_FIT_PROBLEM_LIMB_INSIDE: ssc_fit_problem = 4;
 pub const SSC_FIT_PROBLEM_ARM_OFF_POINTS: ssc_fit_problem = 5;
+pub const SSC_FIT_PROBLEM_HAND_OFF_POINTS: ssc_fit_problem = 6;
 pub const SSC_FIT_PROBLEM_FORCE32: ssc_fit_problem = 2147483647;
 
 pub type ssc_body_region = i32;
