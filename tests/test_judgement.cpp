@@ -356,7 +356,7 @@ TEST_CASE("a hand turned about its wrist is judged off its points once the fit i
     // Silent failures of the pose library had a hand turned 30-105 degrees about the wrist with
     // its arm on its points (hands 40-55 mm off): over kHandOffShare of the scan nearest the hand
     // lies beyond kTightDistance, and over kHandOffSurface of its surface away from the scan. Judged so only when finished, on fits whose hands were searched
-    // (judge()'s hands); the region is the hand's arm.
+    // (judge()'s hands) in scans taken all round; the region is the hand's arm.
     // (A hand turned into empty space leaves the scan unexplained or lies where the scan saw
     // nothing: the other checks name it.)
     const Model& m = test_model();
@@ -394,5 +394,13 @@ TEST_CASE("a hand turned about its wrist is judged off its points once the fit i
         }
         CHECK(wrong.hand_off_points[0] > fitting::kHandOffShare);
         CHECK(wrong.hand_off_surface[0] > fitting::kHandOffSurface);
+        // Seen from one side (the points whose normals face the front): the hand's back lies off
+        // the scan however it is turned, so hands are not judged.
+        fitting::PointCloud front;
+        for (std::size_t i = 0; i < cloud.points.size(); ++i)
+            if (cloud.normals[i].z() > 0) front.points.push_back(cloud.points[i]), front.normals.push_back(cloud.normals[i]);
+        const fitting::Judgement one_side = judge_state(lin, front, turned, true, true);
+        CHECK_FALSE(one_side.all_round);
+        CHECK(one_side.problem != fitting::FitProblemKind::HandOffPoints);
     }
 }

@@ -145,11 +145,12 @@ Judgement judge(FitProblem& p, uint32_t f, bool finished, bool hands) {
                 if (J.problem == FitProblemKind::None && J.off_points[arm] > kArmOffShare && J.off_points[arm] > kArmOffRatio * J.off_points[trunk] &&
                     J.off_points_balance[arm] > kArmOffBothSides)
                     J.problem = FitProblemKind::ArmOffPoints, J.region = int32_t(arm);
-            std::array<double, 2> hand_balance{}, hand_points{};
-            if (hands)
+            // Hands (when asked for) only in scans taken all round: one view sees one side of a
+            // hand, and its back lies off the scan however the hand is turned.
+            if (hands && J.all_round) {
+                std::array<double, 2> hand_balance{}, hand_points{};
                 p.region_sides_beyond_plane(f, kTightDistance, kTightCap, p.vertex_hands(), J.hand_off_points.data(), hand_balance.data(), 2,
                                             hand_points.data());
-            if (hands) {
                 // The hand's own surface off the scan: a bump (clothes, a watch) lies over a hand
                 // whose surface stays under it; a hand turned sticks out of its points.
                 const std::vector<uint8_t>& hand_of = p.vertex_hands();
@@ -161,13 +162,14 @@ Judgement judge(FitProblem& p, uint32_t f, bool finished, bool hands) {
                     samples[h] += 1;
                     away[h] += fd.scan_grid.nearest(posed[s], kLooseDistance, nullptr) == GridIndex::kNone;
                 }
-                for (std::size_t h = 0; h < 2; ++h) J.hand_off_surface[h] = samples[h] > 0 ? away[h] / samples[h] : 0.0;
+                for (std::size_t h = 0; h < 2; ++h) {
+                    J.hand_off_surface[h] = samples[h] > 0 ? away[h] / samples[h] : 0.0;
+                    if (J.problem == FitProblemKind::None && hand_points[h] >= kHandMinPoints && J.hand_off_points[h] > kHandOffShare &&
+                        J.hand_off_points[h] > kArmOffRatio * J.off_points[trunk] && J.hand_off_surface[h] > kHandOffSurface)
+                        J.problem = FitProblemKind::HandOffPoints, J.hand = int32_t(h),
+                        J.region = int32_t(h == 0 ? BodyRegion::LeftArm : BodyRegion::RightArm);
+                }
             }
-            for (std::size_t h = 0; h < 2; ++h)
-                if (J.problem == FitProblemKind::None && hand_points[h] >= kHandMinPoints && J.hand_off_points[h] > kHandOffShare &&
-                    J.hand_off_points[h] > kArmOffRatio * J.off_points[trunk] && J.hand_off_surface[h] > kHandOffSurface)
-                    J.problem = FitProblemKind::HandOffPoints, J.hand = int32_t(h),
-                    J.region = int32_t(h == 0 ? BodyRegion::LeftArm : BodyRegion::RightArm);
         }
     }
     // A limb through the body, with or without a scan. The least of the problems: any other says

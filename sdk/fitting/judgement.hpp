@@ -86,7 +86,7 @@ constexpr double kArmOffBothSides = 0.05;
 // the body in another place) when, of the scan points nearest it (at least kHandMinPoints), over
 // kHandOffShare lie beyond kTightDistance from the fit, over kArmOffRatio times the trunk's
 // share, and over kHandOffSurface of the hand's own surface samples have no scan point within
-// 2.5 cm. A hand differs from the model's more than an arm does (fingers, closure), so its share
+// 2.5 cm; judged in scans taken all round only (J.all_round). A hand differs from the model's more than an arm does (fingers, closure), so its share
 // is set well above the good fits'; no side test: a hand's points lie around thin fingers. The
 // surface test tells a bump from a turn: in ten simulated bumpy scans bumps over a hand left 28
 // and 41 % of its points beyond 8 mm, but at most 0.9 % of its surface away from the scan; hands
