@@ -353,8 +353,8 @@ TEST_CASE("an arm placed wrong as a whole is judged off its points once the fit 
 }
 
 TEST_CASE("a hand turned about its wrist is judged off its points once the fit is finished, the right hand is not", "[fitting][judgement]") {
-    // Silent failures of the pose library had a hand turned 30-105 degrees about the wrist with
-    // its arm on its points (hands 40-55 mm off): over kHandOffShare of the scan nearest the hand
+    // Silent failures of the pose library had a hand turned 19-113 degrees about the wrist with
+    // its arm on its points (52-93 mm off): over kHandOffShare of the scan nearest the hand
     // lies beyond kTightDistance, and over kHandOffSurface of its surface away from the scan. Judged so only when finished, on fits whose hands were searched
     // (judge()'s hands) in scans taken all round; the region is the hand's arm.
     // (A hand turned into empty space leaves the scan unexplained or lies where the scan saw

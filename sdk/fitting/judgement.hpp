@@ -91,7 +91,7 @@ constexpr double kArmOffBothSides = 0.05;
 // surface test tells a bump from a turn: in ten simulated bumpy scans bumps over a hand left 28
 // and 41 % of its points beyond 8 mm, but at most 0.9 % of its surface away from the scan; hands
 // turned a quarter turn 27-60 %. Pose library (MakeHuman people, 4 trials): successes' hands at
-// most 20 % of their points; the hands of silent failures, turned 30-105 degrees, 29-52 %, one
+// most 20 % of their points; the hands of silent failures, turned 19-113 degrees, 29-52 %, one
 // of them raised over the head with 42 points nearest it (docs/fitting.md, "Judging a fit").
 constexpr double kHandOffShare = 0.25;
 constexpr double kHandMinPoints = 30;
