@@ -354,18 +354,17 @@ TEST_CASE("an arm placed wrong as a whole is judged off its points once the fit 
 
 TEST_CASE("a hand turned about its wrist is judged off its points once the fit is finished, the right hand is not", "[fitting][judgement]") {
     // Silent failures of the pose library had a hand turned 19-113 degrees about the wrist with
-    // its arm on its points (52-93 mm off): over kHandOffShare of the scan nearest the hand
-    // lies beyond kTightDistance, and over kHandOffSurface of its surface away from the scan. Judged so only when finished, on fits whose hands were searched
-    // (judge()'s hands) in scans taken all round; the region is the hand's arm.
+    // its arm on its points (52-93 mm off): over kHandOffShare of the scan nearest the hand lies
+    // beyond kTightDistance, and over kHandOffSurface of its surface away from the scan. Judged so
+    // only when finished, on fits whose hands were searched (judge()'s hands), in scans taken all
+    // round; the region is the hand's arm.
     // (A hand turned into empty space leaves the scan unexplained or lies where the scan saw
     // nothing: the other checks name it.)
     const Model& m = test_model();
     const fitting::LinearModel lin(m, m.component_count());
     const int64_t elbow = anatomy::find_limb_joint(lin.roles, anatomy::BodyPart::Arm, anatomy::Side::Left, anatomy::LimbJoint::Middle);
     REQUIRE(elbow >= 0);
-    uint32_t wrist = lin.J;
-    for (uint32_t j = 0; j < lin.J; ++j)
-        if (lin.roles[j].part == anatomy::BodyPart::Hand && lin.chains[j].size() > 1 && lin.chains[j][1] == std::size_t(elbow)) wrist = j;
+    const uint32_t wrist = fitting::wrist_on(lin, std::size_t(elbow));
     REQUIRE(wrist < lin.J);
     for (const char* pose : {"boxing_guard", "arms_forward_up", "a_pose", "arms_raised"}) {
         std::mt19937 rng(12);

@@ -462,9 +462,9 @@ const std::vector<uint8_t>& FitProblem::vertex_regions() {
     return vertex_regions_;
 }
 
-const std::vector<uint8_t>& FitProblem::vertex_hands() {
-    if (vertex_hands_.empty()) vertex_hands_ = fitting::vertex_hands(lin_);
-    return vertex_hands_;
+const std::vector<uint8_t>& FitProblem::vertex_parts() {
+    if (vertex_parts_.empty()) vertex_parts_ = fitting::vertex_parts(lin_);
+    return vertex_parts_;
 }
 
 }  // namespace ssc::fitting

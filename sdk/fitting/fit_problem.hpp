@@ -126,8 +126,8 @@ public:
     const std::vector<uint8_t>& sample_regions();
     // Every model vertex's body region (judgement.hpp's vertex_regions()), built when needed.
     const std::vector<uint8_t>& vertex_regions();
-    // Every model vertex's hand (judgement.hpp's vertex_hands(): 0 left, 1 right, else none).
-    const std::vector<uint8_t>& vertex_hands();
+    // Every model vertex's part (judgement.hpp's vertex_parts(): the regions and the hands).
+    const std::vector<uint8_t>& vertex_parts();
     // How far frame f's posed surface passes through itself (interpenetration.hpp).
     LimbsInside limbs_inside(uint32_t f);
 
@@ -169,7 +169,7 @@ private:
     std::vector<FitState> states_;
     std::vector<uint8_t> sample_regions_;  // judgement.hpp's region of each, built when needed
     std::vector<uint8_t> vertex_regions_;  // the same for every vertex
-    std::vector<uint8_t> vertex_hands_;    // each vertex's hand
+    std::vector<uint8_t> vertex_parts_;    // the same with the hands apart
     std::unique_ptr<InterpenetrationTest> inside_test_;  // built when needed
     std::vector<uint32_t> vertex_sample_;  // area-uniform model vertices (model-to-scan, explained measure)
     std::vector<Vector3d> posed_, posed_normals_, subset_posed_, subset_normals_;

@@ -65,15 +65,14 @@ std::vector<uint8_t> vertex_regions(const LinearModel& lin) {
     return regions;
 }
 
-std::vector<uint8_t> vertex_hands(const LinearModel& lin) {
-    std::vector<uint8_t> hands(lin.V, 255);
+std::vector<uint8_t> vertex_parts(const LinearModel& lin) {
+    std::vector<uint8_t> parts = vertex_regions(lin);
     for (uint32_t v = 0; v < lin.V; ++v) {
         const uint32_t j = dominant_joint(lin.model.data(), v);
-        if (j >= lin.roles.size() || lin.roles[j].part != anatomy::BodyPart::Hand) continue;
-        if (lin.roles[j].side == anatomy::Side::Left) hands[v] = 0;
-        if (lin.roles[j].side == anatomy::Side::Right) hands[v] = 1;
+        if (j >= lin.roles.size() || lin.roles[j].part != anatomy::BodyPart::Hand || lin.roles[j].side == anatomy::Side::Centre) continue;
+        parts[v] = uint8_t(kBodyRegionCount + (lin.roles[j].side == anatomy::Side::Left ? 0 : 1));
     }
-    return hands;
+    return parts;
 }
 
 Judgement judge(FitProblem& p, uint32_t f, bool finished, bool hands) {
@@ -138,8 +137,11 @@ Judgement judge(FitProblem& p, uint32_t f, bool finished, bool hands) {
         // where the scan saw nothing has left its own points loosely explained elsewhere.
         if (worst > kOffScanShare && J.loose > kLooseShare) J.problem = FitProblemKind::LimbOffScan;
         if (finished) {
-            p.region_sides_beyond_plane(f, kTightDistance, kTightCap, p.vertex_regions(), J.off_points.data(), J.off_points_balance.data(),
-                                        kBodyRegionCount);
+            // One pass over the scan for the regions and the hands (kBodyPartCount parts).
+            std::array<double, kBodyPartCount> share{}, balance{}, points{};
+            p.region_sides_beyond_plane(f, kTightDistance, kTightCap, p.vertex_parts(), share.data(), balance.data(), kBodyPartCount, points.data());
+            std::copy_n(share.begin(), kBodyRegionCount, J.off_points.begin());
+            std::copy_n(balance.begin(), kBodyRegionCount, J.off_points_balance.begin());
             const std::size_t left = std::size_t(BodyRegion::LeftArm), right = std::size_t(BodyRegion::RightArm);
             for (const std::size_t arm : {left, right})
                 if (J.problem == FitProblemKind::None && J.off_points[arm] > kArmOffShare && J.off_points[arm] > kArmOffRatio * J.off_points[trunk] &&
@@ -148,23 +150,21 @@ Judgement judge(FitProblem& p, uint32_t f, bool finished, bool hands) {
             // Hands (when asked for) only in scans taken all round: one view sees one side of a
             // hand, and its back lies off the scan however the hand is turned.
             if (hands && J.all_round) {
-                std::array<double, 2> hand_balance{}, hand_points{};
-                p.region_sides_beyond_plane(f, kTightDistance, kTightCap, p.vertex_hands(), J.hand_off_points.data(), hand_balance.data(), 2,
-                                            hand_points.data());
                 // The hand's own surface off the scan: a bump (clothes, a watch) lies over a hand
                 // whose surface stays under it; a hand turned sticks out of its points.
-                const std::vector<uint8_t>& hand_of = p.vertex_hands();
+                const std::vector<uint8_t>& part_of = p.vertex_parts();
                 const std::vector<uint32_t>& sample = p.vertex_sample();
                 std::array<double, 2> samples{}, away{};
                 for (std::size_t s = 0; s < posed.size(); ++s) {
-                    const uint8_t h = hand_of[sample[s]];
+                    const std::size_t h = std::size_t(part_of[sample[s]]) - kBodyRegionCount;  // wraps for the regions
                     if (h > 1) continue;
                     samples[h] += 1;
                     away[h] += fd.scan_grid.nearest(posed[s], kLooseDistance, nullptr) == GridIndex::kNone;
                 }
                 for (std::size_t h = 0; h < 2; ++h) {
+                    J.hand_off_points[h] = share[kBodyRegionCount + h];
                     J.hand_off_surface[h] = samples[h] > 0 ? away[h] / samples[h] : 0.0;
-                    if (J.problem == FitProblemKind::None && hand_points[h] >= kHandMinPoints && J.hand_off_points[h] > kHandOffShare &&
+                    if (J.problem == FitProblemKind::None && points[kBodyRegionCount + h] >= kHandMinPoints && J.hand_off_points[h] > kHandOffShare &&
                         J.hand_off_points[h] > kArmOffRatio * J.off_points[trunk] && J.hand_off_surface[h] > kHandOffSurface)
                         J.problem = FitProblemKind::HandOffPoints, J.hand = int32_t(h),
                         J.region = int32_t(h == 0 ? BodyRegion::LeftArm : BodyRegion::RightArm);

@@ -33,6 +33,8 @@ class FitProblem;
 // misplaced limb shows in its arm or leg.
 enum class BodyRegion : uint8_t { Head = 0, Trunk, LeftArm, RightArm, LeftLeg, RightLeg, None = 255 };
 constexpr std::size_t kBodyRegionCount = 6;
+// The regions and, after them, the two hands (left, right): vertex_parts().
+constexpr std::size_t kBodyPartCount = kBodyRegionCount + 2;
 const char* region_name(BodyRegion region);  // "head", "trunk", "left arm", ...
 
 // What is wrong with a fit, the first that applies in this order (None: nothing).
@@ -151,7 +153,7 @@ Judgement judge(FitProblem& problem, uint32_t f, bool finished = false, bool han
 
 // Each model vertex's region (by its largest skinning weight's joint).
 std::vector<uint8_t> vertex_regions(const LinearModel& lin);
-// Each model vertex's hand by the same joint: 0 left, 1 right, 255 none.
-std::vector<uint8_t> vertex_hands(const LinearModel& lin);
+// The same with each hand a part of its own: kBodyRegionCount for the left, + 1 for the right.
+std::vector<uint8_t> vertex_parts(const LinearModel& lin);
 
 }  // namespace ssc::fitting

@@ -23,14 +23,13 @@ constexpr double kCap = 0.05, kModelCap = 0.02;
 constexpr double kMinGain = 0.05;
 constexpr std::size_t kSamples = 1500;
 
-// The wrist on an elbow: the hand joint whose parent it is; lin.J when the rig has none.
+}  // namespace
+
 uint32_t wrist_on(const LinearModel& lin, std::size_t elbow) {
     for (uint32_t j = 0; j < lin.J; ++j)
         if (lin.roles[j].part == anatomy::BodyPart::Hand && lin.chains[j].size() > 1 && lin.chains[j][1] == elbow) return j;
     return lin.J;
 }
-
-}  // namespace
 
 bool search_wrists(Kinematics& kin, Body& body, FitState& state, const CloudView& cloud, const std::vector<uint32_t>& vertex_sample,
                    ThreadPool& pool) {

@@ -22,6 +22,9 @@
 
 namespace ssc::fitting {
 
+// The wrist on an elbow: the hand joint whose parent it is; lin.J when the rig has none.
+uint32_t wrist_on(const LinearModel& lin, std::size_t elbow);
+
 // Searches both arms of one frame and sets the chosen elbow and wrist rotations. kin and body:
 // scratch for the frame's model (their state is overwritten). Returns whether a wrist moved.
 // Rigs without limited elbow and wrist joints are left as they are.

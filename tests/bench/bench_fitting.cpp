@@ -271,7 +271,7 @@ std::vector<double> scan_beyond(const std::vector<Eigen::Vector3d>& fit, const s
 // fitted vertex lies in it: the share farther than `distance` from the fit along that vertex's
 // normal, and of those the share on the side less of them lie (0: all in front of the surface or
 // all behind it, as on a bump; an arm placed wrong leaves its points on both sides).
-constexpr std::size_t kPartCount = fitting::kBodyRegionCount + 2;  // the judgement's regions and the two hands
+constexpr std::size_t kPartCount = fitting::kBodyPartCount;  // the judgement's regions and the two hands
 struct RegionBeyond {
     std::array<double, kPartCount> share{}, balance{};
 };
@@ -891,11 +891,7 @@ int main(int argc, char** argv) {
         std::vector<std::string> captions;
         std::uniform_int_distribution<uint32_t> point_count(20000, 60000);
         const HandContact hand_contact(lin);
-        // The judgement's regions with each hand a part of its own (6 left, 7 right).
-        std::vector<uint8_t> vertex_regions = fitting::vertex_regions(lin);
-        const std::vector<uint8_t> vertex_hands = fitting::vertex_hands(lin);
-        for (uint32_t v = 0; v < lin.V; ++v)
-            if (vertex_hands[v] < 2) vertex_regions[v] = uint8_t(fitting::kBodyRegionCount + vertex_hands[v]);
+        const std::vector<uint8_t> vertex_parts = fitting::vertex_parts(lin);  // the judgement's regions and hands
         const std::array<std::vector<std::size_t>, 2> hands = hand_vertices(model);
         for (const simulation::LibraryPose& lp : simulation::pose_library()) {
             // --pose: the other poses are drawn and scanned, not fitted, so each trial of this
@@ -993,7 +989,7 @@ int main(int argc, char** argv) {
                                 lp.name.c_str(), t, head.error * 1e3, head.aligned_error * 1e3, head.turn_degrees, head.shift * 1e3, head.surface * 1e3);
                     const std::vector<double> beyond = scan_beyond(fv, triangles, frame.clouds[0].points, {0.008, 0.012, 0.02});
                     std::printf("  %s trial %d: scan beyond 8 / 12 / 20 mm of the fit %.4f %.4f %.4f\n", lp.name.c_str(), t, beyond[0], beyond[1], beyond[2]);
-                    const RegionBeyond by_region = region_beyond(fv, triangles, vertex_regions, frame.clouds[0].points, 0.008);
+                    const RegionBeyond by_region = region_beyond(fv, triangles, vertex_parts, frame.clouds[0].points, 0.008);
                     std::printf("  %s trial %d: scan beyond 8 mm by region (head, trunk, arms, legs, hands) %.4f %.4f %.4f %.4f %.4f %.4f %.4f %.4f, on the lesser side "
                                 "%.2f %.2f %.2f %.2f %.2f %.2f %.2f %.2f\n",
                                 lp.name.c_str(), t, by_region.share[0], by_region.share[1], by_region.share[2], by_region.share[3], by_region.share[4],
