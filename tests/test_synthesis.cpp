@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
@@ -482,4 +483,84 @@ TEST_CASE("every instruction set's shape and skinning kernels give the baseline'
         CHECK(level_posed[2] == level_posed[0]);
     }
     ssc_model_release(handle);
+}
+
+TEST_CASE("skinning by blocks of 16 vertices gives the skin layout's bits, signed zeros included, on every instruction set", "[synthesis][isa]") {
+    // skin_blocks (skin_blocks.hpp) blends each lane's joints in SkinLayout's order from -0 and masks
+    // off the joints a lane lacks: bit for bit skin_slots, even where an element blends to zero
+    // (the zero pose's off-diagonal elements, a vertex on the mirror plane at x = 0).
+    namespace k = ssc::kernels;
+    auto bits_equal = [](const std::vector<float>& a, const std::vector<float>& b) {
+        return a.size() == b.size() && std::memcmp(a.data(), b.data(), 4 * a.size()) == 0;
+    };
+    auto check = [&](const ssc::SkinLayout& layout, const ssc::SkinBlocks& blocks, const float* rest, const k::SkinMatrix* mats) {
+        const uint32_t V = layout.vertex_count;
+        REQUIRE(blocks.vertex_count == V);
+        std::vector<float> expected(3ull * V, -1.f);
+        k::skin_slots(layout, rest, mats, expected.data(), 0, layout.slot_count(), k::Isa::Baseline);
+        for (int isa = 0; isa < 3; ++isa) {
+            INFO("isa " << k::isa_name(k::Isa(isa)));
+            std::vector<float> planar(3ull * V, -1.f), xyz(3ull * V + 16, -3.f), again(3ull * V, -1.f);
+            k::skin_blocks(blocks, rest, mats, planar.data(), xyz.data(), 0, blocks.block_count(), k::Isa(isa));
+            CHECK(bits_equal(planar, expected));
+            std::vector<float> interleaved(3ull * V);
+            for (uint32_t v = 0; v < V; ++v)
+                for (int c = 0; c < 3; ++c) interleaved[3 * v + c] = expected[c * std::size_t(V) + v];
+            CHECK(bits_equal(std::vector<float>(xyz.begin(), xyz.begin() + 3 * std::ptrdiff_t(V)), interleaved));
+            CHECK(std::all_of(xyz.begin() + 3 * std::ptrdiff_t(V), xyz.end(), [](float x) { return x == -3.f; }));  // nothing past the buffer
+            // Two block ranges (two threads' shares) write what one does.
+            const uint32_t half = blocks.block_count() / 2;
+            k::skin_blocks(blocks, rest, mats, again.data(), nullptr, half, blocks.block_count(), k::Isa(isa));
+            k::skin_blocks(blocks, rest, mats, again.data(), nullptr, 0, half, k::Isa(isa));
+            CHECK(bits_equal(again, expected));
+        }
+    };
+    SECTION("the default model, in the zero pose and posed") {
+        ssc_model* handle = nullptr;
+        REQUIRE(ssc_model_load_default(nullptr, &handle) == SSC_OK);
+        const ssc::Model& m = handle->model;
+        const uint32_t K = m.component_count(), J = m.joint_count();
+        REQUIRE(m.vertex_count() % ssc::SkinBlocks::kLanes != 0);  // a partial last block
+        ssc::Body body(m, nullptr);
+        std::vector<float> shape(K, 0.f), quats(4ull * J, 0.f);
+        for (uint32_t j = 0; j < J; ++j) quats[4 * j + 3] = 1.f;
+        body.set_shape(shape.data(), K);
+        body.set_pose(quats.data(), nullptr);
+        check(m.skin_layout(), m.skin_blocks(), body.rest_planar(), body.skinning());
+        for (uint32_t j = 0; j < J; ++j) {
+            const Eigen::Quaternionf q(Eigen::AngleAxisf(0.7f * std::sin(2.1f * float(j)), Eigen::Vector3f(std::cos(float(j)), 1, 0.4f).normalized()));
+            quats[4 * j] = q.x(), quats[4 * j + 1] = q.y(), quats[4 * j + 2] = q.z(), quats[4 * j + 3] = q.w();
+        }
+        for (uint32_t i = 0; i < K; ++i) shape[i] = float(std::sin(1.1 * double(i)));
+        body.set_shape(shape.data(), K);
+        const float t[3] = {0.3f, -0.1f, 0.2f};
+        body.set_pose(quats.data(), t);
+        check(m.skin_layout(), m.skin_blocks(), body.rest_planar(), body.skinning());
+        ssc_model_release(handle);
+    }
+    SECTION("vertices naming a joint twice, unused influences and signed zeros in the matrices") {
+        constexpr uint32_t V = 37, J = 6;  // two whole blocks and 5 vertices
+        std::vector<uint16_t> joints(4 * V);
+        std::vector<float> weights(4 * V), rest(3 * V);
+        for (uint32_t v = 0; v < V; ++v) {
+            for (uint32_t i = 0; i < 4; ++i) {
+                joints[4 * v + i] = uint16_t((v * 7 + i * (v % 3 + 1)) % J);
+                weights[4 * v + i] = (v + i) % 5 == 0 ? 0.f : (v + i) % 7 == 0 ? -0.5f : 0.1f + 0.2f * float(i);
+            }
+            if (v % 4 == 0) joints[4 * v + 1] = joints[4 * v];  // the same joint twice
+            if (v % 9 == 0) weights[4 * v] = 1.f, weights[4 * v + 1] = weights[4 * v + 2] = weights[4 * v + 3] = 0.f;
+            for (int c = 0; c < 3; ++c) rest[c * V + v] = float(std::sin(double(v) + c));
+            if (v % 6 == 0) {  // on joint 0 alone, at x = -0: its x blends to a signed zero
+                joints[4 * v] = 0, weights[4 * v] = 0.5f, weights[4 * v + 1] = weights[4 * v + 2] = weights[4 * v + 3] = 0.f;
+                rest[v] = -0.f, rest[V + v] = 0.5f, rest[2 * V + v] = 0.7f;
+            }
+        }
+        std::vector<k::SkinMatrix> mats(J);
+        for (uint32_t j = 0; j < J; ++j)
+            for (int e = 0; e < 16; ++e) mats[j].m[e] = (e + j) % 4 == 0 ? ((e + j) % 8 == 0 ? 0.f : -0.f) : float(std::cos(double(e) * 0.7 + j));
+        for (int e = 0; e < 16; ++e) mats[0].m[e] = e % 5 == 0 ? 1.f : -0.f;  // the identity, every other element -0
+        const ssc::SkinLayout layout = ssc::build_skin_layout(V, joints.data(), weights.data(), nullptr);
+        const ssc::SkinBlocks blocks = ssc::build_skin_blocks(V, joints.data(), weights.data(), nullptr);
+        check(layout, blocks, rest.data(), mats.data());
+    }
 }

@@ -112,9 +112,26 @@ const float* Body::posed_slots() {
 // posing (docs/speed.md).
 bool Body::skin_in_slot_order() const { return rest_slots_ok_ || rest_posed_; }
 
+// With AVX-512 every posing skins in vertex order by blocks of 16 vertices and their joints
+// (skin_blocks.hpp): no slot order, no gathers. AVX2 and baseline x86-64 keep the slot order: their
+// masked blends (AVX2 has no masked multiply-add) and software fused multiply-adds cost more there
+// than the gathers do (docs/speed.md).
+bool Body::skin_by_blocks() const { return kernels::skin_by_blocks(kernels::active_isa()); }
+
+void Body::skin_blocks(float* xyz) {
+    update_skeleton();
+    const SkinBlocks& blocks = model_.skin_blocks();
+    split(blocks.block_count(), 1, [&](std::size_t first, std::size_t end) {
+        kernels::skin_blocks(blocks, rest_.data(), skinning_.data(), posed_.data(), xyz, uint32_t(first), uint32_t(end), kernels::Isa::Avx512);
+    });
+    posed_ok_ = true;
+}
+
 const float* Body::posed() {
     if (!posed_ok_) {
-        if (skin_in_slot_order()) {
+        if (skin_by_blocks()) {
+            skin_blocks(nullptr);
+        } else if (skin_in_slot_order()) {
             const float* slots = posed_slots();
             split(model_.vertex_count(), SkinLayout::kBlock, [&](std::size_t first, std::size_t end) {
                 kernels::from_slot_order(model_.skin_layout(), slots, posed_.data(), uint32_t(first), uint32_t(end));
@@ -141,6 +158,11 @@ void Body::posed_xyz(float* out, std::size_t stride) {
     if (out && posed_ok_) return kernels::planar_to_xyz(posed_.data(), V, out, stride);
     if (out && posed_slots_ok_) return kernels::slots_to_xyz(layout, posed_slots_.data(), out, stride, 0, V);
     float* xyz = stride == 3 * sizeof(float) ? out : nullptr;
+    if (out && skin_by_blocks()) {
+        skin_blocks(xyz);
+        if (!xyz) kernels::planar_to_xyz(posed_.data(), V, out, stride);
+        return;
+    }
     // A shape's first posing whose packed vertices are asked for first goes to slot order too: the
     // rest's conversion and the skinning straight into xyz cost less than the vertex order's
     // gathered and scattered blocks and then a copy (docs/speed.md). (posed_slots() calls this in

@@ -51,6 +51,9 @@ private:
     // 3 blocks of slot_count() floats, from the rest positions in that order.
     const float* posed_slots();
     bool skin_in_slot_order() const;
+    bool skin_by_blocks() const;
+    // The full mesh skinned by skin_blocks into posed_, and into xyz (packed) unless null.
+    void skin_blocks(float* xyz);
     struct LevelState {
         Vec<float> rest, posed, normals, faces;
         bool rest_ok = false, posed_ok = false, normals_ok = false;

@@ -504,6 +504,7 @@ void skin_runs(const SkinLayout& layout, const float* rest, const SkinMatrix* sk
 }  // namespace
 
 void skin(const Model& m, const float* rest, const SkinMatrix* skinning, float* out) {
+    if (skin_by_blocks(active_isa())) return skin_blocks(m.skin_blocks(), rest, skinning, out, nullptr, 0, m.skin_blocks().block_count(), Isa::Avx512);
     skin_slots(m.skin_layout(), rest, skinning, out, 0, m.skin_layout().slot_count(), active_isa());
 }
 

@@ -51,6 +51,7 @@ Model::Model(format::ModelData data, const Allocator* alloc)
     }
 
     skin_layout_ = build_skin_layout(V_, data_.skin.joints.data(), data_.skin.weights.data(), alloc);
+    skin_blocks_ = build_skin_blocks(V_, data_.skin.joints.data(), data_.skin.weights.data(), alloc);
 
     const auto& tris = data_.mesh.triangles;
     vt_offsets_ = Vec<uint32_t>(V_ + 1, 0u, CAlloc<uint32_t>(alloc));

@@ -6,6 +6,7 @@
 #include "common/alloc.hpp"
 #include "levels.hpp"
 #include "segments.hpp"
+#include "skin_blocks.hpp"
 #include "skin_layout.hpp"
 #include "sscape_format/model_data.hpp"
 
@@ -43,6 +44,7 @@ public:
     static constexpr uint32_t kSkinBlock = SkinLayout::kBlock;
     using SkinRun = SkinLayout::Run;
     const SkinLayout& skin_layout() const { return skin_layout_; }
+    const SkinBlocks& skin_blocks() const { return skin_blocks_; }
     const std::vector<SkinRun>& skin_runs() const { return skin_layout_.runs; }
     const uint32_t* skin_vertices() const { return skin_layout_.vertices.data(); }    // per slot
     const float* skin_weights(int i) const { return skin_layout_.weights[i].data(); }  // per slot, influence i
@@ -88,6 +90,7 @@ private:
     Vec<int16_t> basis_panels_;
     Vec<float> mean_planar_, joint_mean_, joint_basis_, landmark_rest_;
     SkinLayout skin_layout_;
+    SkinBlocks skin_blocks_;
     Vec<uint32_t> vt_offsets_, vt_triangles_;
     std::vector<SegmentSpace> segments_;
     uint32_t segment_coefficients_ = 0;

@@ -242,7 +242,9 @@ SSC_TARGET_END
 // docs/speed.md): 0 skinning in vertex order (a shape's first posing), 1 the rest put in slot
 // order (once per shape), 2 skinning in slot order (every later posing), 3 slot order to the
 // caller's xyz, 4 planar vertex order to xyz, 5 the memory floor (transform_stream), 6 the shape
-// stage's rows for one body (against BM_BasisReadFloor).
+// stage's rows for one body (against BM_BasisReadFloor), 7 slot order skinned into xyz as well, 8
+// and 9 skinning in vertex order by blocks of 16 and their joints (skin_blocks.hpp), planar, and
+// planar and xyz (what a body does on AVX-512).
 void BM_PoseStage(benchmark::State& state) {
     namespace k = ssc::kernels;
     OneBody f(true);
@@ -251,6 +253,7 @@ void BM_PoseStage(benchmark::State& state) {
     ssc_body_get_vertices(f.b, f.out.data(), f.V, 0);
     ssc::Body& body = f.b->body;
     const ssc::SkinLayout& layout = f.m->model.skin_layout();
+    const ssc::SkinBlocks& blocks = f.m->model.skin_blocks();
     const uint32_t S = layout.slot_count(), V = f.V;
     const float* rest = body.rest_planar();
     const k::SkinMatrix* skinning = body.skinning();
@@ -259,7 +262,8 @@ void BM_PoseStage(benchmark::State& state) {
     k::skin_slots_in_slot_order(layout, rest_slots.data(), skinning, slots.data(), 0, S, k::active_isa());
     const int stage = int(state.range(0));
     static const char* names[] = {"skin, vertex order", "rest to slot order", "skin, slot order", "slot order to xyz", "planar to xyz",
-                                  "one matrix, contiguous (floor)", "shape rows, one body", "skin, slot order, and xyz"};
+                                  "one matrix, contiguous (floor)", "shape rows, one body", "skin, slot order, and xyz", "skin blocks, vertex order",
+                                  "skin blocks, vertex order, and xyz"};
     const ssc::Model& model = f.m->model;
     std::vector<float> scaled(model.component_count()), shaped(model.padded_rows());
     k::scale_coefficients(model, f.p.shapes[0].data(), scaled.data());
@@ -274,6 +278,8 @@ void BM_PoseStage(benchmark::State& state) {
             case 4: k::planar_to_xyz(planar.data(), V, f.out.data(), 12); break;
             case 6: k::shape_rows(model, 1, &scaled_rows, &shaped_rows, 0, model.padded_rows() / ssc::Model::kChunk); break;
             case 7: k::skin_slots_and_xyz(layout, rest_slots.data(), skinning, slots.data(), f.out.data(), 0, S, k::active_isa()); break;
+            case 8: k::skin_blocks(blocks, rest, skinning, planar.data(), nullptr, 0, blocks.block_count(), k::active_isa()); break;
+            case 9: k::skin_blocks(blocks, rest, skinning, planar.data(), f.out.data(), 0, blocks.block_count(), k::active_isa()); break;
             default:
 #if defined(__x86_64__)
                 transform_stream(rest, planar.data(), V, skinning[3].m);
@@ -349,7 +355,7 @@ void BM_BasisReadFloor(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_BasisReadFloor)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PoseStage)->DenseRange(0, 7)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PoseStage)->DenseRange(0, 9)->Unit(benchmark::kMicrosecond);
 void BM_LoadDefaultModel(benchmark::State& state) {
     for (auto _ : state) {
         ssc_model* m = load_default();
