@@ -339,6 +339,8 @@ TEST_CASE("a body posed again skins in slot order with the same bits, on every i
     // The first posing of a shape skins in vertex order; later ones keep the rest in the skin
     // layout's slot order (Body::posed_slots) and convert on the way out. Both must give exactly
     // what skin_slots gives, through posed() and through the xyz output, whichever is asked first.
+    // (With AVX-512 every posing skins by blocks, writing the planar positions beside the xyz only
+    // once posed() has been used: the xyz-first body's first posing makes them when asked.)
     ssc_model* handle = nullptr;
     REQUIRE(ssc_model_load_default(nullptr, &handle) == SSC_OK);
     const ssc::Model& m = handle->model;

@@ -74,6 +74,7 @@ private:
     float translation_[3] = {0, 0, 0};
     bool any_segment_ = false, rest_ok_ = false, skeleton_ok_ = false, posed_ok_ = false, normals_ok_ = false, rest_slots_ok_ = false,
          posed_slots_ok_ = false, rest_posed_ = false, rest_frames_ok_ = false;
+    bool planar_used_ = false;  // posed() has been called: skin_blocks writes the planar positions too
 };
 
 }  // namespace ssc

@@ -74,14 +74,14 @@ void skin_slots(const SkinLayout& layout, const float* rest_planar, const SkinMa
                 uint32_t end, Isa isa);
 
 // Skinning in vertex order by blocks of 16 vertices (skin_blocks.hpp), blocks [first, end):
-// rest and out planar over s.vertex_count, and with xyz non-null the same positions interleaved
-// there (vertex v at xyz + 3 v). The same bits as skin_slots. Disjoint block ranges write
-// disjoint vertices.
+// rest planar over s.vertex_count; the posed positions planar into out_planar and interleaved into
+// xyz (vertex v at xyz + 3 v), each unless null. The same bits as skin_slots. Disjoint block ranges
+// write disjoint vertices.
 void skin_blocks(const SkinBlocks& s, const float* rest_planar, const SkinMatrix* skinning, float* out_planar, float* xyz, uint32_t first,
                  uint32_t end, Isa isa);
 // Whether skin_blocks beats the skin layout's runs on this instruction set: on AVX-512 only (AVX2
-// has no masked multiply-add and pays a blend for each, baseline x86-64 its fused multiply-adds in
-// software; docs/speed.md). kernels::skin and Body choose by it.
+// has no masked multiply-add; elsewhere skin_blocks runs one vertex at a time; docs/speed.md).
+// kernels::skin and Body choose by it.
 inline bool skin_by_blocks(Isa isa) { return isa == Isa::Avx512; }
 // Skinning with positions in the layout's slot order (skin_layout.hpp): rest_slots and out_slots
 // hold an x, a y and a z block of layout.slot_count() floats, slot s holding vertex

@@ -5,12 +5,13 @@
 // multiply-adds), then p = (m0 x + m8 z) + (m4 y + m12) per row. The blend starts from -0, and
 // fma(w, M, -0) rounds w M exactly as the product does (x + -0 = x for every x, signed zeros
 // included); a joint that does not move a lane leaves that lane's sum untouched (a masked
-// multiply-add on AVX-512, a blend on AVX2), so every lane gets the same bits as before.
+// multiply-add), so every lane gets the same bits as before. AVX-512 only: AVX2 has no masked
+// multiply-add, and a blend after each made its blocks slower than the skin layout's runs with their
+// gathers (docs/speed.md); other instruction sets run the blocks one vertex at a time.
 #include "cpu.hpp"
 #include "kernels.hpp"
 #include "madd.hpp"
 #include "skin_blocks.hpp"
-#include "xyz_store.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -44,54 +45,12 @@ void skin_block_scalar(const SkinBlocks& s, uint32_t b, const float* rest, const
         const float x = rest[v], y = rest[V + v], z = rest[2 * std::size_t(V) + v];
         auto row = [&](const int* e) { return madd(m[e[2]], z, m[e[0]] * x) + madd(m[e[1]], y, m[e[3]]); };
         const float px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
-        out[v] = px, out[V + v] = py, out[2 * std::size_t(V) + v] = pz;
+        if (out) out[v] = px, out[V + v] = py, out[2 * std::size_t(V) + v] = pz;
         if (xyz) xyz[3 * std::size_t(v)] = px, xyz[3 * std::size_t(v) + 1] = py, xyz[3 * std::size_t(v) + 2] = pz;
     }
 }
 
 #ifdef SSC_BLOCKS_X86
-SSC_TARGET_AVX2_BEGIN
-// Two halves of 8 lanes; a joint whose entry moves neither lane of a half is skipped there.
-template <bool Xyz>
-void skin_blocks_avx2(const SkinBlocks& s, const float* rest, const float* mats, float* out, float* xyz, uint32_t first, uint32_t end) {
-    const uint32_t V = s.vertex_count;
-    const float *xs = rest, *ys = rest + V, *zs = rest + 2 * std::size_t(V);
-    float *ox = out, *oy = out + V, *oz = out + 2 * std::size_t(V);
-    for (uint32_t b = first; b < end; ++b) {
-        if (L * (b + 1) > V) {
-            skin_block_scalar(s, b, rest, mats, out, Xyz ? xyz : nullptr);
-            continue;
-        }
-        for (uint32_t h = 0; h < L; h += 8) {
-            const uint32_t v0 = L * b + h;
-            __m256 m[15];
-            for (int e : kElements) m[e] = _mm256_set1_ps(-0.f);
-            for (uint32_t i = s.first[b]; i < s.first[b + 1]; ++i) {
-                const float* M = mats + s.offsets[i];
-                const __m256 w = _mm256_loadu_ps(s.weights.data() + std::size_t(i) * L + h);
-                const __m256 moves = _mm256_cmp_ps(w, _mm256_setzero_ps(), _CMP_GT_OQ);
-                _Pragma("GCC unroll 12") for (int e : kElements) m[e] = _mm256_blendv_ps(m[e], _mm256_fmadd_ps(w, _mm256_broadcast_ss(M + e), m[e]), moves);
-            }
-            const __m256 x = _mm256_loadu_ps(xs + v0), y = _mm256_loadu_ps(ys + v0), z = _mm256_loadu_ps(zs + v0);
-            auto row = [&](const int* e) {
-                return _mm256_add_ps(_mm256_fmadd_ps(m[e[2]], z, _mm256_mul_ps(m[e[0]], x)), _mm256_fmadd_ps(m[e[1]], y, m[e[3]]));
-            };
-            const __m256 px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
-            _mm256_storeu_ps(ox + v0, px);
-            _mm256_storeu_ps(oy + v0, py);
-            _mm256_storeu_ps(oz + v0, pz);
-            if constexpr (Xyz) {
-                __m256 o0, o1, o2;
-                interleave8(px, py, pz, o0, o1, o2);
-                float* o = xyz + 3 * std::size_t(v0);
-                _mm256_storeu_ps(o, o0);
-                _mm256_storeu_ps(o + 8, o1);
-                _mm256_storeu_ps(o + 16, o2);
-            }
-        }
-    }
-}
-SSC_TARGET_END
 
 // Where float i of the k-th 16 floats of 16 interleaved vertices comes from: first from (x, y)
 // (x lanes 0-15, y 16-31), then from (that, z) (itself 0-15, z 16-31).
@@ -112,16 +71,18 @@ inline constexpr Interleave16 kInterleave16 = interleave16();
 
 SSC_TARGET_AVX512_BEGIN
 // Blocks in vertex order (a hardware prefetcher's stream: after the shape stage has evicted the rest
-// positions, an order of blocks grouped by joint count took 2 us more a body).
-template <bool Xyz>
+// positions, an order of blocks grouped by joint count took 2 us more a body). Planar and Xyz: which
+// outputs are written.
+template <bool Planar, bool Xyz>
 void skin_blocks_avx512(const SkinBlocks& s, const float* rest, const float* mats, float* out, float* xyz, uint32_t first, uint32_t end) {
     const uint32_t V = s.vertex_count;
     const float *xs = rest, *ys = rest + V, *zs = rest + 2 * std::size_t(V);
-    float *ox = out, *oy = out + V, *oz = out + 2 * std::size_t(V);
+    float *ox = nullptr, *oy = nullptr, *oz = nullptr;
+    if constexpr (Planar) ox = out, oy = out + V, oz = out + 2 * std::size_t(V);
     const float* weights = s.weights.data();
     for (uint32_t b = first; b < end; ++b) {
         if (L * (b + 1) > V) {
-            skin_block_scalar(s, b, rest, mats, out, Xyz ? xyz : nullptr);
+            skin_block_scalar(s, b, rest, mats, Planar ? out : nullptr, Xyz ? xyz : nullptr);
             continue;
         }
         const uint32_t v0 = L * b;
@@ -143,9 +104,11 @@ void skin_blocks_avx512(const SkinBlocks& s, const float* rest, const float* mat
             return _mm512_add_ps(_mm512_fmadd_ps(m[e[2]], z, _mm512_mul_ps(m[e[0]], x)), _mm512_fmadd_ps(m[e[1]], y, m[e[3]]));
         };
         const __m512 px = row(kRowX), py = row(kRowY), pz = row(kRowZ);
-        _mm512_storeu_ps(ox + v0, px);
-        _mm512_storeu_ps(oy + v0, py);
-        _mm512_storeu_ps(oz + v0, pz);
+        if constexpr (Planar) {
+            _mm512_storeu_ps(ox + v0, px);
+            _mm512_storeu_ps(oy + v0, py);
+            _mm512_storeu_ps(oz + v0, pz);
+        }
         if constexpr (Xyz) {
             float* o = xyz + 3 * std::size_t(v0);
             _Pragma("GCC unroll 3") for (int k = 0; k < 3; ++k) {
@@ -164,8 +127,11 @@ void skin_blocks(const SkinBlocks& s, const float* rest, const SkinMatrix* skinn
     if (int(isa) > int(supported_isa())) isa = supported_isa();
     const float* mats = skinning[0].m;
 #ifdef SSC_BLOCKS_X86
-    if (isa == Isa::Avx512) return xyz ? skin_blocks_avx512<true>(s, rest, mats, out, xyz, first, end) : skin_blocks_avx512<false>(s, rest, mats, out, nullptr, first, end);
-    if (isa == Isa::Avx2) return xyz ? skin_blocks_avx2<true>(s, rest, mats, out, xyz, first, end) : skin_blocks_avx2<false>(s, rest, mats, out, nullptr, first, end);
+    if (isa == Isa::Avx512) {
+        if (!out) return skin_blocks_avx512<false, true>(s, rest, mats, nullptr, xyz, first, end);
+        if (!xyz) return skin_blocks_avx512<true, false>(s, rest, mats, out, nullptr, first, end);
+        return skin_blocks_avx512<true, true>(s, rest, mats, out, xyz, first, end);
+    }
 #endif
     (void)isa;
     for (uint32_t b = first; b < end; ++b) skin_block_scalar(s, b, rest, mats, out, xyz);
