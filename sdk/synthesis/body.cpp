@@ -113,9 +113,9 @@ const float* Body::posed_slots() {
 bool Body::skin_in_slot_order() const { return rest_slots_ok_ || rest_posed_; }
 
 // With AVX-512 every posing skins in vertex order by blocks of 16 vertices and their joints
-// (skin_blocks.hpp): no slot order, no gathers. AVX2 and baseline x86-64 keep the slot order: their
-// masked blends (AVX2 has no masked multiply-add) and software fused multiply-adds cost more there
-// than the gathers do (docs/speed.md).
+// (skin_blocks.hpp): no slot order, no gathers. AVX2 and baseline x86-64 keep the slot order
+// (AVX2 has no masked multiply-add: with a blend after each, blocks cost more than the gathers;
+// docs/speed.md).
 bool Body::skin_by_blocks() const { return kernels::skin_by_blocks(kernels::active_isa()); }
 
 // The planar positions are written beside the caller's xyz only by a body that has used them

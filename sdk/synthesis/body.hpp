@@ -30,7 +30,7 @@ public:
     const float* rest_joints();     // 3J
     const float* posed();           // 3V planar: x block, y block, z block
     // The posed vertices as xyz at stride bytes (vertex v at out + v * stride): what posed() holds,
-    // without making it when only this is asked for (the skinning's slot order converted once).
+    // without making it when only this is asked for (skinned straight into out).
     void posed_xyz(float* out, std::size_t stride);
     const float* normals();         // 3V, xyz
     const float* world();           // 16J column-major
@@ -52,7 +52,8 @@ private:
     const float* posed_slots();
     bool skin_in_slot_order() const;
     bool skin_by_blocks() const;
-    // The full mesh skinned by skin_blocks into posed_, and into xyz (packed) unless null.
+    // The full mesh skinned by kernels::skin_blocks (AVX-512) into xyz (packed) unless null, and
+    // into posed_ when xyz is null or posed() has been used (posed_ok_ says which).
     void skin_blocks(float* xyz);
     struct LevelState {
         Vec<float> rest, posed, normals, faces;
